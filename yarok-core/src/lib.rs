@@ -1,0 +1,8 @@
+//! yarok-core: everything about a robot that does not depend on where it runs.
+//!
+//! Its one job is the platform-independent half of yarok: MJCF component templates and their
+//! composition into one world, the layered run configuration, the component model, and the
+//! single-threaded async runtime on which behaviours `await` platform ticks. It names neither
+//! MuJoCo nor any device; simulation lives in `yarok-mjc`, hardware in `yarok-hw`.
+//!
+//! This crate is being built up issue by issue; today it only fixes its place in the workspace.

@@ -1,0 +1,7 @@
+//! yarok-hw: the real-hardware side of yarok.
+//!
+//! Its one job is talking to devices: the hardware backend that ticks on wall-clock time, and
+//! async drivers generic over their transport (Marlin G-code over serial, the UR controller's
+//! URScript and RTDE, the Robotiq gripper socket, cameras).
+//!
+//! This crate is being built up issue by issue; today it only fixes its place in the workspace.

@@ -1,0 +1,298 @@
+//! [`Data`]: the simulation state of a [`Model`], and stepping it.
+
+use std::fmt;
+use std::ptr::NonNull;
+use std::sync::Arc;
+
+use crate::error::ModelError;
+use crate::model::{ActuatorId, BodyId, JointId, Model, SensorId, to_usize};
+use crate::sys;
+
+/// The state of one simulation of a [`Model`] (`mjData`): time, positions, velocities,
+/// controls, sensor readings and everything computed from them.
+///
+/// `Data` keeps its model alive. It may move between threads but is used from one at a time.
+///
+/// # Examples
+///
+/// ```
+/// use std::sync::Arc;
+/// use yarok_mjc::{Data, Model};
+///
+/// let model = Arc::new(Model::from_xml_str(
+///     r#"<mujoco><worldbody><body name="ball" pos="0 0 1"><freejoint name="free"/>
+///        <geom size="0.1"/></body></worldbody></mujoco>"#,
+/// )?);
+/// let mut data = Data::new(&model)?;
+/// let free = model.joint("free")?;
+/// for _ in 0..100 {
+///     data.step();
+/// }
+/// assert!(data.qpos(free)[2] < 1.0, "the ball falls");
+/// assert!((data.time() - 100.0 * model.timestep()).abs() < 1e-9);
+/// # Ok::<(), yarok_mjc::ModelError>(())
+/// ```
+pub struct Data {
+    raw: NonNull<sys::mjData>,
+    model: Arc<Model>,
+}
+
+// SAFETY: a Data owns its mjData (plain memory with no thread affinity) and an Arc of a Send +
+// Sync model; moving both to another thread is sound. It is not Sync: stepping needs `&mut`.
+unsafe impl Send for Data {}
+
+/// The position and orientation of a body in world coordinates.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pose {
+    /// Position in metres.
+    pub pos: [f64; 3],
+    /// Orientation as a unit quaternion `[w, x, y, z]`.
+    pub quat: [f64; 4],
+}
+
+impl Data {
+    /// Allocates the state of `model`, at its initial configuration (`qpos0`).
+    ///
+    /// # Errors
+    ///
+    /// [`ModelError::Allocation`] when MuJoCo cannot allocate the state.
+    pub fn new(model: &Arc<Model>) -> Result<Self, ModelError> {
+        // SAFETY: the model pointer is valid; mj_makeData returns null on allocation failure.
+        let raw = unsafe { model.mj().mj_makeData(model.raw()) };
+        let raw = NonNull::new(raw).ok_or(ModelError::Allocation { what: "mjData" })?;
+        Ok(Self {
+            raw,
+            model: Arc::clone(model),
+        })
+    }
+
+    /// The model this state belongs to.
+    pub fn model(&self) -> &Arc<Model> {
+        &self.model
+    }
+
+    /// Advances the simulation by one timestep.
+    pub fn step(&mut self) {
+        // SAFETY: model and data are valid and belong together.
+        unsafe { self.model.mj().mj_step(self.model.raw(), self.raw.as_ptr()) }
+    }
+
+    /// Computes everything derived from the current state (positions, sensors, …) without
+    /// advancing time.
+    pub fn forward(&mut self) {
+        // SAFETY: model and data are valid and belong together.
+        unsafe {
+            self.model
+                .mj()
+                .mj_forward(self.model.raw(), self.raw.as_ptr())
+        }
+    }
+
+    /// Resets the state to the model's initial configuration and time 0.
+    pub fn reset(&mut self) {
+        // SAFETY: model and data are valid and belong together.
+        unsafe {
+            self.model
+                .mj()
+                .mj_resetData(self.model.raw(), self.raw.as_ptr())
+        }
+    }
+
+    /// Simulation time in seconds.
+    pub fn time(&self) -> f64 {
+        self.raw().time
+    }
+
+    /// All actuator controls, indexed by [`ActuatorId::index`].
+    pub fn ctrl(&self) -> &[f64] {
+        // SAFETY: ctrl holds nu elements.
+        unsafe { self.array(self.raw().ctrl, self.model.nu()) }
+    }
+
+    /// Sets the control of one actuator.
+    ///
+    /// # Panics
+    ///
+    /// When `actuator` was resolved in a different model.
+    #[track_caller]
+    pub fn set_ctrl(&mut self, actuator: ActuatorId, value: f64) {
+        let index = self.model.index_of(actuator);
+        let nu = self.model.nu();
+        // SAFETY: ctrl holds nu elements and `index` < nu for an id of this model.
+        unsafe { self.array_mut(self.raw().ctrl, nu)[index] = value }
+    }
+
+    /// The generalised coordinates of one joint: 7 for a free joint (position, quaternion),
+    /// 4 for a ball joint, 1 for a slide or hinge.
+    ///
+    /// # Panics
+    ///
+    /// When `joint` was resolved in a different model.
+    #[track_caller]
+    pub fn qpos(&self, joint: JointId) -> &[f64] {
+        let range = self.joint_range(joint, Coordinates::Position);
+        // SAFETY: qpos holds nq elements.
+        unsafe { &self.array(self.raw().qpos, self.model.nq())[range] }
+    }
+
+    /// Mutable [`Data::qpos`]; call [`Data::forward`] afterwards to update derived quantities.
+    ///
+    /// # Panics
+    ///
+    /// When `joint` was resolved in a different model.
+    #[track_caller]
+    pub fn qpos_mut(&mut self, joint: JointId) -> &mut [f64] {
+        let range = self.joint_range(joint, Coordinates::Position);
+        let nq = self.model.nq();
+        // SAFETY: qpos holds nq elements.
+        unsafe { &mut self.array_mut(self.raw().qpos, nq)[range] }
+    }
+
+    /// The generalised velocities of one joint: 6 for a free joint, 3 for a ball, 1 otherwise.
+    ///
+    /// # Panics
+    ///
+    /// When `joint` was resolved in a different model.
+    #[track_caller]
+    pub fn qvel(&self, joint: JointId) -> &[f64] {
+        let range = self.joint_range(joint, Coordinates::Velocity);
+        // SAFETY: qvel holds nv elements.
+        unsafe { &self.array(self.raw().qvel, self.model.nv())[range] }
+    }
+
+    /// Mutable [`Data::qvel`].
+    ///
+    /// # Panics
+    ///
+    /// When `joint` was resolved in a different model.
+    #[track_caller]
+    pub fn qvel_mut(&mut self, joint: JointId) -> &mut [f64] {
+        let range = self.joint_range(joint, Coordinates::Velocity);
+        let nv = self.model.nv();
+        // SAFETY: qvel holds nv elements.
+        unsafe { &mut self.array_mut(self.raw().qvel, nv)[range] }
+    }
+
+    /// The reading of one sensor, as many values as the sensor's dimension (3 for an
+    /// accelerometer, 1 for a joint position sensor, …).
+    ///
+    /// # Panics
+    ///
+    /// When `sensor` was resolved in a different model.
+    #[track_caller]
+    pub fn sensor(&self, sensor: SensorId) -> &[f64] {
+        let index = self.model.index_of(sensor);
+        let m = self.model.raw();
+        let count = self.model.count(crate::ObjectKind::Sensor);
+        // SAFETY: sensor_adr and sensor_dim hold nsensor elements; sensordata nsensordata.
+        unsafe {
+            let start = to_usize(self.model.array(m.sensor_adr, count)[index]);
+            let dim = to_usize(self.model.array(m.sensor_dim, count)[index]);
+            &self.array(self.raw().sensordata, to_usize(m.nsensordata))[start..start + dim]
+        }
+    }
+
+    /// The pose of a body in world coordinates, as of the last step or forward.
+    ///
+    /// # Panics
+    ///
+    /// When `body` was resolved in a different model.
+    #[track_caller]
+    pub fn body_pose(&self, body: BodyId) -> Pose {
+        let index = self.model.index_of(body);
+        let nbody = self.model.count(crate::ObjectKind::Body);
+        // SAFETY: xpos holds 3·nbody elements and xquat 4·nbody.
+        let (xpos, xquat) = unsafe {
+            (
+                self.array(self.raw().xpos, 3 * nbody),
+                self.array(self.raw().xquat, 4 * nbody),
+            )
+        };
+        let mut pose = Pose {
+            pos: [0.0; 3],
+            quat: [0.0; 4],
+        };
+        pose.pos.copy_from_slice(&xpos[3 * index..3 * index + 3]);
+        pose.quat.copy_from_slice(&xquat[4 * index..4 * index + 4]);
+        pose
+    }
+
+    /// The raw `mjData`, for what the safe layer does not cover yet.
+    pub fn ffi(&self) -> &sys::mjData {
+        self.raw()
+    }
+
+    pub(crate) fn raw_mut_ptr(&mut self) -> *mut sys::mjData {
+        self.raw.as_ptr()
+    }
+
+    fn raw(&self) -> &sys::mjData {
+        // SAFETY: `raw` points to the mjData this value owns until drop.
+        unsafe { self.raw.as_ref() }
+    }
+
+    /// # Safety
+    ///
+    /// `array` must be one of this data's arrays with at least `len` elements.
+    unsafe fn array(&self, array: *const f64, len: usize) -> &[f64] {
+        // SAFETY: forwarded to the caller; the arrays live as long as `self`.
+        unsafe { self.model.array(array, len) }
+    }
+
+    /// # Safety
+    ///
+    /// `array` must be one of this data's arrays with at least `len` elements.
+    unsafe fn array_mut(&mut self, array: *mut f64, len: usize) -> &mut [f64] {
+        if len == 0 {
+            return &mut [];
+        }
+        // SAFETY: forwarded to the caller; `&mut self` makes the borrow exclusive.
+        unsafe { std::slice::from_raw_parts_mut(array, len) }
+    }
+
+    #[track_caller]
+    fn joint_range(&self, joint: JointId, coordinates: Coordinates) -> std::ops::Range<usize> {
+        let index = self.model.index_of(joint);
+        let m = self.model.raw();
+        let njnt = self.model.count(crate::ObjectKind::Joint);
+        // SAFETY: jnt_type, jnt_qposadr and jnt_dofadr hold njnt elements.
+        let (kind, qpos_adr, dof_adr) = unsafe {
+            (
+                self.model.array(m.jnt_type, njnt)[index],
+                self.model.array(m.jnt_qposadr, njnt)[index],
+                self.model.array(m.jnt_dofadr, njnt)[index],
+            )
+        };
+        let (positions, velocities) = match kind as u32 {
+            sys::mjJNT_FREE => (7, 6),
+            sys::mjJNT_BALL => (4, 3),
+            _ => (1, 1),
+        };
+        match coordinates {
+            Coordinates::Position => to_usize(qpos_adr)..to_usize(qpos_adr) + positions,
+            Coordinates::Velocity => to_usize(dof_adr)..to_usize(dof_adr) + velocities,
+        }
+    }
+}
+
+#[derive(Clone, Copy)]
+enum Coordinates {
+    Position,
+    Velocity,
+}
+
+impl Drop for Data {
+    fn drop(&mut self) {
+        // SAFETY: the pointer came from mj_makeData and is freed exactly once, here.
+        unsafe { self.model.mj().mj_deleteData(self.raw.as_ptr()) }
+    }
+}
+
+impl fmt::Debug for Data {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Data")
+            .field("time", &self.time())
+            .field("model", &self.model)
+            .finish()
+    }
+}

@@ -1,0 +1,394 @@
+//! [`Model`]: a compiled MuJoCo model, built from MJCF text or a file.
+
+use std::ffi::{CStr, CString, c_char};
+use std::fmt;
+use std::path::Path;
+use std::ptr::NonNull;
+
+use crate::error::ModelError;
+use crate::library::mujoco;
+use crate::sys;
+use crate::vfs::Vfs;
+
+/// The size of the buffer MuJoCo writes load errors into.
+const ERROR_CAPACITY: usize = 1024;
+/// The name the MJCF text gets inside the virtual file system; assets are found relative to it.
+const MAIN_FILE: &str = "__yarok_main__.xml";
+
+/// A compiled MuJoCo model (`mjModel`): the immutable description of a world.
+///
+/// A model is shared by the [`Data`](crate::Data) that simulate it, so it is usually held in an
+/// [`Arc`](std::sync::Arc). Names are resolved to typed ids ([`JointId`], [`SensorId`], …) once;
+/// the ids then index into `Data` without string lookups.
+///
+/// # Examples
+///
+/// ```
+/// use yarok_mjc::Model;
+///
+/// let model = Model::from_xml_str(
+///     r#"<mujoco><worldbody><body name="ball"><freejoint/><geom size="0.1"/></body></worldbody></mujoco>"#,
+/// )?;
+/// assert_eq!(model.nq(), 7);
+/// assert_eq!(model.body("ball")?.index(), 1);
+/// # Ok::<(), yarok_mjc::ModelError>(())
+/// ```
+pub struct Model {
+    raw: NonNull<sys::mjModel>,
+    mj: &'static sys::MuJoCo,
+}
+
+// SAFETY: a Model owns its mjModel and never hands out mutable access to it after compilation, so
+// moving it to another thread cannot race with anything.
+unsafe impl Send for Model {}
+// SAFETY: every function reached through `&Model` only reads the mjModel (`const mjModel*` in
+// MuJoCo's API), and MuJoCo supports concurrent reads of one model (its own threaded rollouts
+// share one mjModel).
+unsafe impl Sync for Model {}
+
+impl Model {
+    /// Compiles MJCF text that needs no files beyond the ones it names by absolute path.
+    ///
+    /// # Errors
+    ///
+    /// [`ModelError::Compile`] with MuJoCo's message when the XML is malformed or does not
+    /// compile; [`ModelError::Library`] when libmujoco is unavailable.
+    pub fn from_xml_str(xml: &str) -> Result<Self, ModelError> {
+        Self::from_xml_str_with_assets(xml, std::iter::empty::<(&str, &[u8])>())
+    }
+
+    /// Compiles MJCF text whose meshes, textures and included files are given in memory.
+    ///
+    /// Each asset is `(name, bytes)` where `name` is the path the MJCF uses for it, relative to
+    /// the model (`meshdir`/`texturedir` included), e.g. `("meshes/link.stl", bytes)`.
+    ///
+    /// # Errors
+    ///
+    /// As [`Model::from_xml_str`], plus [`ModelError::Asset`] for a repeated asset name.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use yarok_mjc::Model;
+    ///
+    /// let mesh = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    /// let model = Model::from_xml_str_with_assets(
+    ///     r#"<mujoco><asset><mesh file="parts/tetra.obj"/></asset>
+    ///        <worldbody><geom type="mesh" mesh="tetra"/></worldbody></mujoco>"#,
+    ///     [("parts/tetra.obj", mesh.as_bytes())],
+    /// )?;
+    /// assert_eq!(model.count(yarok_mjc::ObjectKind::Geom), 1);
+    /// # Ok::<(), yarok_mjc::ModelError>(())
+    /// ```
+    pub fn from_xml_str_with_assets<I, N, B>(xml: &str, assets: I) -> Result<Self, ModelError>
+    where
+        I: IntoIterator<Item = (N, B)>,
+        N: AsRef<str>,
+        B: AsRef<[u8]>,
+    {
+        let mj = mujoco()?;
+        let mut vfs = Vfs::new(mj);
+        vfs.add(MAIN_FILE, xml.as_bytes())?;
+        for (name, bytes) in assets {
+            vfs.add(name.as_ref(), bytes.as_ref())?;
+        }
+        load(mj, MAIN_FILE, Some(&vfs), "<string>")
+    }
+
+    /// Compiles an MJCF (or URDF) file; the files it names are read relative to its folder.
+    ///
+    /// # Errors
+    ///
+    /// As [`Model::from_xml_str`]; a missing file is a [`ModelError::Compile`] naming it.
+    pub fn from_file(path: impl AsRef<Path>) -> Result<Self, ModelError> {
+        let path = path.as_ref();
+        load(
+            mujoco()?,
+            &path.to_string_lossy(),
+            None,
+            &path.display().to_string(),
+        )
+    }
+
+    /// The simulation timestep in seconds (`option/@timestep`).
+    pub fn timestep(&self) -> f64 {
+        self.raw().opt.timestep
+    }
+
+    /// Number of generalised coordinates (length of `qpos`).
+    pub fn nq(&self) -> usize {
+        to_usize(self.raw().nq)
+    }
+
+    /// Number of degrees of freedom (length of `qvel`).
+    pub fn nv(&self) -> usize {
+        to_usize(self.raw().nv)
+    }
+
+    /// Number of actuators (length of `ctrl`).
+    pub fn nu(&self) -> usize {
+        to_usize(self.raw().nu)
+    }
+
+    /// How many objects of a kind the model has; the world body counts as body 0.
+    pub fn count(&self, kind: ObjectKind) -> usize {
+        let m = self.raw();
+        to_usize(match kind {
+            ObjectKind::Body => m.nbody,
+            ObjectKind::Joint => m.njnt,
+            ObjectKind::Geom => m.ngeom,
+            ObjectKind::Site => m.nsite,
+            ObjectKind::Camera => m.ncam,
+            ObjectKind::Actuator => m.nu,
+            ObjectKind::Sensor => m.nsensor,
+            ObjectKind::Tendon => m.ntendon,
+        })
+    }
+
+    /// The model's structural signature; ids resolved in one model are only valid for models
+    /// with the same signature.
+    pub fn signature(&self) -> u64 {
+        self.raw().signature
+    }
+
+    /// The raw `mjModel`, for what the safe layer does not cover yet.
+    pub fn ffi(&self) -> &sys::mjModel {
+        self.raw()
+    }
+
+    pub(crate) fn raw(&self) -> &sys::mjModel {
+        // SAFETY: `raw` points to the mjModel this value owns until drop.
+        unsafe { self.raw.as_ref() }
+    }
+
+    pub(crate) fn mj(&self) -> &'static sys::MuJoCo {
+        self.mj
+    }
+
+    /// Reads `len` elements of one of the model's arrays.
+    ///
+    /// # Safety
+    ///
+    /// `array` must be one of this model's arrays and hold at least `len` elements.
+    pub(crate) unsafe fn array<T>(&self, array: *const T, len: usize) -> &[T] {
+        if len == 0 {
+            return &[];
+        }
+        // SAFETY: the caller guarantees `array` is a live model array of `len` elements; the
+        // model outlives the returned borrow.
+        unsafe { std::slice::from_raw_parts(array, len) }
+    }
+
+    fn id(&self, kind: ObjectKind, name: &str) -> Result<usize, ModelError> {
+        let c_name = CString::new(name).map_err(|_| ModelError::InteriorNul {
+            what: format!("{kind} name {name:?}"),
+        })?;
+        // SAFETY: the model pointer is valid and `c_name` is NUL-terminated.
+        let id = unsafe {
+            self.mj
+                .mj_name2id(self.raw.as_ptr(), kind.mj_obj(), c_name.as_ptr())
+        };
+        usize::try_from(id).map_err(|_| ModelError::UnknownName {
+            kind,
+            name: name.to_owned(),
+        })
+    }
+}
+
+impl Drop for Model {
+    fn drop(&mut self) {
+        // SAFETY: the pointer came from mj_loadXML and is freed exactly once, here.
+        unsafe { self.mj.mj_deleteModel(self.raw.as_ptr()) }
+    }
+}
+
+impl fmt::Debug for Model {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Model")
+            .field("nq", &self.nq())
+            .field("nv", &self.nv())
+            .field("nu", &self.nu())
+            .field("nbody", &self.count(ObjectKind::Body))
+            .field("timestep", &self.timestep())
+            .finish()
+    }
+}
+
+fn load(
+    mj: &'static sys::MuJoCo,
+    file: &str,
+    vfs: Option<&Vfs>,
+    origin: &str,
+) -> Result<Model, ModelError> {
+    let c_file = CString::new(file).map_err(|_| ModelError::InteriorNul {
+        what: format!("path {file:?}"),
+    })?;
+    let mut error = [0 as c_char; ERROR_CAPACITY];
+    let vfs_ptr = vfs.map_or(std::ptr::null(), Vfs::as_ptr);
+    // SAFETY: `c_file` is NUL-terminated, `vfs_ptr` is null or a live VFS, and `error` has the
+    // capacity passed; mj_loadXML catches its own parse/compile errors.
+    let raw = unsafe {
+        mj.mj_loadXML(
+            c_file.as_ptr(),
+            vfs_ptr,
+            error.as_mut_ptr(),
+            ERROR_CAPACITY as i32,
+        )
+    };
+    match NonNull::new(raw) {
+        Some(raw) => Ok(Model { raw, mj }),
+        None => {
+            // SAFETY: MuJoCo NUL-terminates the message within the buffer it was given.
+            let message = unsafe { CStr::from_ptr(error.as_ptr()) }.to_string_lossy();
+            Err(ModelError::Compile {
+                origin: origin.to_owned(),
+                message: message.into_owned(),
+            })
+        }
+    }
+}
+
+/// MuJoCo sizes are signed; a negative one would be a corrupt model.
+pub(crate) fn to_usize(value: impl TryInto<usize>) -> usize {
+    value.try_into().unwrap_or(0)
+}
+
+/// The kinds of named object that can be looked up in a [`Model`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum ObjectKind {
+    /// `<body>`; the world body is id 0.
+    Body,
+    /// `<joint>` and `<freejoint>`.
+    Joint,
+    /// `<geom>`.
+    Geom,
+    /// `<site>`.
+    Site,
+    /// `<camera>`.
+    Camera,
+    /// Any element under `<actuator>`.
+    Actuator,
+    /// Any element under `<sensor>`.
+    Sensor,
+    /// `<spatial>` and `<fixed>` tendons.
+    Tendon,
+}
+
+impl ObjectKind {
+    fn mj_obj(self) -> i32 {
+        let obj = match self {
+            ObjectKind::Body => sys::mjOBJ_BODY,
+            ObjectKind::Joint => sys::mjOBJ_JOINT,
+            ObjectKind::Geom => sys::mjOBJ_GEOM,
+            ObjectKind::Site => sys::mjOBJ_SITE,
+            ObjectKind::Camera => sys::mjOBJ_CAMERA,
+            ObjectKind::Actuator => sys::mjOBJ_ACTUATOR,
+            ObjectKind::Sensor => sys::mjOBJ_SENSOR,
+            ObjectKind::Tendon => sys::mjOBJ_TENDON,
+        };
+        obj as i32
+    }
+}
+
+impl fmt::Display for ObjectKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            ObjectKind::Body => "body",
+            ObjectKind::Joint => "joint",
+            ObjectKind::Geom => "geom",
+            ObjectKind::Site => "site",
+            ObjectKind::Camera => "camera",
+            ObjectKind::Actuator => "actuator",
+            ObjectKind::Sensor => "sensor",
+            ObjectKind::Tendon => "tendon",
+        })
+    }
+}
+
+/// What the typed ids share, so that one check serves them all.
+pub(crate) trait TypedId: Copy {
+    const KIND: ObjectKind;
+
+    fn parts(self) -> (usize, u64);
+}
+
+impl Model {
+    /// Whether `id` was resolved in a model with this signature.
+    pub(crate) fn owns<I: TypedId>(&self, id: I) -> bool {
+        id.parts().1 == self.signature()
+    }
+
+    /// The index of `id`, which must have been resolved in a model with this signature.
+    #[track_caller]
+    pub(crate) fn index_of<I: TypedId>(&self, id: I) -> usize {
+        let (index, _) = id.parts();
+        assert!(
+            self.owns(id),
+            "{} id {index} used with a model it was not resolved in",
+            I::KIND
+        );
+        index
+    }
+}
+
+macro_rules! object_ids {
+    ($($(#[$doc:meta])* $id:ident, $kind:ident, $lookup:ident;)*) => {$(
+        $(#[$doc])*
+        ///
+        /// Obtained from the [`Model`] by name; valid for that model and its copies (same
+        /// [`Model::signature`]).
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub struct $id {
+            index: usize,
+            signature: u64,
+        }
+
+        impl $id {
+            /// The object's index in MuJoCo's arrays.
+            pub fn index(self) -> usize {
+                self.index
+            }
+
+        }
+
+        impl TypedId for $id {
+            const KIND: ObjectKind = ObjectKind::$kind;
+
+            fn parts(self) -> (usize, u64) {
+                (self.index, self.signature)
+            }
+        }
+
+        impl Model {
+            #[doc = concat!("Resolves the name of a ", stringify!($lookup), " to its id.")]
+            ///
+            /// # Errors
+            ///
+            /// [`ModelError::UnknownName`] when the model has no such object.
+            pub fn $lookup(&self, name: &str) -> Result<$id, ModelError> {
+                let index = self.id(ObjectKind::$kind, name)?;
+                Ok($id { index, signature: self.signature() })
+            }
+        }
+    )*};
+}
+
+object_ids! {
+    /// A body of a model.
+    BodyId, Body, body;
+    /// A joint of a model.
+    JointId, Joint, joint;
+    /// A geom of a model.
+    GeomId, Geom, geom;
+    /// A site of a model.
+    SiteId, Site, site;
+    /// A camera of a model.
+    CameraId, Camera, camera;
+    /// An actuator of a model.
+    ActuatorId, Actuator, actuator;
+    /// A sensor of a model.
+    SensorId, Sensor, sensor;
+    /// A tendon of a model.
+    TendonId, Tendon, tendon;
+}

@@ -1,0 +1,162 @@
+//! A headless OpenGL context through EGL: the device platform first, Mesa's surfaceless
+//! platform as the fallback. Works with Mesa's llvmpipe on machines without a GPU.
+
+use std::ffi::c_void;
+
+use khronos_egl as egl;
+use libloading::os::unix::{Library, RTLD_GLOBAL, RTLD_NOW};
+
+use super::RenderError;
+
+type Egl = egl::DynamicInstance<egl::EGL1_4>;
+
+const PLATFORM_DEVICE: egl::Enum = 0x313F;
+const PLATFORM_SURFACELESS_MESA: egl::Enum = 0x31DD;
+const MAX_DEVICES: usize = 16;
+
+type QueryDevices =
+    unsafe extern "system" fn(egl::Int, *mut *mut c_void, *mut egl::Int) -> egl::Boolean;
+type GetPlatformDisplay =
+    unsafe extern "system" fn(egl::Enum, *mut c_void, *const egl::Int) -> egl::EGLDisplay;
+
+/// An OpenGL (compatibility profile) context with no surface, current on the creating thread.
+pub(super) struct GlContext {
+    egl: Egl,
+    display: egl::Display,
+    context: egl::Context,
+}
+
+impl GlContext {
+    pub(super) fn new() -> Result<Self, RenderError> {
+        // libEGL is opened globally so that MuJoCo's GL loader finds eglGetProcAddress.
+        // SAFETY: loading libEGL runs only its initialisers, which have no preconditions.
+        let library = unsafe { Library::open(Some("libEGL.so.1"), RTLD_NOW | RTLD_GLOBAL) }
+            .map_err(|e| {
+                egl_error(
+                    "open libEGL.so.1 (Debian: apt-get install libegl1 libegl-mesa0)",
+                    e,
+                )
+            })?;
+        // SAFETY: the library is libEGL, whose symbols have the signatures khronos-egl declares.
+        let egl = unsafe { Egl::load_required_from(library.into()) }
+            .map_err(|e| egl_error("load the EGL 1.4 functions", e))?;
+        let display = open_display(&egl)?;
+        let config = egl
+            .choose_first_config(display, &CONFIG)
+            .map_err(|e| egl_error("choose a config", e))?
+            .ok_or_else(|| egl_error("choose a config", "no RGBA8 + depth24 pbuffer config"))?;
+        egl.bind_api(egl::OPENGL_API)
+            .map_err(|e| egl_error("bind the OpenGL API", e))?;
+        let context = egl
+            .create_context(display, config, None, &[egl::NONE])
+            .map_err(|e| egl_error("create an OpenGL context", e))?;
+        let gl = Self {
+            egl,
+            display,
+            context,
+        };
+        gl.make_current()?;
+        Ok(gl)
+    }
+
+    /// Makes this context current on the calling thread (a no-op when it already is).
+    pub(super) fn make_current(&self) -> Result<(), RenderError> {
+        if self.egl.get_current_context() == Some(self.context) {
+            return Ok(());
+        }
+        self.egl
+            .make_current(self.display, None, None, Some(self.context))
+            .map_err(|e| egl_error("make the context current", e))
+    }
+}
+
+impl Drop for GlContext {
+    fn drop(&mut self) {
+        // The display stays initialised: it is shared by every context of the process.
+        if self.egl.get_current_context() == Some(self.context) {
+            let _released = self.egl.make_current(self.display, None, None, None);
+        }
+        if let Err(error) = self.egl.destroy_context(self.display, self.context) {
+            tracing::warn!(%error, "could not destroy the EGL context");
+        }
+    }
+}
+
+const CONFIG: [egl::Int; 15] = [
+    egl::SURFACE_TYPE,
+    egl::PBUFFER_BIT,
+    egl::RENDERABLE_TYPE,
+    egl::OPENGL_BIT,
+    egl::RED_SIZE,
+    8,
+    egl::GREEN_SIZE,
+    8,
+    egl::BLUE_SIZE,
+    8,
+    egl::ALPHA_SIZE,
+    8,
+    egl::DEPTH_SIZE,
+    24,
+    egl::NONE,
+];
+
+/// Every display worth trying, device platform first, and the first that initialises.
+fn open_display(egl: &Egl) -> Result<egl::Display, RenderError> {
+    let get_display = egl
+        .get_proc_address("eglGetPlatformDisplayEXT")
+        // SAFETY: eglGetPlatformDisplayEXT has the GetPlatformDisplay signature (EGL_EXT_platform_base).
+        .map(|f| unsafe { std::mem::transmute::<extern "system" fn(), GetPlatformDisplay>(f) })
+        .ok_or_else(|| {
+            egl_error(
+                "find eglGetPlatformDisplayEXT",
+                "EGL_EXT_platform_base missing",
+            )
+        })?;
+    let mut candidates: Vec<(egl::Enum, *mut c_void)> = devices(egl)
+        .into_iter()
+        .map(|device| (PLATFORM_DEVICE, device))
+        .collect();
+    candidates.push((PLATFORM_SURFACELESS_MESA, std::ptr::null_mut()));
+    let mut last_error = String::from("no EGL display");
+    for (platform, native) in candidates {
+        // SAFETY: `native` is a device handle from eglQueryDevicesEXT or null (the default
+        // display), and the attribute list is empty (null).
+        let raw = unsafe { get_display(platform, native, std::ptr::null()) };
+        if raw.is_null() {
+            continue;
+        }
+        // SAFETY: `raw` is a non-null display handle just returned by EGL.
+        let display = unsafe { egl::Display::from_ptr(raw) };
+        match egl.initialize(display) {
+            Ok(_) => return Ok(display),
+            Err(error) => last_error = error.to_string(),
+        }
+    }
+    Err(egl_error(
+        "initialise a device or surfaceless display",
+        last_error,
+    ))
+}
+
+fn devices(egl: &Egl) -> Vec<*mut c_void> {
+    let Some(query) = egl.get_proc_address("eglQueryDevicesEXT") else {
+        return Vec::new();
+    };
+    // SAFETY: eglQueryDevicesEXT has the QueryDevices signature (EGL_EXT_device_enumeration).
+    let query = unsafe { std::mem::transmute::<extern "system" fn(), QueryDevices>(query) };
+    let mut devices = [std::ptr::null_mut(); MAX_DEVICES];
+    let mut count: egl::Int = 0;
+    // SAFETY: the array holds MAX_DEVICES handles and `count` is writable.
+    let ok = unsafe { query(MAX_DEVICES as egl::Int, devices.as_mut_ptr(), &mut count) };
+    if ok != egl::TRUE {
+        return Vec::new();
+    }
+    devices[..usize::try_from(count).unwrap_or(0).min(MAX_DEVICES)].to_vec()
+}
+
+fn egl_error(step: &'static str, reason: impl ToString) -> RenderError {
+    RenderError::Egl {
+        step,
+        reason: reason.to_string(),
+    }
+}

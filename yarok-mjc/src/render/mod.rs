@@ -1,0 +1,419 @@
+//! [`Renderer`]: headless offscreen rendering of a model's cameras to RGB and metric depth.
+
+mod egl;
+
+use std::fmt;
+use std::marker::PhantomData;
+use std::sync::Arc;
+
+use image::{ImageBuffer, Luma, RgbImage};
+
+use crate::error::{LibraryError, ModelError};
+use crate::model::{CameraId, Model};
+use crate::{Data, sys};
+use egl::GlContext;
+
+/// A depth image: planar distance from the camera, in metres, top row first.
+pub type DepthImage = ImageBuffer<Luma<f32>, Vec<f32>>;
+
+/// Rendering could not be set up or carried out.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum RenderError {
+    /// libmujoco is unavailable.
+    #[error(transparent)]
+    Library(#[from] LibraryError),
+    /// An EGL step failed: no usable GPU or Mesa driver, or no OpenGL support.
+    #[error("EGL could not {step}: {reason}")]
+    Egl {
+        /// What was being done.
+        step: &'static str,
+        /// What EGL said.
+        reason: String,
+    },
+    /// The requested image is larger than the model's offscreen buffer.
+    #[error(
+        "{width}x{height} exceeds the model's offscreen buffer of {max_width}x{max_height}; \
+         raise <visual><global offwidth=\"..\" offheight=\"..\"/></visual> in the MJCF"
+    )]
+    TooLarge {
+        /// Requested width in pixels.
+        width: u32,
+        /// Requested height in pixels.
+        height: u32,
+        /// `visual/global/@offwidth`.
+        max_width: u32,
+        /// `visual/global/@offheight`.
+        max_height: u32,
+    },
+    /// A zero width or height was requested.
+    #[error("image size {width}x{height} has a zero side")]
+    Empty {
+        /// Requested width in pixels.
+        width: u32,
+        /// Requested height in pixels.
+        height: u32,
+    },
+    /// The data handed to the renderer belongs to another model.
+    #[error("the data belongs to another model than the renderer was built for")]
+    ModelMismatch,
+}
+
+impl From<ModelError> for RenderError {
+    fn from(error: ModelError) -> Self {
+        match error {
+            ModelError::Library(library) => Self::Library(library),
+            _ => Self::ModelMismatch,
+        }
+    }
+}
+
+/// Rendering quality presets.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[non_exhaustive]
+pub enum RenderPreset {
+    /// MuJoCo's defaults: shadows, reflections and the model's multisampling.
+    #[default]
+    Quality,
+    /// No shadows, reflections or multisampling: several times faster on a CPU renderer.
+    Fast,
+}
+
+/// Builds a [`Renderer`]; see [`Renderer::builder`].
+#[derive(Debug, Clone)]
+pub struct RendererBuilder {
+    width: u32,
+    height: u32,
+    preset: RenderPreset,
+    max_geoms: usize,
+}
+
+impl RendererBuilder {
+    /// Image size in pixels (default 640×480), at most the model's offscreen buffer.
+    pub fn size(mut self, width: u32, height: u32) -> Self {
+        (self.width, self.height) = (width, height);
+        self
+    }
+
+    /// Quality preset (default [`RenderPreset::Quality`]).
+    pub fn preset(mut self, preset: RenderPreset) -> Self {
+        self.preset = preset;
+        self
+    }
+
+    /// How many geoms a scene can hold (default 10 000); extra geoms are not drawn.
+    pub fn max_geoms(mut self, max_geoms: usize) -> Self {
+        self.max_geoms = max_geoms;
+        self
+    }
+
+    /// Creates the OpenGL context on the calling thread and uploads the model's meshes and
+    /// textures.
+    ///
+    /// # Errors
+    ///
+    /// [`RenderError::Empty`] or [`RenderError::TooLarge`] for a bad size, [`RenderError::Egl`]
+    /// when no OpenGL context can be made.
+    pub fn build(self, model: &Arc<Model>) -> Result<Renderer, RenderError> {
+        let global = model.raw().vis.global;
+        let (max_width, max_height) = (to_u32(global.offwidth), to_u32(global.offheight));
+        let (width, height) = (self.width, self.height);
+        if width == 0 || height == 0 {
+            return Err(RenderError::Empty { width, height });
+        }
+        if width > max_width || height > max_height {
+            return Err(RenderError::TooLarge {
+                width,
+                height,
+                max_width,
+                max_height,
+            });
+        }
+        let gl = GlContext::new()?;
+        let mj = model.mj();
+        // mjr_makeContext reads the multisampling from the model; the fast preset hands it a
+        // shallow copy that asks for none. The copy shares the model's arrays and is only read.
+        let mut context_model = *model.raw();
+        if self.preset == RenderPreset::Fast {
+            context_model.vis.quality.offsamples = 0;
+        }
+        let mut scene = Box::<sys::mjvScene>::default();
+        let mut context = Box::<sys::mjrContext>::default();
+        let mut option = sys::mjvOption::default();
+        let mut perturb = sys::mjvPerturb::default();
+        let max_geoms = i32::try_from(self.max_geoms).unwrap_or(i32::MAX);
+        // SAFETY: the GL context is current on this thread; every struct is owned and writable;
+        // `context_model` is a valid mjModel for the duration of the call.
+        unsafe {
+            mj.mjv_defaultOption(&mut option);
+            mj.mjv_defaultPerturb(&mut perturb);
+            mj.mjv_defaultScene(&mut *scene);
+            mj.mjv_makeScene(model.raw(), &mut *scene, max_geoms);
+            mj.mjr_defaultContext(&mut *context);
+            mj.mjr_makeContext(&context_model, &mut *context, sys::mjFONTSCALE_100 as i32);
+            mj.mjr_setBuffer(sys::mjFB_OFFSCREEN as i32, &mut *context);
+        }
+        context.readDepthMap = sys::mjDEPTH_ZEROFAR as i32;
+        if self.preset == RenderPreset::Fast {
+            scene.flags[sys::mjRND_SHADOW as usize] = 0;
+            scene.flags[sys::mjRND_REFLECTION as usize] = 0;
+        }
+        let extent = model.raw().stat.extent;
+        let map = model.raw().vis.map;
+        let pixels = width as usize * height as usize;
+        Ok(Renderer {
+            gl,
+            scene,
+            context,
+            option,
+            perturb,
+            model: Arc::clone(model),
+            width,
+            height,
+            near: f64::from(map.znear) * extent,
+            far: f64::from(map.zfar) * extent,
+            rgb: vec![0; 3 * pixels],
+            depth: vec![0.0; pixels],
+            _thread_bound: PhantomData,
+        })
+    }
+}
+
+/// Renders a model's cameras offscreen, without a window or a GPU.
+///
+/// The OpenGL context belongs to the thread that built the renderer, so a `Renderer` is neither
+/// `Send` nor `Sync`. Images come top row first, as a camera sees them. Depth is planar distance
+/// along the camera axis in metres.
+///
+/// # Examples
+///
+/// ```
+/// use std::sync::Arc;
+/// use yarok_mjc::{Data, Model, RenderPreset, Renderer};
+///
+/// let model = Arc::new(Model::from_xml_str(
+///     r#"<mujoco><worldbody>
+///          <camera name="eye" pos="0 0 2"/>
+///          <geom type="plane" size="1 1 0.1" rgba="1 0 0 1"/>
+///        </worldbody></mujoco>"#,
+/// )?);
+/// let mut data = Data::new(&model)?;
+/// data.forward();
+/// let mut renderer = Renderer::builder().size(64, 48).preset(RenderPreset::Fast).build(&model)?;
+/// let (rgb, depth) = renderer.render(&mut data, model.camera("eye")?)?;
+/// assert_eq!(rgb.dimensions(), (64, 48));
+/// assert!((depth.get_pixel(32, 24)[0] - 2.0).abs() < 1e-3);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub struct Renderer {
+    gl: GlContext,
+    scene: Box<sys::mjvScene>,
+    context: Box<sys::mjrContext>,
+    option: sys::mjvOption,
+    perturb: sys::mjvPerturb,
+    model: Arc<Model>,
+    width: u32,
+    height: u32,
+    near: f64,
+    far: f64,
+    rgb: Vec<u8>,
+    depth: Vec<f32>,
+    _thread_bound: PhantomData<*const ()>,
+}
+
+impl Renderer {
+    /// A builder with the defaults: 640×480, [`RenderPreset::Quality`], 10 000 geoms.
+    pub fn builder() -> RendererBuilder {
+        RendererBuilder {
+            width: 640,
+            height: 480,
+            preset: RenderPreset::Quality,
+            max_geoms: 10_000,
+        }
+    }
+
+    /// Image width and height in pixels.
+    pub fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    /// Renders the colour image of `camera`.
+    ///
+    /// # Errors
+    ///
+    /// [`RenderError::ModelMismatch`] when `data` or `camera` belongs to another model;
+    /// [`RenderError::Egl`] when the context cannot be made current.
+    pub fn render_rgb(
+        &mut self,
+        data: &mut Data,
+        camera: CameraId,
+    ) -> Result<RgbImage, RenderError> {
+        self.draw(data, camera, Channels::Rgb)?;
+        Ok(self.rgb_image())
+    }
+
+    /// Renders the depth image of `camera`, in metres.
+    ///
+    /// # Errors
+    ///
+    /// As [`Renderer::render_rgb`].
+    pub fn render_depth(
+        &mut self,
+        data: &mut Data,
+        camera: CameraId,
+    ) -> Result<DepthImage, RenderError> {
+        self.draw(data, camera, Channels::Depth)?;
+        Ok(self.depth_image())
+    }
+
+    /// Renders colour and depth of `camera` from one draw.
+    ///
+    /// # Errors
+    ///
+    /// As [`Renderer::render_rgb`].
+    pub fn render(
+        &mut self,
+        data: &mut Data,
+        camera: CameraId,
+    ) -> Result<(RgbImage, DepthImage), RenderError> {
+        self.draw(data, camera, Channels::Both)?;
+        Ok((self.rgb_image(), self.depth_image()))
+    }
+
+    fn draw(
+        &mut self,
+        data: &mut Data,
+        camera: CameraId,
+        channels: Channels,
+    ) -> Result<(), RenderError> {
+        if data.model().signature() != self.model.signature() || !self.model.owns(camera) {
+            return Err(RenderError::ModelMismatch);
+        }
+        self.gl.make_current()?;
+        let mut view = sys::mjvCamera {
+            type_: sys::mjCAMERA_FIXED as i32,
+            fixedcamid: i32::try_from(camera.index()).unwrap_or(-1),
+            ..Default::default()
+        };
+        let viewport = sys::mjrRect {
+            left: 0,
+            bottom: 0,
+            width: self.width as i32,
+            height: self.height as i32,
+        };
+        let rgb = if channels.rgb() {
+            self.rgb.as_mut_ptr()
+        } else {
+            std::ptr::null_mut()
+        };
+        let depth = if channels.depth() {
+            self.depth.as_mut_ptr()
+        } else {
+            std::ptr::null_mut()
+        };
+        let mj = self.model.mj();
+        // SAFETY: this renderer's GL context is current; model, data, option, perturbation,
+        // camera and scene are valid and belong to the same model (checked above); the pixel
+        // buffers hold width·height pixels, the viewport's size, or are null when unwanted.
+        unsafe {
+            mj.mjv_updateScene(
+                self.model.raw(),
+                data.raw_mut_ptr(),
+                &self.option,
+                &self.perturb,
+                &mut view,
+                sys::mjCAT_ALL as i32,
+                &mut *self.scene,
+            );
+            mj.mjr_render(viewport, &mut *self.scene, &*self.context);
+            mj.mjr_readPixels(rgb, depth, viewport, &*self.context);
+        }
+        Ok(())
+    }
+
+    fn rgb_image(&self) -> RgbImage {
+        let row = 3 * self.width as usize;
+        let flipped = self
+            .rgb
+            .chunks_exact(row)
+            .rev()
+            .flatten()
+            .copied()
+            .collect();
+        RgbImage::from_raw(self.width, self.height, flipped).expect("buffer sized width·height·3")
+    }
+
+    fn depth_image(&self) -> DepthImage {
+        let (near, far) = (self.near, self.far);
+        let metres = |d: &f32| (near * far / (near + f64::from(*d) * (far - near))) as f32;
+        let row = self.width as usize;
+        let flipped = self
+            .depth
+            .chunks_exact(row)
+            .rev()
+            .flatten()
+            .map(metres)
+            .collect();
+        DepthImage::from_raw(self.width, self.height, flipped).expect("buffer sized width·height")
+    }
+}
+
+impl Drop for Renderer {
+    fn drop(&mut self) {
+        let mj = self.model.mj();
+        if self.gl.make_current().is_ok() {
+            // SAFETY: the context that owns these GL resources is current; both are freed once.
+            unsafe { mj.mjr_freeContext(&mut *self.context) };
+        }
+        // SAFETY: the scene was made by mjv_makeScene and is freed once.
+        unsafe { mj.mjv_freeScene(&mut *self.scene) };
+    }
+}
+
+impl fmt::Debug for Renderer {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Renderer")
+            .field("width", &self.width)
+            .field("height", &self.height)
+            .finish()
+    }
+}
+
+#[derive(Clone, Copy)]
+enum Channels {
+    Rgb,
+    Depth,
+    Both,
+}
+
+impl Channels {
+    fn rgb(self) -> bool {
+        matches!(self, Channels::Rgb | Channels::Both)
+    }
+
+    fn depth(self) -> bool {
+        matches!(self, Channels::Depth | Channels::Both)
+    }
+}
+
+/// Converts a depth image to 16-bit millimetres (rounded, saturating at 65.535 m), the usual
+/// format of depth PNGs.
+///
+/// # Examples
+///
+/// ```
+/// use yarok_mjc::{DepthImage, depth_to_millimetres};
+///
+/// let depth = DepthImage::from_pixel(2, 1, image::Luma([0.2504]));
+/// assert_eq!(depth_to_millimetres(&depth).get_pixel(0, 0)[0], 250);
+/// ```
+pub fn depth_to_millimetres(depth: &DepthImage) -> ImageBuffer<Luma<u16>, Vec<u16>> {
+    ImageBuffer::from_fn(depth.width(), depth.height(), |x, y| {
+        let mm = (f64::from(depth.get_pixel(x, y)[0]) * 1000.0).round();
+        Luma([mm.clamp(0.0, f64::from(u16::MAX)) as u16])
+    })
+}
+
+fn to_u32(value: i32) -> u32 {
+    u32::try_from(value).unwrap_or(0)
+}
