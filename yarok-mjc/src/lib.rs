@@ -23,7 +23,7 @@
 //!          <worldbody>
 //!            <body name="arm"><joint name="shoulder"/><geom type="capsule" size="0.05" fromto="0 0 0 0.3 0 0"/></body>
 //!          </worldbody>
-//!          <actuator><position name="shoulder" joint="shoulder" kp="10"/></actuator>
+//!          <actuator><position name="shoulder" joint="shoulder" kp="10" dampratio="1"/></actuator>
 //!        </mujoco>"#,
 //! )?);
 //! let mut data = Data::new(&model)?;

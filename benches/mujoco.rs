@@ -1,0 +1,69 @@
+//! Measures, side by side in one run, MuJoCo stepping and offscreen rendering on the
+//! falling-boxes example scene: raw `mj_step` steps/s, and render frames/s at 640×480 and
+//! 320×240 in the `quality` and `fast` presets, with the fast/quality ratio.
+//!
+//! ```text
+//! cargo bench --bench mujoco
+//! ```
+
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use yarok::mjc::{Data, Model, RenderPreset, Renderer};
+
+const SCENE: &str = include_str!("../examples/sim/falling_boxes.xml");
+const MEASURE: Duration = Duration::from_secs(2);
+
+/// Runs `work` repeatedly for at least `MEASURE` and returns how many runs per second it did.
+fn rate(mut work: impl FnMut()) -> f64 {
+    work();
+    let started = Instant::now();
+    let mut runs = 0u64;
+    while started.elapsed() < MEASURE {
+        work();
+        runs += 1;
+    }
+    runs as f64 / started.elapsed().as_secs_f64()
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let model = Arc::new(Model::from_xml_str(SCENE)?);
+    let mut data = Data::new(&model)?;
+    let steps_per_s = rate(|| {
+        data.step();
+        if data.time() > 2.0 {
+            data.reset();
+        }
+    });
+    println!("mj_step, falling boxes: {steps_per_s:>10.0} steps/s");
+
+    let camera = model.camera("overview")?;
+    data.reset();
+    for _ in 0..500 {
+        data.step();
+    }
+    println!("\nrender fps     quality       fast  fast/quality");
+    for (width, height) in [(640, 480), (320, 240)] {
+        let mut fps = [0.0; 2];
+        for (slot, preset) in [RenderPreset::Quality, RenderPreset::Fast]
+            .into_iter()
+            .enumerate()
+        {
+            let mut renderer = Renderer::builder()
+                .size(width, height)
+                .preset(preset)
+                .build(&model)?;
+            fps[slot] = rate(|| {
+                renderer.render_rgb(&mut data, camera).expect("render");
+            });
+        }
+        println!(
+            "{:<10} {:>11.1} {:>10.1} {:>12.2}x",
+            format!("{width}x{height}"),
+            fps[0],
+            fps[1],
+            fps[1] / fps[0]
+        );
+    }
+    Ok(())
+}
