@@ -192,7 +192,9 @@ impl Data {
         }
     }
 
-    /// The pose of a body in world coordinates, as of the last step or forward.
+    /// The pose of a body in world coordinates, as computed by the last [`Data::step`] or
+    /// [`Data::forward`]. A step computes positions *before* integrating, so after a step the
+    /// pose lags `qpos` by one timestep; call `forward` first when that matters.
     ///
     /// # Panics
     ///

@@ -1,0 +1,190 @@
+//! Headless rendering of a known scene: depth in metres, colours, orientation, sizes.
+#![cfg(feature = "render")]
+
+use std::sync::Arc;
+
+use yarok_mjc::{Data, Model, RenderError, RenderPreset, Renderer};
+
+/// A camera 2 m above a green floor looking straight down (image up = world +y, image right =
+/// world +x). Only a full-ambient headlight lights the scene, so colours come out exactly.
+const SCENE: &str = r#"
+<mujoco>
+  <visual>
+    <global offwidth="400" offheight="300"/>
+    <headlight ambient="1 1 1" diffuse="0 0 0" specular="0 0 0"/>
+  </visual>
+  <worldbody>
+    <camera name="down" pos="0 0 2"/>
+    <geom type="plane" size="3 3 0.1" rgba="0 1 0 1"/>
+    <geom name="north" type="box" pos="0 0.5 0.05" size="0.05 0.05 0.05" rgba="1 0 0 1"/>
+    <geom name="east" type="box" pos="0.5 0 0.05" size="0.05 0.05 0.05" rgba="0 0 1 1"/>
+  </worldbody>
+</mujoco>"#;
+
+const WIDTH: u32 = 320;
+const HEIGHT: u32 = 240;
+
+fn scene() -> (Arc<Model>, Data) {
+    let model = Arc::new(Model::from_xml_str(SCENE).unwrap());
+    let mut data = Data::new(&model).unwrap();
+    data.forward();
+    (model, data)
+}
+
+fn pixels_of(rgb: &image::RgbImage, colour: [u8; 3]) -> Vec<(u32, u32)> {
+    rgb.enumerate_pixels()
+        .filter(|(_, _, p)| p.0 == colour)
+        .map(|(x, y, _)| (x, y))
+        .collect()
+}
+
+#[test]
+fn depth_colour_and_orientation_of_a_known_scene() {
+    let (model, mut data) = scene();
+    for preset in [RenderPreset::Quality, RenderPreset::Fast] {
+        let mut renderer = Renderer::builder()
+            .size(WIDTH, HEIGHT)
+            .preset(preset)
+            .build(&model)
+            .unwrap();
+        let (rgb, depth) = renderer
+            .render(&mut data, model.camera("down").unwrap())
+            .unwrap();
+        assert_eq!(rgb.dimensions(), (WIDTH, HEIGHT));
+        assert_eq!(depth.dimensions(), (WIDTH, HEIGHT));
+
+        let centre = depth.get_pixel(WIDTH / 2, HEIGHT / 2)[0];
+        assert!(
+            (centre - 2.0).abs() < 1e-3,
+            "{preset:?}: floor depth {centre} m, expected 2 m"
+        );
+        assert_eq!(
+            rgb.get_pixel(WIDTH / 2, HEIGHT / 2).0,
+            [0, 255, 0],
+            "{preset:?}: floor colour"
+        );
+
+        let north = pixels_of(&rgb, [255, 0, 0]);
+        assert!(!north.is_empty(), "{preset:?}: the +y box is visible");
+        assert!(
+            north.iter().all(|&(_, y)| y < HEIGHT / 3),
+            "{preset:?}: +y box in the top rows"
+        );
+        let (x, y) = north[north.len() / 2];
+        let top = depth.get_pixel(x, y)[0];
+        assert!(
+            (top - 1.9).abs() < 1e-3,
+            "{preset:?}: box top at {top} m, expected 1.9 m"
+        );
+
+        let east = pixels_of(&rgb, [0, 0, 255]);
+        assert!(!east.is_empty(), "{preset:?}: the +x box is visible");
+        assert!(
+            east.iter().all(|&(x, _)| x > 2 * WIDTH / 3),
+            "{preset:?}: +x box on the right"
+        );
+    }
+}
+
+#[test]
+fn rgb_and_depth_alone_match_the_combined_render() {
+    let (model, mut data) = scene();
+    let camera = model.camera("down").unwrap();
+    let mut renderer = Renderer::builder()
+        .size(WIDTH, HEIGHT)
+        .preset(RenderPreset::Fast)
+        .build(&model)
+        .unwrap();
+    let (rgb, depth) = renderer.render(&mut data, camera).unwrap();
+    assert_eq!(renderer.render_rgb(&mut data, camera).unwrap(), rgb);
+    assert_eq!(renderer.render_depth(&mut data, camera).unwrap(), depth);
+}
+
+#[test]
+fn sizes_beyond_the_offscreen_buffer_are_refused() {
+    let (model, _) = scene();
+    let error = Renderer::builder()
+        .size(640, 480)
+        .build(&model)
+        .unwrap_err();
+    assert_eq!(
+        error,
+        RenderError::TooLarge {
+            width: 640,
+            height: 480,
+            max_width: 400,
+            max_height: 300
+        }
+    );
+    assert!(error.to_string().contains("offwidth"), "{error}");
+    let error = Renderer::builder().size(0, 10).build(&model).unwrap_err();
+    assert_eq!(
+        error,
+        RenderError::Empty {
+            width: 0,
+            height: 10
+        }
+    );
+    assert!(Renderer::builder().size(400, 300).build(&model).is_ok());
+}
+
+#[test]
+fn data_or_camera_of_another_model_is_refused() {
+    let (model, mut data) = scene();
+    let other = Arc::new(
+        Model::from_xml_str(r#"<mujoco><worldbody><camera name="c"/></worldbody></mujoco>"#)
+            .unwrap(),
+    );
+    let mut other_data = Data::new(&other).unwrap();
+    let mut renderer = Renderer::builder().size(32, 24).build(&model).unwrap();
+    let camera = model.camera("down").unwrap();
+    assert_eq!(
+        renderer.render_rgb(&mut other_data, camera),
+        Err(RenderError::ModelMismatch)
+    );
+    let foreign_camera = other.camera("c").unwrap();
+    assert_eq!(
+        renderer.render_rgb(&mut data, foreign_camera),
+        Err(RenderError::ModelMismatch)
+    );
+}
+
+#[test]
+fn two_renderers_on_one_thread_keep_their_own_contexts() {
+    let (model, mut data) = scene();
+    let camera = model.camera("down").unwrap();
+    let mut small = Renderer::builder()
+        .size(64, 48)
+        .preset(RenderPreset::Fast)
+        .build(&model)
+        .unwrap();
+    let mut large = Renderer::builder()
+        .size(WIDTH, HEIGHT)
+        .preset(RenderPreset::Fast)
+        .build(&model)
+        .unwrap();
+    let first = small.render_rgb(&mut data, camera).unwrap();
+    large.render_rgb(&mut data, camera).unwrap();
+    assert_eq!(small.render_rgb(&mut data, camera).unwrap(), first);
+    drop(large);
+    assert_eq!(small.render_rgb(&mut data, camera).unwrap(), first);
+}
+
+#[test]
+fn renderers_work_on_several_threads_at_once() {
+    let handles: Vec<_> = (0..2)
+        .map(|_| {
+            std::thread::spawn(|| {
+                let (model, mut data) = scene();
+                let mut renderer = Renderer::builder().size(64, 48).build(&model).unwrap();
+                renderer
+                    .render_depth(&mut data, model.camera("down").unwrap())
+                    .unwrap()
+                    .get_pixel(32, 24)[0]
+            })
+        })
+        .collect();
+    for handle in handles {
+        assert!((handle.join().unwrap() - 2.0).abs() < 1e-3);
+    }
+}
