@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# The project's checks, as CI runs them: set-up, formatting, lints, licences, tests (unit,
+# integration and doc), and the example binary started directly, outside cargo.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bash scripts/setup.sh
+
+echo "== format"
+cargo fmt --all --check
+echo "== licences"
+cargo fetch --locked
+python3 .ci/check-licences.py
+echo "== clippy"
+cargo clippy --workspace --all-targets --locked -- -D warnings
+echo "== tests"
+if cargo nextest --version >/dev/null 2>&1; then
+  cargo nextest run --workspace --all-targets --locked --no-fail-fast
+else
+  cargo test --workspace --all-targets --locked --no-fail-fast
+fi
+cargo test --workspace --doc --locked
+echo "== docs"
+RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked
+echo "== example binary, started directly"
+cargo build --examples --locked
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+env -u LD_LIBRARY_PATH target/debug/examples/falling_boxes "$out"
+for image in falling_boxes_rgb.png falling_boxes_depth_mm.png; do
+  test -s "$out/$image" || { echo "error: the example did not write $image" >&2; exit 1; }
+done
+echo "== all checks passed"
