@@ -15,9 +15,9 @@ echo "== clippy"
 cargo clippy --workspace --all-targets --locked -- -D warnings
 echo "== tests"
 if cargo nextest --version >/dev/null 2>&1; then
-  cargo nextest run --workspace --all-targets --locked --no-fail-fast
+  cargo nextest run --workspace --locked --no-fail-fast
 else
-  cargo test --workspace --all-targets --locked --no-fail-fast
+  cargo test --workspace --locked --no-fail-fast
 fi
 cargo test --workspace --doc --locked
 echo "== docs"

@@ -156,3 +156,35 @@ fn models_and_data_move_across_threads() {
     });
     assert_eq!(handle.join().unwrap(), model.timestep());
 }
+
+#[test]
+fn mujoco_warnings_reach_tracing() {
+    use std::sync::Mutex;
+
+    #[derive(Clone, Default)]
+    struct Capture(Arc<Mutex<Vec<u8>>>);
+    impl std::io::Write for Capture {
+        fn write(&mut self, bytes: &[u8]) -> std::io::Result<usize> {
+            self.0.lock().unwrap().extend_from_slice(bytes);
+            Ok(bytes.len())
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+
+    let capture = Capture::default();
+    let writer = capture.clone();
+    let subscriber = tracing_subscriber::fmt()
+        .with_writer(move || writer.clone())
+        .with_ansi(false)
+        .finish();
+    tracing::subscriber::with_default(subscriber, || {
+        let (model, mut data) = setup();
+        data.qvel_mut(model.joint("hinge").unwrap())[0] = f64::NAN;
+        data.step();
+    });
+    let log = String::from_utf8(capture.0.lock().unwrap().clone()).unwrap();
+    assert!(log.contains("WARN") && log.contains("mujoco"), "{log}");
+    assert!(log.contains("QVEL"), "{log}");
+}
