@@ -4,5 +4,5 @@
 //! composition into one world, the layered run configuration, the component model, and the
 //! single-threaded async runtime on which behaviours `await` platform ticks. It names neither
 //! MuJoCo nor any device; simulation lives in `yarok-mjc`, hardware in `yarok-hw`.
-//!
-//! This crate is being built up issue by issue; today it only fixes its place in the workspace.
+
+pub mod template;

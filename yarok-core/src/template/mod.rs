@@ -1,0 +1,3 @@
+//! MJCF component templates: the expression language, the XML tree, and expansion.
+
+pub mod expr;
