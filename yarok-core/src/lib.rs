@@ -5,4 +5,6 @@
 //! single-threaded async runtime on which behaviours `await` platform ticks. It names neither
 //! MuJoCo nor any device; simulation lives in `yarok-mjc`, hardware in `yarok-hw`.
 
+pub mod compose;
+mod suggest;
 pub mod template;

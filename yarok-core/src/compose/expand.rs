@@ -1,0 +1,884 @@
+//! The composer: loads templates, expands them per instance and assembles the world.
+
+use std::collections::{BTreeSet, HashMap, HashSet};
+use std::path::PathBuf;
+
+use evalexpr::Value;
+
+use super::error::{ErrorDetails, Problem};
+use super::files::{self, Origin};
+use super::names::{self, CLASSED, NameMap};
+use super::sections::World;
+use super::{
+    ComponentKeyframe, ComponentType, ComposeError, Composition, Config, Instance, Overrides,
+    Source, layout,
+};
+use crate::suggest::did_you_mean;
+use crate::template::expr::{Expr, Variables, format_value};
+use crate::template::xml::{Attribute, Element, Position};
+
+/// A loaded (and, for `extends`, merged) template with what its component declares.
+#[derive(Clone)]
+struct Loaded {
+    tree: Element,
+    tag: String,
+    components: Vec<ComponentType>,
+    defaults: Config,
+    verbatim: bool,
+}
+
+struct InstanceState {
+    path: String,
+    tag: String,
+    component: ComponentType,
+    config: Config,
+    components: Vec<ComponentType>,
+    verbatim: bool,
+}
+
+/// What the expansion of one list of elements needs to know.
+#[derive(Clone)]
+struct Ctx {
+    /// The instance whose template is being expanded (its components are usable as tags).
+    owner: usize,
+    /// The path new component tags are children of.
+    base_path: String,
+    in_worldbody: bool,
+}
+
+/// Config values and loop variables, innermost last.
+struct Scope<'a> {
+    parent: Option<&'a Scope<'a>>,
+    vars: Vec<(String, Value)>,
+}
+
+impl Variables for Scope<'_> {
+    fn get(&self, name: &str) -> Option<&Value> {
+        match self.vars.iter().rev().find(|(n, _)| n == name) {
+            Some((_, value)) => Some(value),
+            None => self.parent.and_then(|p| p.get(name)),
+        }
+    }
+}
+
+pub(super) struct Composer<'o> {
+    overrides: &'o Overrides,
+    used_overrides: HashSet<String>,
+    origins: Vec<Origin>,
+    loaded: HashMap<std::any::TypeId, Loaded>,
+    instances: Vec<InstanceState>,
+    expressions: HashMap<String, Expr>,
+    world: World,
+    assets: BTreeSet<PathBuf>,
+    keyframes: Vec<(usize, Element)>,
+}
+
+impl<'o> Composer<'o> {
+    pub(super) fn new(overrides: &'o Overrides) -> Self {
+        Self {
+            overrides,
+            used_overrides: HashSet::new(),
+            origins: Vec::new(),
+            loaded: HashMap::new(),
+            instances: Vec::new(),
+            expressions: HashMap::new(),
+            world: World::default(),
+            assets: BTreeSet::new(),
+            keyframes: Vec::new(),
+        }
+    }
+
+    pub(super) fn compose(mut self, world: ComponentType) -> Result<Composition, ComposeError> {
+        let loaded = self.load(world, "/")?;
+        let config = self.configure(&loaded, "/", Vec::new(), None)?;
+        let root_attributes = loaded.tree.attributes.clone();
+        let body = self.instance(world, "/", config)?;
+        if let Some(unused) = self
+            .overrides
+            .keys()
+            .find(|path| !self.used_overrides.contains(*path))
+        {
+            let paths: Vec<&str> = self.instances.iter().map(|i| i.path.as_str()).collect();
+            return Err(self.plain_error(
+                0,
+                format!(
+                    "config names component {unused}, which the world does not have{}",
+                    did_you_mean(unused, paths)
+                ),
+            ));
+        }
+        let paths: Vec<String> = self.instances.iter().map(|i| i.path.clone()).collect();
+        self.world
+            .check_angles(&paths)
+            .map_err(|e| self.located(&e))?;
+        let mut mjcf = Element::new("mujoco");
+        mjcf.attributes = root_attributes;
+        let mut worldbody = Element::new("worldbody");
+        worldbody.children = body;
+        mjcf.children = std::mem::take(&mut self.world).into_sections();
+        mjcf.children.push(worldbody);
+        let layout = layout::Layout::of(&mjcf, self.instances.len());
+        let prefixes: Vec<String> = self
+            .instances
+            .iter()
+            .map(|i| names::prefix(&i.path))
+            .collect();
+        let mut maps = vec![NameMap::default(); self.instances.len()];
+        names::apply(&mut mjcf, &prefixes, &mut maps);
+        let keyframes = self.lift_keyframes(&prefixes, &mut maps);
+        let instances = self
+            .instances
+            .into_iter()
+            .zip(maps)
+            .enumerate()
+            .map(|(id, (state, names))| Instance {
+                path: state.path,
+                tag: state.tag,
+                component: state.component,
+                config: state.config,
+                names,
+                joints: layout.joints[id].clone(),
+                actuators: layout.actuators[id].clone(),
+            })
+            .collect();
+        Ok(Composition {
+            mjcf,
+            instances,
+            assets: self.assets.into_iter().collect(),
+            keyframes,
+            layout_known: layout.known,
+        })
+    }
+
+    fn lift_keyframes(
+        &mut self,
+        prefixes: &[String],
+        maps: &mut [NameMap],
+    ) -> Vec<ComponentKeyframe> {
+        std::mem::take(&mut self.keyframes)
+            .into_iter()
+            .enumerate()
+            .map(|(n, (owner, key))| {
+                let local = key
+                    .attribute("name")
+                    .map_or_else(|| format!("key{n}"), str::to_owned);
+                let name = format!("{}{local}", prefixes[owner]);
+                maps[owner].insert(names::NameKind::Keyframe, &local, &name);
+                let attributes = key
+                    .attributes
+                    .into_iter()
+                    .filter(|a| a.name != "name")
+                    .map(|a| (a.name, a.value))
+                    .collect();
+                ComponentKeyframe {
+                    component: self.instances[owner].path.clone(),
+                    name,
+                    attributes,
+                }
+            })
+            .collect()
+    }
+
+    fn load(&mut self, component: ComponentType, path: &str) -> Result<Loaded, ComposeError> {
+        if let Some(loaded) = self.loaded.get(&component.type_id) {
+            return Ok(loaded.clone());
+        }
+        let declaration = (component.declaration)();
+        let origin = self.origins.len();
+        let (text, label, file_dir) = match &declaration.source {
+            Some(Source::Inline(text)) => (
+                text.clone(),
+                format!("<{}> (inline template)", declaration.tag),
+                None,
+            ),
+            Some(Source::File(file)) => {
+                let text = std::fs::read_to_string(file).map_err(|e| {
+                    ComposeError::from(ErrorDetails {
+                        component: path.to_owned(),
+                        template: file.display().to_string(),
+                        position: None,
+                        element: None,
+                        attribute: None,
+                        expression: None,
+                        message: format!("cannot read the template: {e}"),
+                    })
+                })?;
+                (
+                    text,
+                    file.display().to_string(),
+                    file.parent().map(PathBuf::from),
+                )
+            }
+            None => {
+                return Err(ComposeError::from(ErrorDetails {
+                    component: path.to_owned(),
+                    template: format!("<{}>", declaration.tag),
+                    position: None,
+                    element: None,
+                    attribute: None,
+                    expression: None,
+                    message: format!("{} declares no template", component.type_name),
+                }));
+            }
+        };
+        let template_error = |position: Option<Position>, message: String| {
+            ComposeError::from(ErrorDetails {
+                component: path.to_owned(),
+                template: label.clone(),
+                position,
+                element: None,
+                attribute: None,
+                expression: None,
+                message,
+            })
+        };
+        let mut tree =
+            Element::parse(&text).map_err(|e| template_error(Some(e.position), e.message))?;
+        if tree.name != "mujoco" {
+            return Err(template_error(
+                Some(tree.position),
+                format!("the root element is <{}>, not <mujoco>", tree.name),
+            ));
+        }
+        let dir = declaration.asset_dir.clone().or(file_dir);
+        files::inline_includes(&mut tree, dir.as_deref())
+            .map_err(|(position, message)| template_error(position, message))?;
+        set_origin(&mut tree, origin);
+        self.origins.push(Origin::new(label.clone(), dir, &tree));
+        let mut loaded = Loaded {
+            tree,
+            tag: declaration.tag.clone(),
+            components: declaration.components.clone(),
+            defaults: declaration.defaults.clone(),
+            verbatim: declaration.verbatim,
+        };
+        if let Some(base) = declaration.extends {
+            let base = self.load(base, path)?;
+            loaded = extend(base, loaded);
+        }
+        self.loaded.insert(component.type_id, loaded.clone());
+        Ok(loaded)
+    }
+
+    /// Composes one component instance; returns its worldbody content. Its other sections go to
+    /// the world.
+    fn instance(
+        &mut self,
+        component: ComponentType,
+        path: &str,
+        config: Config,
+    ) -> Result<Vec<Element>, ComposeError> {
+        let loaded = self.load(component, path)?;
+        let id = self.instances.len();
+        self.instances.push(InstanceState {
+            path: path.to_owned(),
+            tag: loaded.tag.clone(),
+            component,
+            config: config.clone(),
+            components: loaded.components.clone(),
+            verbatim: loaded.verbatim,
+        });
+        let mut tree = loaded.tree;
+        set_owner(&mut tree, id);
+        let scope = Scope {
+            parent: None,
+            vars: config
+                .iter()
+                .map(|(k, v)| (k.to_owned(), v.clone()))
+                .collect(),
+        };
+        let ctx = Ctx {
+            owner: id,
+            base_path: path.to_owned(),
+            in_worldbody: false,
+        };
+        let (worldbodies, sections): (Vec<Element>, Vec<Element>) = tree
+            .children
+            .into_iter()
+            .partition(|section| section.name == "worldbody");
+        let mut sections = self.expand(sections, &ctx, &scope)?;
+        files::resolve(&mut sections, &self.origins, &mut self.assets)
+            .map_err(|e| self.located(&e))?;
+        let has_defaults = sections.iter().any(|s| s.name == "default");
+        let own_sections: Vec<Element> = sections
+            .iter()
+            .filter(|s| s.name == "compiler")
+            .cloned()
+            .collect();
+        if id != 0 {
+            for section in &mut sections {
+                if section.name == "default" {
+                    section.set_attribute("class", "main");
+                } else if has_defaults {
+                    set_missing_class(&mut section.children, false);
+                }
+            }
+        }
+        for section in sections {
+            if section.name == "keyframe" {
+                self.keyframes.extend(
+                    section
+                        .children
+                        .into_iter()
+                        .map(|key| (id, key))
+                        .collect::<Vec<_>>(),
+                );
+                continue;
+            }
+            let paths: Vec<String> = self.instances.iter().map(|i| i.path.clone()).collect();
+            self.world
+                .merge(section, id, &paths)
+                .map_err(|e| self.located(&e))?;
+        }
+        let body_ctx = Ctx {
+            in_worldbody: true,
+            ..ctx
+        };
+        let mut body = Vec::new();
+        for worldbody in worldbodies {
+            body.extend(self.expand(worldbody.children, &body_ctx, &scope)?);
+        }
+        files::resolve(&mut body, &self.origins, &mut self.assets).map_err(|e| self.located(&e))?;
+        if id != 0 && has_defaults {
+            set_missing_class(&mut body, true);
+        }
+        self.world.note_angles(&body, &own_sections, id);
+        Ok(body)
+    }
+
+    fn expand(
+        &mut self,
+        elements: Vec<Element>,
+        ctx: &Ctx,
+        scope: &Scope<'_>,
+    ) -> Result<Vec<Element>, ComposeError> {
+        if self.instances[ctx.owner].verbatim {
+            return Ok(elements);
+        }
+        let mut out = Vec::with_capacity(elements.len());
+        for mut element in elements {
+            if let Some(condition) = element.take_attribute("if") {
+                let value = self.eval(&condition.value, &element, Some(&condition), scope)?;
+                if !truthy(&value) {
+                    continue;
+                }
+            }
+            match element.name.as_str() {
+                "for" => {
+                    let each = required(&element, "each")
+                        .map_err(|m| self.error(&element, None, None, m))?;
+                    let name = required(&element, "as")
+                        .map_err(|m| self.error(&element, None, None, m))?;
+                    let items = match self.eval(&each.value, &element, Some(&each), scope)? {
+                        Value::Tuple(items) => items,
+                        Value::String(s) => {
+                            s.chars().map(|c| Value::String(c.to_string())).collect()
+                        }
+                        other => {
+                            return Err(self.error(
+                                &element,
+                                Some(&each),
+                                Some(&each.value),
+                                format!("cannot loop over {}", format_value(&other)),
+                            ));
+                        }
+                    };
+                    for item in items {
+                        let inner = Scope {
+                            parent: Some(scope),
+                            vars: vec![(name.value.clone(), item)],
+                        };
+                        out.extend(self.expand(element.children.clone(), ctx, &inner)?);
+                    }
+                }
+                "if" => {
+                    let the = required(&element, "the")
+                        .map_err(|m| self.error(&element, None, None, m))?;
+                    if truthy(&self.eval(&the.value, &element, Some(&the), scope)?) {
+                        out.extend(self.expand(element.children, ctx, scope)?);
+                    }
+                }
+                tag => match self.component_for(ctx.owner, tag) {
+                    Some(component) if ctx.in_worldbody => {
+                        out.extend(self.instantiate(component, element, ctx, scope)?)
+                    }
+                    Some(_) => {
+                        return Err(self.error(
+                            &element,
+                            None,
+                            None,
+                            "component tags belong in <worldbody>".into(),
+                        ));
+                    }
+                    None => {
+                        if let Some(parent) = element.attribute_entry("parent") {
+                            let parent = parent.clone();
+                            return Err(self.error(
+                                &element,
+                                Some(&parent),
+                                None,
+                                "`parent` only places elements written directly inside a component tag".into(),
+                            ));
+                        }
+                        self.interpolate(&mut element, scope)?;
+                        let children = std::mem::take(&mut element.children);
+                        element.children = self.expand(children, ctx, scope)?;
+                        out.push(element);
+                    }
+                },
+            }
+        }
+        Ok(out)
+    }
+
+    fn component_for(&self, owner: usize, tag: &str) -> Option<ComponentType> {
+        let components = &self.instances[owner].components;
+        components
+            .iter()
+            .rev()
+            .find(|c| {
+                self.loaded
+                    .get(&c.type_id)
+                    .map_or_else(|| (c.declaration)().tag == tag, |l| l.tag == tag)
+            })
+            .copied()
+    }
+
+    fn instantiate(
+        &mut self,
+        component: ComponentType,
+        mut tag: Element,
+        ctx: &Ctx,
+        scope: &Scope<'_>,
+    ) -> Result<Vec<Element>, ComposeError> {
+        let name_attribute = tag
+            .take_attribute("name")
+            .ok_or_else(|| self.error(&tag, None, None, "a component tag needs a `name`".into()))?;
+        let name = format_value(&self.attribute_value(&name_attribute, &tag, scope)?);
+        if name.is_empty() || name.contains('/') || name.contains(char::is_whitespace) {
+            return Err(self.error(
+                &tag,
+                Some(&name_attribute),
+                None,
+                format!("{name:?} is not a valid component name"),
+            ));
+        }
+        let path = if ctx.base_path == "/" {
+            format!("/{name}")
+        } else {
+            format!("{}/{name}", ctx.base_path)
+        };
+        if self.instances.iter().any(|i| i.path == path) {
+            return Err(self.error(
+                &tag,
+                Some(&name_attribute),
+                None,
+                format!("a component named {path} already exists"),
+            ));
+        }
+        let loaded = self.load(component, &path)?;
+        let mut assigned = Vec::new();
+        for attribute in std::mem::take(&mut tag.attributes) {
+            let value = self.attribute_value(&attribute, &tag, scope)?;
+            assigned.push((attribute, value));
+        }
+        let config = self.configure(&loaded, &path, assigned, Some(&tag))?;
+        let sub_id = self.instances.len();
+        let mut body = self.instance(component, &path, config)?;
+        let nested_ctx = Ctx {
+            base_path: path.clone(),
+            ..ctx.clone()
+        };
+        for mut child in std::mem::take(&mut tag.children) {
+            let parent = child.take_attribute("parent");
+            let expanded = self.expand(vec![child], &nested_ctx, scope)?;
+            match parent {
+                None => body.extend(expanded),
+                Some(parent) => match find_body(&mut body, sub_id, &parent.value) {
+                    Some(target) => target.children.extend(expanded),
+                    None => {
+                        let mut bodies = Vec::new();
+                        collect_bodies(&body, sub_id, &mut bodies);
+                        let hint = did_you_mean(&parent.value, bodies.iter().map(String::as_str));
+                        let message = format!("{path} has no body named {:?}{hint}", parent.value);
+                        return Err(self.error(&tag, Some(&parent), None, message));
+                    }
+                },
+            }
+        }
+        Ok(body)
+    }
+
+    /// Config of a new instance: defaults < tag attributes < overrides for its path.
+    fn configure(
+        &mut self,
+        loaded: &Loaded,
+        path: &str,
+        assigned: Vec<(Attribute, Value)>,
+        tag: Option<&Element>,
+    ) -> Result<Config, ComposeError> {
+        let mut config = loaded.defaults.clone();
+        for (attribute, value) in assigned {
+            let typed = typed(&loaded.defaults, &attribute.name, value);
+            let element = tag.cloned().unwrap_or_else(|| Element::new(&loaded.tag));
+            let typed = typed.map_err(|m| self.error(&element, Some(&attribute), None, m))?;
+            config.set(&attribute.name, typed);
+        }
+        if let Some(overrides) = self.overrides.get(path) {
+            self.used_overrides.insert(path.to_owned());
+            for (key, value) in overrides.iter() {
+                let typed = typed(&loaded.defaults, key, value.clone())
+                    .map_err(|m| self.plain_error(0, format!("config for {path}: {m}")))?;
+                config.set(key, typed);
+            }
+        }
+        Ok(config)
+    }
+
+    fn attribute_value(
+        &mut self,
+        attribute: &Attribute,
+        element: &Element,
+        scope: &Scope<'_>,
+    ) -> Result<Value, ComposeError> {
+        match whole_expression(&attribute.value) {
+            Some(source) => self.eval(source, element, Some(attribute), scope),
+            None => Ok(Value::String(self.interpolated(attribute, element, scope)?)),
+        }
+    }
+
+    fn interpolate(
+        &mut self,
+        element: &mut Element,
+        scope: &Scope<'_>,
+    ) -> Result<(), ComposeError> {
+        for index in 0..element.attributes.len() {
+            if element.attributes[index].value.contains(['{', '}']) {
+                let value = self.interpolated(&element.attributes[index], element, scope)?;
+                element.attributes[index].value = value;
+            }
+        }
+        Ok(())
+    }
+
+    fn interpolated(
+        &mut self,
+        attribute: &Attribute,
+        element: &Element,
+        scope: &Scope<'_>,
+    ) -> Result<String, ComposeError> {
+        let mut out = String::with_capacity(attribute.value.len());
+        for segment in
+            segments(&attribute.value).map_err(|m| self.error(element, Some(attribute), None, m))?
+        {
+            match segment {
+                Segment::Text(text) => out.push_str(text),
+                Segment::Expression(source) => {
+                    let value = self.eval(source, element, Some(attribute), scope)?;
+                    out.push_str(&format_value(&value));
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    fn eval(
+        &mut self,
+        source: &str,
+        element: &Element,
+        attribute: Option<&Attribute>,
+        scope: &Scope<'_>,
+    ) -> Result<Value, ComposeError> {
+        if !self.expressions.contains_key(source) {
+            let parsed = Expr::parse(source)
+                .map_err(|e| self.error(element, attribute, Some(source), e.to_string()))?;
+            self.expressions.insert(source.to_owned(), parsed);
+        }
+        self.expressions[source]
+            .eval(scope)
+            .map_err(|e| self.error(element, attribute, Some(source), e.to_string()))
+    }
+
+    fn error(
+        &self,
+        element: &Element,
+        attribute: Option<&Attribute>,
+        expression: Option<&str>,
+        message: String,
+    ) -> ComposeError {
+        ComposeError::from(ErrorDetails {
+            component: self
+                .instances
+                .get(element.owner)
+                .map_or_else(|| "/".to_owned(), |i| i.path.clone()),
+            template: self
+                .origins
+                .get(element.origin)
+                .map_or_else(String::new, |o| o.label.clone()),
+            position: Some(attribute.map_or(element.position, |a| a.position)),
+            element: Some(element.name.clone()),
+            attribute: attribute.map(|a| a.name.clone()),
+            expression: expression.map(str::to_owned),
+            message,
+        })
+    }
+
+    fn plain_error(&self, owner: usize, message: String) -> ComposeError {
+        ComposeError::from(ErrorDetails {
+            component: self
+                .instances
+                .get(owner)
+                .map_or_else(|| "/".to_owned(), |i| i.path.clone()),
+            template: self
+                .origins
+                .first()
+                .map_or_else(String::new, |o| o.label.clone()),
+            position: None,
+            element: None,
+            attribute: None,
+            expression: None,
+            message,
+        })
+    }
+
+    fn located(&self, problem: &Problem) -> ComposeError {
+        let (element, attribute, message) = &**problem;
+        self.error(element, attribute.as_ref(), None, message.clone())
+    }
+}
+
+/// The base's tree with the extending template's content added; one instance, one prefix.
+fn extend(base: Loaded, child: Loaded) -> Loaded {
+    let mut tree = base.tree;
+    for section in child.tree.children {
+        match tree.children.iter_mut().find(|s| s.name == section.name) {
+            Some(existing) if super::sections::SETTINGS.contains(&section.name.as_str()) => {
+                super::sections::overlay(existing, section);
+            }
+            Some(existing) => existing.children.extend(section.children),
+            None => tree.children.push(section),
+        }
+    }
+    for attribute in child.tree.attributes {
+        tree.set_attribute(&attribute.name, attribute.value);
+    }
+    let mut defaults = base.defaults;
+    for (key, value) in child.defaults.iter() {
+        defaults.set(key, value.clone());
+    }
+    let mut components = base.components;
+    components.extend(child.components);
+    Loaded {
+        tree,
+        tag: child.tag,
+        components,
+        defaults,
+        verbatim: child.verbatim,
+    }
+}
+
+fn set_origin(element: &mut Element, origin: usize) {
+    element.origin = origin;
+    for child in &mut element.children {
+        set_origin(child, origin);
+    }
+}
+
+fn set_owner(element: &mut Element, owner: usize) {
+    element.owner = owner;
+    for child in &mut element.children {
+        set_owner(child, owner);
+    }
+}
+
+/// Gives a component's top-level elements its own default class, so that its `<default>`
+/// applies to it and not to the world.
+fn set_missing_class(elements: &mut [Element], in_worldbody: bool) {
+    for element in elements {
+        let attribute = if in_worldbody && matches!(element.name.as_str(), "body" | "frame") {
+            "childclass"
+        } else {
+            "class"
+        };
+        let takes_class = attribute == "childclass" || CLASSED.contains(&element.name.as_str());
+        if takes_class && element.attribute(attribute).is_none() {
+            element.set_attribute(attribute, "main");
+        }
+    }
+}
+
+fn find_body<'a>(elements: &'a mut [Element], owner: usize, name: &str) -> Option<&'a mut Element> {
+    for element in elements {
+        if element.name == "body"
+            && element.owner == owner
+            && element.attribute("name") == Some(name)
+        {
+            return Some(element);
+        }
+        if let Some(found) = find_body(&mut element.children, owner, name) {
+            return Some(found);
+        }
+    }
+    None
+}
+
+fn collect_bodies(elements: &[Element], owner: usize, out: &mut Vec<String>) {
+    for element in elements {
+        if element.name == "body" && element.owner == owner {
+            out.extend(element.attribute("name").map(str::to_owned));
+        }
+        collect_bodies(&element.children, owner, out);
+    }
+}
+
+fn required(element: &Element, name: &str) -> Result<Attribute, String> {
+    element
+        .attribute_entry(name)
+        .cloned()
+        .ok_or_else(|| format!("<{}> needs a `{name}` attribute", element.name))
+}
+
+fn truthy(value: &Value) -> bool {
+    match value {
+        Value::Boolean(b) => *b,
+        Value::Int(n) => *n != 0,
+        Value::Float(x) => *x != 0.0,
+        Value::String(s) => !s.is_empty(),
+        Value::Tuple(items) => !items.is_empty(),
+        Value::Empty => false,
+    }
+}
+
+/// A config value converted to the type of the key's default.
+fn typed(defaults: &Config, key: &str, value: Value) -> Result<Value, String> {
+    let Some(default) = defaults.get(key) else {
+        let keys: Vec<&str> = defaults.keys().collect();
+        let known = if keys.is_empty() {
+            "it has none".to_owned()
+        } else {
+            format!("it has {}", keys.join(", "))
+        };
+        return Err(format!(
+            "no config key `{key}` ({known}){}",
+            did_you_mean(key, keys.iter().copied())
+        ));
+    };
+    let mismatch = |value: &Value| {
+        format!(
+            "`{key}` expects {}, got {:?}",
+            kind(default),
+            format_value(value)
+        )
+    };
+    match (default, value) {
+        (Value::Float(_), Value::Int(n)) => Ok(Value::Float(n as f64)),
+        (Value::Int(_), Value::Int(n)) => Ok(Value::Int(n)),
+        (Value::Float(_), Value::Float(x)) => Ok(Value::Float(x)),
+        (Value::Boolean(_), Value::Boolean(b)) => Ok(Value::Boolean(b)),
+        (Value::Tuple(_), Value::Tuple(items)) => Ok(Value::Tuple(items)),
+        (Value::String(_) | Value::Empty, value) => Ok(value),
+        (_, Value::String(text)) => {
+            parse_as(default, &text).ok_or_else(|| mismatch(&Value::String(text)))
+        }
+        (_, value) => Err(mismatch(&value)),
+    }
+}
+
+fn kind(value: &Value) -> &'static str {
+    match value {
+        Value::Int(_) => "an integer",
+        Value::Float(_) => "a number",
+        Value::Boolean(_) => "true or false",
+        Value::Tuple(_) => "a list of numbers",
+        _ => "a string",
+    }
+}
+
+fn parse_as(default: &Value, text: &str) -> Option<Value> {
+    let text = text.trim();
+    match default {
+        Value::Int(_) => text.parse().ok().map(Value::Int),
+        Value::Float(_) => text.parse().ok().map(Value::Float),
+        Value::Boolean(_) => match text {
+            "true" | "True" => Some(Value::Boolean(true)),
+            "false" | "False" => Some(Value::Boolean(false)),
+            _ => None,
+        },
+        Value::Tuple(_) => text
+            .split_whitespace()
+            .map(|item| {
+                item.parse()
+                    .ok()
+                    .map(Value::Int)
+                    .or_else(|| item.parse().ok().map(Value::Float))
+            })
+            .collect::<Option<Vec<_>>>()
+            .map(Value::Tuple),
+        _ => Some(Value::String(text.to_owned())),
+    }
+}
+
+enum Segment<'a> {
+    Text(&'a str),
+    Expression(&'a str),
+}
+
+/// The source of an attribute that is exactly one `{expr}` (or `${expr}`).
+fn whole_expression(value: &str) -> Option<&str> {
+    match segments(value).ok()?.as_slice() {
+        [Segment::Expression(source)] => Some(source),
+        _ => None,
+    }
+}
+
+/// Splits `a {x} b ${y}` into text and expressions; `{{` and `}}` are literal braces.
+fn segments(value: &str) -> Result<Vec<Segment<'_>>, String> {
+    let bytes = value.as_bytes();
+    let mut out = Vec::new();
+    let (mut text_start, mut at) = (0, 0);
+    while at < bytes.len() {
+        match bytes[at] {
+            b'{' | b'}' if bytes.get(at + 1) == Some(&bytes[at]) => {
+                out.push(Segment::Text(&value[text_start..=at]));
+                at += 2;
+                text_start = at;
+            }
+            b'{' => {
+                let dollar = at > text_start && bytes[at - 1] == b'$';
+                out.push(Segment::Text(&value[text_start..at - usize::from(dollar)]));
+                let end = closing_brace(bytes, at)
+                    .ok_or_else(|| format!("unclosed `{{` at character {}", at + 1))?;
+                out.push(Segment::Expression(&value[at + 1..end]));
+                at = end + 1;
+                text_start = at;
+            }
+            b'}' => return Err(format!("`}}` without `{{` at character {}", at + 1)),
+            _ => at += 1,
+        }
+    }
+    out.push(Segment::Text(&value[text_start..]));
+    out.retain(|s| !matches!(s, Segment::Text("")));
+    Ok(out)
+}
+
+/// The `}` closing the `{` at `open`, skipping quoted strings and nested braces.
+fn closing_brace(bytes: &[u8], open: usize) -> Option<usize> {
+    let (mut depth, mut quote, mut at) = (0usize, None, open + 1);
+    while at < bytes.len() {
+        let byte = bytes[at];
+        match quote {
+            Some(_) if byte == b'\\' => at += 1,
+            Some(q) if byte == q => quote = None,
+            Some(_) => {}
+            None => match byte {
+                b'\'' | b'"' => quote = Some(byte),
+                b'{' => depth += 1,
+                b'}' if depth == 0 => return Some(at),
+                b'}' => depth -= 1,
+                _ => {}
+            },
+        }
+        at += 1;
+    }
+    None
+}

@@ -1,0 +1,332 @@
+//! Composition: component templates → one MJCF world.
+//!
+//! A component is a type implementing [`Component`]; its [`Declaration`] gives its tag, an
+//! optional base it `extends`, the component types usable as tags in its template, typed config
+//! defaults and the template itself. [`compose`] expands the world's template — `{expr}` in any
+//! attribute, `if="…"`, `<if the="…">`, `<for each="…" as="…">` in every section, in document
+//! order — instantiates the components it names, namespaces every name by component path and
+//! merges everything into one [`Composition`].
+//!
+//! # Semantics
+//!
+//! - **Paths and names.** The world is `/`; a component tag `<arm_type name="arm"/>` in it makes
+//!   `/arm`; a component tag written inside another component's tag becomes its child
+//!   (`/arm/gripper`). Every name a component defines and every reference it writes gets its path
+//!   as prefix (`arm/gripper/pad`); the world's names stay unprefixed. A reference may reach into
+//!   a sub-component (`gripper/pad`) or, with a leading `/`, name a world object (`/floor`).
+//! - **Defaults.** A component's top-level `<default>` becomes its own class `<path>/main`, given
+//!   (as `childclass` or `class`) to its top-level elements, so two copies never clash. Classes
+//!   still nest inside the world's `<default>`, so world-wide defaults reach attributes a
+//!   component's defaults leave unset, as in MuJoCo.
+//! - **Nesting.** Elements written inside a component tag go where the tag was, or with
+//!   `parent="body"` into that body of the component.
+//! - **Sections.** Sub-components' `asset`, `default`, `actuator`, `sensor`, `tendon`, `equality`,
+//!   `contact`, `custom`, `deformable`, `extension` merge into the world. `compiler`, `option`,
+//!   `size`, `visual` and `statistic` merge attribute by attribute; differing values are an error
+//!   naming both components (an unset `compiler/@angle` counts as MuJoCo's `degree`).
+//! - **Files.** Relative `file` attributes are resolved against the component's asset folder (and
+//!   its `meshdir`/`texturedir`), so components from different folders mix.
+//! - **Keyframes.** A component's `<key>` vectors (`qpos`, `qvel`, `ctrl`, `act`) address that
+//!   component's own joints and actuators. They are lifted out of the MJCF into
+//!   [`Composition::keyframes`]; the MuJoCo backend places them in whole-model vectors.
+
+mod error;
+mod expand;
+mod files;
+mod layout;
+mod names;
+mod sections;
+
+use std::any::TypeId;
+use std::collections::BTreeMap;
+use std::fmt;
+use std::path::PathBuf;
+
+pub use error::{ComposeError, ErrorDetails};
+pub use evalexpr::Value;
+pub use names::{NameKind, NameMap};
+
+use crate::template::xml::Element;
+
+/// A component: a Rust type with an MJCF template.
+///
+/// # Examples
+///
+/// ```
+/// use yarok_core::compose::{Component, Declaration, compose};
+///
+/// struct Block;
+/// impl Component for Block {
+///     fn declaration() -> Declaration {
+///         Declaration::new("block")
+///             .default("size", 0.05)
+///             .template(r#"<mujoco><worldbody>
+///                 <body name="body"><freejoint/><geom type="box" size="{size} {size} {size}"/></body>
+///             </worldbody></mujoco>"#)
+///     }
+/// }
+///
+/// struct Table;
+/// impl Component for Table {
+///     fn declaration() -> Declaration {
+///         Declaration::new("table").uses::<Block>().template(r#"<mujoco><worldbody>
+///             <for each="range(2)" as="i">
+///               <body name="spot{i}" pos="{i * 0.2} 0 0.5"><block name="block{i}" size="0.03"/></body>
+///             </for>
+///         </worldbody></mujoco>"#)
+///     }
+/// }
+///
+/// let world = compose::<Table>()?;
+/// let xml = world.to_xml();
+/// assert!(xml.contains(r#"<body name="block1/body">"#));
+/// assert!(xml.contains(r#"size="0.03 0.03 0.03""#));
+/// assert_eq!(world.instance("/block0").unwrap().names.len(), 1);
+/// # Ok::<(), yarok_core::compose::ComposeError>(())
+/// ```
+pub trait Component: 'static {
+    /// What the component is: tag, template, defaults, sub-components.
+    fn declaration() -> Declaration;
+}
+
+/// A component type, as a value.
+#[derive(Clone, Copy)]
+pub struct ComponentType {
+    type_id: TypeId,
+    type_name: &'static str,
+    declaration: fn() -> Declaration,
+}
+
+impl ComponentType {
+    /// The component type `C`.
+    pub fn of<C: Component>() -> Self {
+        Self {
+            type_id: TypeId::of::<C>(),
+            type_name: std::any::type_name::<C>(),
+            declaration: C::declaration,
+        }
+    }
+
+    /// The Rust type's name.
+    pub fn type_name(&self) -> &'static str {
+        self.type_name
+    }
+}
+
+impl fmt::Debug for ComponentType {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.type_name)
+    }
+}
+
+/// Where a template comes from.
+#[derive(Debug, Clone)]
+enum Source {
+    Inline(String),
+    File(PathBuf),
+}
+
+/// What a component declares; built with the methods below.
+#[derive(Debug, Clone)]
+pub struct Declaration {
+    tag: String,
+    extends: Option<ComponentType>,
+    components: Vec<ComponentType>,
+    defaults: Config,
+    source: Option<Source>,
+    asset_dir: Option<PathBuf>,
+    verbatim: bool,
+}
+
+impl Declaration {
+    /// A component used as `<tag name="…"/>` in other templates.
+    pub fn new(tag: impl Into<String>) -> Self {
+        Self {
+            tag: tag.into(),
+            extends: None,
+            components: Vec::new(),
+            defaults: Config::default(),
+            source: None,
+            asset_dir: None,
+            verbatim: false,
+        }
+    }
+
+    /// Builds on `Base`'s template, defaults and sub-components; this template's content is added
+    /// to the base's and may reference the base's names.
+    pub fn extends<Base: Component>(mut self) -> Self {
+        self.extends = Some(ComponentType::of::<Base>());
+        self
+    }
+
+    /// Makes `C`'s tag usable in this template.
+    pub fn uses<C: Component>(mut self) -> Self {
+        self.components.push(ComponentType::of::<C>());
+        self
+    }
+
+    /// A config default, visible in the template as a variable and overridable per instance.
+    pub fn default(mut self, key: &str, value: impl Into<Value>) -> Self {
+        self.defaults.set(key, value.into());
+        self
+    }
+
+    /// The template, as MJCF text.
+    pub fn template(mut self, mjcf: impl Into<String>) -> Self {
+        self.source = Some(Source::Inline(mjcf.into()));
+        self
+    }
+
+    /// The template, from a file; relative `file=` paths resolve against its folder unless
+    /// [`Declaration::asset_dir`] says otherwise.
+    pub fn template_file(mut self, path: impl Into<PathBuf>) -> Self {
+        self.source = Some(Source::File(path.into()));
+        self
+    }
+
+    /// Wraps an existing MJCF file (e.g. a MuJoCo Menagerie model) as it is: no template
+    /// expressions are evaluated, `<include>`s are inlined, and its assets resolve against its
+    /// folder and its own `meshdir`/`texturedir`.
+    pub fn mjcf_file(self, path: impl Into<PathBuf>) -> Self {
+        Self {
+            verbatim: true,
+            ..self.template_file(path)
+        }
+    }
+
+    /// The folder relative `file=` paths resolve against.
+    pub fn asset_dir(mut self, dir: impl Into<PathBuf>) -> Self {
+        self.asset_dir = Some(dir.into());
+        self
+    }
+
+    /// The tag.
+    pub fn tag(&self) -> &str {
+        &self.tag
+    }
+}
+
+/// Config values: name → value, in the order they were set.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Config {
+    entries: Vec<(String, Value)>,
+}
+
+impl Config {
+    /// The value of `key`.
+    pub fn get(&self, key: &str) -> Option<&Value> {
+        self.entries.iter().find(|(k, _)| k == key).map(|(_, v)| v)
+    }
+
+    /// Sets `key`, keeping its place when it exists.
+    pub fn set(&mut self, key: &str, value: Value) {
+        match self.entries.iter_mut().find(|(k, _)| k == key) {
+            Some(entry) => entry.1 = value,
+            None => self.entries.push((key.to_owned(), value)),
+        }
+    }
+
+    /// Every `(key, value)` in order.
+    pub fn iter(&self) -> impl Iterator<Item = (&str, &Value)> {
+        self.entries.iter().map(|(k, v)| (k.as_str(), v))
+    }
+
+    /// Every key.
+    pub fn keys(&self) -> impl Iterator<Item = &str> {
+        self.entries.iter().map(|(k, _)| k.as_str())
+    }
+}
+
+impl<K: Into<String>, V: Into<Value>, const N: usize> From<[(K, V); N]> for Config {
+    fn from(entries: [(K, V); N]) -> Self {
+        let mut config = Config::default();
+        for (key, value) in entries {
+            config.set(&key.into(), value.into());
+        }
+        config
+    }
+}
+
+/// One component in the composed world.
+#[derive(Debug, Clone)]
+pub struct Instance {
+    /// `/`, `/arm`, `/arm/gripper`.
+    pub path: String,
+    /// The component's tag.
+    pub tag: String,
+    /// The component's Rust type.
+    pub component: ComponentType,
+    /// Its config after defaults, tag attributes and overrides.
+    pub config: Config,
+    /// Its names: local → name in the composed model.
+    pub names: NameMap,
+    /// Indices of its joints among the model's joints, in MuJoCo's order.
+    pub joints: Vec<usize>,
+    /// Indices of its actuators among the model's actuators.
+    pub actuators: Vec<usize>,
+}
+
+/// A keyframe a component declared, in its own terms.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ComponentKeyframe {
+    /// Path of the component that declared it.
+    pub component: String,
+    /// The keyframe's name in the composed model.
+    pub name: String,
+    /// Its attributes (`time`, `qpos`, `qvel`, `ctrl`, `act`), vectors over the component's own
+    /// joints and actuators.
+    pub attributes: Vec<(String, String)>,
+}
+
+/// A composed world: one MJCF document plus what the backends need to bind components to it.
+#[derive(Debug, Clone)]
+pub struct Composition {
+    /// The `<mujoco>` document.
+    pub mjcf: Element,
+    /// Every component, parents before children (the world first).
+    pub instances: Vec<Instance>,
+    /// Files the model reads (meshes, textures, height fields), absolute.
+    pub assets: Vec<PathBuf>,
+    /// Keyframes lifted out of the MJCF, to be placed by the backend.
+    pub keyframes: Vec<ComponentKeyframe>,
+    /// Whether joint and actuator indices are known (no `composite`, `flexcomp`, `replicate`,
+    /// `attach` generate hidden ones).
+    pub layout_known: bool,
+}
+
+impl Composition {
+    /// The composed MJCF as text.
+    pub fn to_xml(&self) -> String {
+        self.mjcf.to_xml()
+    }
+
+    /// The component at `path`.
+    pub fn instance(&self, path: &str) -> Option<&Instance> {
+        self.instances.iter().find(|i| i.path == path)
+    }
+}
+
+/// Config overrides by component path, applied over defaults and tag attributes.
+pub type Overrides = BTreeMap<String, Config>;
+
+/// Composes the world `W` with its defaults.
+///
+/// # Errors
+///
+/// [`ComposeError`] naming the component, template, line:column, element, attribute and
+/// expression at fault.
+pub fn compose<W: Component>() -> Result<Composition, ComposeError> {
+    compose_with(ComponentType::of::<W>(), &Overrides::new())
+}
+
+/// Composes the world `world` with config `overrides` by component path.
+///
+/// # Errors
+///
+/// As [`compose`]; an override for a path that is not composed is an error too.
+pub fn compose_with(
+    world: ComponentType,
+    overrides: &Overrides,
+) -> Result<Composition, ComposeError> {
+    expand::Composer::new(overrides).compose(world)
+}

@@ -1,0 +1,54 @@
+//! "Did you mean …?" for unknown names.
+
+/// The candidate closest to `name` by edit distance, when it is close enough to be a typo.
+pub(crate) fn nearest<'a>(
+    name: &str,
+    candidates: impl IntoIterator<Item = &'a str>,
+) -> Option<&'a str> {
+    candidates
+        .into_iter()
+        .map(|candidate| (distance(name, candidate), candidate))
+        .filter(|(d, candidate)| {
+            *d <= (candidate.chars().count().max(name.chars().count()) / 3).max(1)
+        })
+        .min_by_key(|(d, _)| *d)
+        .map(|(_, candidate)| candidate)
+}
+
+/// ", did you mean `x`?" or "".
+pub(crate) fn did_you_mean<'a>(
+    name: &str,
+    candidates: impl IntoIterator<Item = &'a str>,
+) -> String {
+    nearest(name, candidates)
+        .map(|n| format!("; did you mean `{n}`?"))
+        .unwrap_or_default()
+}
+
+fn distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut previous = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let substitution = previous + usize::from(ca != *cb);
+            previous = row[j + 1];
+            row[j + 1] = substitution.min(row[j] + 1).min(previous + 1);
+        }
+    }
+    row[b.len()]
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn suggests_close_names_only() {
+        assert_eq!(super::nearest("sped", ["speed", "rows"]), Some("speed"));
+        assert_eq!(super::nearest("zzzz", ["speed", "rows"]), None);
+        assert_eq!(
+            super::did_you_mean("row", ["rows"]),
+            "; did you mean `rows`?"
+        );
+    }
+}
