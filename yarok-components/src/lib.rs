@@ -4,4 +4,6 @@
 //! their optical models, the UR5 arm, the Robotiq 2F-85 gripper, the Anet A30 printer used as a
 //! cartesian robot, worlds and toys, each with one interface per environment.
 //!
-//! This crate is being built up issue by issue; today it only fixes its place in the workspace.
+//! This crate is being built up issue by issue; today it holds the toys.
+
+pub mod toys;

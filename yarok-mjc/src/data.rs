@@ -5,7 +5,7 @@ use std::ptr::NonNull;
 use std::sync::Arc;
 
 use crate::error::ModelError;
-use crate::model::{ActuatorId, BodyId, JointId, Model, SensorId, to_usize};
+use crate::model::{ActuatorId, BodyId, JointId, KeyframeId, Model, SensorId, to_usize};
 use crate::sys;
 
 /// The state of one simulation of a [`Model`] (`mjData`): time, positions, velocities,
@@ -95,6 +95,23 @@ impl Data {
             self.model
                 .mj()
                 .mj_resetData(self.model.raw(), self.raw.as_ptr())
+        }
+    }
+
+    /// Resets the state to a keyframe: its time, positions, velocities, controls and
+    /// activations.
+    ///
+    /// # Panics
+    ///
+    /// When `keyframe` was resolved in a different model.
+    #[track_caller]
+    pub fn reset_to_keyframe(&mut self, keyframe: KeyframeId) {
+        let index = self.model.index_of(keyframe) as i32;
+        // SAFETY: model and data belong together and `index` < nkey for an id of this model.
+        unsafe {
+            self.model
+                .mj()
+                .mj_resetDataKeyframe(self.model.raw(), self.raw.as_ptr(), index)
         }
     }
 

@@ -75,6 +75,16 @@ pub enum ModelError {
         /// The name looked up.
         name: String,
     },
+    /// A component's keyframe cannot be placed in the composed model.
+    #[error("component {component}: keyframe {name:?}: {reason}")]
+    Keyframe {
+        /// Path of the component that declared it.
+        component: String,
+        /// The keyframe's name.
+        name: String,
+        /// Why.
+        reason: String,
+    },
     /// MuJoCo could not allocate memory.
     #[error("MuJoCo could not allocate {what}")]
     Allocation {

@@ -49,6 +49,7 @@
 #![warn(clippy::undocumented_unsafe_blocks)]
 #![doc(test(attr(deny(warnings))))]
 
+mod composition;
 mod data;
 mod error;
 mod library;
@@ -79,7 +80,8 @@ pub const MUJOCO_VERSION: &str = locate::MUJOCO_VERSION;
 #[cfg(feature = "render")]
 pub use image;
 pub use model::{
-    ActuatorId, BodyId, CameraId, GeomId, JointId, Model, ObjectKind, SensorId, SiteId, TendonId,
+    ActuatorId, BodyId, CameraId, GeomId, JointId, KeyframeId, Model, ObjectKind, SensorId, SiteId,
+    TendonId,
 };
 #[cfg(feature = "render")]
 pub use render::{

@@ -142,7 +142,38 @@ impl Model {
             ObjectKind::Actuator => m.nu,
             ObjectKind::Sensor => m.nsensor,
             ObjectKind::Tendon => m.ntendon,
+            ObjectKind::Keyframe => m.nkey,
         })
+    }
+
+    /// The parent of a body; the world body is its own parent.
+    ///
+    /// # Panics
+    ///
+    /// When `body` was resolved in a different model.
+    #[track_caller]
+    pub fn body_parent(&self, body: BodyId) -> BodyId {
+        let index = self.index_of(body);
+        // SAFETY: body_parentid holds nbody entries and `index` < nbody.
+        let parent =
+            unsafe { self.array(self.raw().body_parentid, self.count(ObjectKind::Body)) }[index];
+        BodyId {
+            index: to_usize(parent),
+            signature: self.signature(),
+        }
+    }
+
+    /// A geom's size parameters (their meaning depends on its type: radius, half-lengths, …).
+    ///
+    /// # Panics
+    ///
+    /// When `geom` was resolved in a different model.
+    #[track_caller]
+    pub fn geom_size(&self, geom: GeomId) -> [f64; 3] {
+        let index = self.index_of(geom);
+        // SAFETY: geom_size holds 3·ngeom entries and `index` < ngeom.
+        let sizes = unsafe { self.array(self.raw().geom_size, 3 * self.count(ObjectKind::Geom)) };
+        [sizes[3 * index], sizes[3 * index + 1], sizes[3 * index + 2]]
     }
 
     /// The model's structural signature; ids resolved in one model are only valid for models
@@ -273,6 +304,8 @@ pub enum ObjectKind {
     Sensor,
     /// `<spatial>` and `<fixed>` tendons.
     Tendon,
+    /// `<key>`.
+    Keyframe,
 }
 
 impl ObjectKind {
@@ -286,6 +319,7 @@ impl ObjectKind {
             ObjectKind::Actuator => sys::mjOBJ_ACTUATOR,
             ObjectKind::Sensor => sys::mjOBJ_SENSOR,
             ObjectKind::Tendon => sys::mjOBJ_TENDON,
+            ObjectKind::Keyframe => sys::mjOBJ_KEY,
         };
         obj as i32
     }
@@ -302,6 +336,7 @@ impl fmt::Display for ObjectKind {
             ObjectKind::Actuator => "actuator",
             ObjectKind::Sensor => "sensor",
             ObjectKind::Tendon => "tendon",
+            ObjectKind::Keyframe => "keyframe",
         })
     }
 }
@@ -391,4 +426,6 @@ object_ids! {
     SensorId, Sensor, sensor;
     /// A tendon of a model.
     TendonId, Tendon, tendon;
+    /// A keyframe of a model.
+    KeyframeId, Keyframe, keyframe;
 }

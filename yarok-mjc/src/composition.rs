@@ -1,0 +1,178 @@
+//! Compiling a [`Composition`] from yarok-core: the MJCF, plus components' keyframes placed in
+//! whole-model vectors.
+
+use yarok_core::compose::{ComponentKeyframe, Composition, Instance};
+use yarok_core::template::xml::Element;
+
+use crate::error::ModelError;
+use crate::model::{Model, to_usize};
+use crate::sys;
+
+impl Model {
+    /// Compiles a composed world.
+    ///
+    /// Components' keyframes address their own joints and actuators; they are placed in
+    /// whole-model keyframes (other joints at their initial configuration, other velocities and
+    /// controls zero), which takes a second compilation when there are any.
+    ///
+    /// # Errors
+    ///
+    /// As [`Model::from_xml_str`]; [`ModelError::Keyframe`] when a keyframe has more values than
+    /// its component has coordinates, uses mocap vectors, or the world generates joints the
+    /// composer cannot count (`composite`, `flexcomp`, `replicate`, `attach`).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use yarok_core::compose::{Component, Declaration, compose};
+    /// use yarok_mjc::Model;
+    ///
+    /// struct Pendulum;
+    /// impl Component for Pendulum {
+    ///     fn declaration() -> Declaration {
+    ///         Declaration::new("pendulum").template(r#"<mujoco>
+    ///             <worldbody><body name="bob"><joint name="hinge"/><geom size="0.1"/></body></worldbody>
+    ///             <keyframe><key name="up" qpos="3.14"/></keyframe>
+    ///         </mujoco>"#)
+    ///     }
+    /// }
+    ///
+    /// let model = Model::from_composition(&compose::<Pendulum>()?)?;
+    /// assert_eq!(model.ffi().nkey, 1);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn from_composition(composition: &Composition) -> Result<Self, ModelError> {
+        let model = Self::from_xml_str(&composition.to_xml())?;
+        if composition.keyframes.is_empty() {
+            return Ok(model);
+        }
+        let first = &composition.keyframes[0];
+        let joints: usize = composition.instances.iter().map(|i| i.joints.len()).sum();
+        if !composition.layout_known || joints != model.count(crate::ObjectKind::Joint) {
+            return Err(keyframe_error(
+                first,
+                "the world generates joints (composite, flexcomp, replicate or attach), so component keyframes cannot be placed",
+            ));
+        }
+        let mut mjcf = composition.mjcf.clone();
+        let mut section = Element::new("keyframe");
+        for keyframe in &composition.keyframes {
+            let instance = composition.instance(&keyframe.component).ok_or_else(|| {
+                keyframe_error(keyframe, "its component is not in the composition")
+            })?;
+            section.children.push(model.place(keyframe, instance)?);
+        }
+        mjcf.children.retain(|s| s.name != "keyframe");
+        mjcf.children.push(section);
+        Self::from_xml_str(&mjcf.to_xml())
+    }
+
+    fn place(
+        &self,
+        keyframe: &ComponentKeyframe,
+        instance: &Instance,
+    ) -> Result<Element, ModelError> {
+        let m = self.raw();
+        let (njnt, nu) = (to_usize(m.njnt), to_usize(m.nu));
+        // SAFETY: these model arrays hold the lengths given (nq, njnt, nu entries).
+        let (qpos0, jnt_type, qposadr, dofadr, actadr, actnum) = unsafe {
+            (
+                self.array(m.qpos0, to_usize(m.nq)),
+                self.array(m.jnt_type, njnt),
+                self.array(m.jnt_qposadr, njnt),
+                self.array(m.jnt_dofadr, njnt),
+                self.array(m.actuator_actadr, nu),
+                self.array(m.actuator_actnum, nu),
+            )
+        };
+        let sizes = |joint: usize| match jnt_type[joint] as u32 {
+            sys::mjJNT_FREE => (7, 6),
+            sys::mjJNT_BALL => (4, 3),
+            _ => (1, 1),
+        };
+        let mut key = Element::new("key");
+        key.set_attribute("name", keyframe.name.clone());
+        for (name, value) in &keyframe.attributes {
+            let local = numbers(value).ok_or_else(|| {
+                keyframe_error(keyframe, &format!("`{name}` is not a list of numbers"))
+            })?;
+            let (mut full, slots): (Vec<f64>, Vec<usize>) = match name.as_str() {
+                "time" => {
+                    key.set_attribute("time", value.clone());
+                    continue;
+                }
+                "qpos" => (
+                    qpos0.to_vec(),
+                    expand(&instance.joints, |j| (to_usize(qposadr[j]), sizes(j).0)),
+                ),
+                "qvel" => (
+                    vec![0.0; to_usize(m.nv)],
+                    expand(&instance.joints, |j| (to_usize(dofadr[j]), sizes(j).1)),
+                ),
+                "ctrl" => (vec![0.0; nu], instance.actuators.clone()),
+                "act" => (
+                    vec![0.0; to_usize(m.na)],
+                    expand(&instance.actuators, |a| {
+                        (
+                            to_usize(actadr[a]),
+                            if actadr[a] < 0 {
+                                0
+                            } else {
+                                to_usize(actnum[a])
+                            },
+                        )
+                    }),
+                ),
+                other => {
+                    return Err(keyframe_error(
+                        keyframe,
+                        &format!("`{other}` is not supported in component keyframes"),
+                    ));
+                }
+            };
+            if local.len() > slots.len() {
+                let message = format!(
+                    "`{name}` has {} values but {} has {}",
+                    local.len(),
+                    instance.path,
+                    slots.len()
+                );
+                return Err(keyframe_error(keyframe, &message));
+            }
+            for (slot, value) in slots.iter().zip(local) {
+                full[*slot] = value;
+            }
+            key.set_attribute(
+                name,
+                full.iter()
+                    .map(f64::to_string)
+                    .collect::<Vec<_>>()
+                    .join(" "),
+            );
+        }
+        Ok(key)
+    }
+}
+
+/// The model-vector indices of a component's objects, each `(start, count)`.
+fn expand(objects: &[usize], span: impl Fn(usize) -> (usize, usize)) -> Vec<usize> {
+    objects
+        .iter()
+        .flat_map(|&object| {
+            let (start, count) = span(object);
+            start..start + count
+        })
+        .collect()
+}
+
+fn numbers(value: &str) -> Option<Vec<f64>> {
+    value.split_whitespace().map(|x| x.parse().ok()).collect()
+}
+
+fn keyframe_error(keyframe: &ComponentKeyframe, reason: &str) -> ModelError {
+    ModelError::Keyframe {
+        component: keyframe.component.clone(),
+        name: keyframe.name.clone(),
+        reason: reason.to_owned(),
+    }
+}
