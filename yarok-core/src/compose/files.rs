@@ -71,6 +71,7 @@ pub(super) fn resolve(
                 .attributes
                 .retain(|a| !matches!(a.name.as_str(), "meshdir" | "texturedir" | "assetdir"));
         }
+        name_after_file(element);
         let origin = &origins[element.origin];
         let base = if element.name == "texture" {
             &origin.texturedir
@@ -113,6 +114,25 @@ pub(super) fn resolve(
         resolve(&mut element.children, origins, assets)?;
     }
     Ok(())
+}
+
+/// MuJoCo names an unnamed mesh, texture, height field or skin after its file (`parts/arm.stl` is
+/// `arm`); the name is written out so that it can be namespaced like any other.
+fn name_after_file(element: &mut Element) {
+    if !matches!(
+        element.name.as_str(),
+        "mesh" | "texture" | "hfield" | "skin"
+    ) || element.attribute("name").is_some()
+    {
+        return;
+    }
+    let stem = element
+        .attribute("file")
+        .and_then(|file| Path::new(file).file_stem())
+        .map(|s| s.to_string_lossy().into_owned());
+    if let Some(stem) = stem {
+        element.set_attribute("name", stem);
+    }
 }
 
 /// `a/./b/../c` → `a/c`, without touching the file system.

@@ -166,8 +166,8 @@ impl Declaration {
     }
 
     /// A config default, visible in the template as a variable and overridable per instance.
-    pub fn default(mut self, key: &str, value: impl Into<Value>) -> Self {
-        self.defaults.set(key, value.into());
+    pub fn default(mut self, key: &str, value: impl IntoValue) -> Self {
+        self.defaults.set(key, value.into_value());
         self
     }
 
@@ -237,13 +237,67 @@ impl Config {
     }
 }
 
-impl<K: Into<String>, V: Into<Value>, const N: usize> From<[(K, V); N]> for Config {
+impl<K: Into<String>, V: IntoValue, const N: usize> From<[(K, V); N]> for Config {
     fn from(entries: [(K, V); N]) -> Self {
         let mut config = Config::default();
         for (key, value) in entries {
-            config.set(&key.into(), value.into());
+            config.set(&key.into(), value.into_value());
         }
         config
+    }
+}
+
+/// Rust values usable as config values: numbers, booleans, strings and lists of them.
+pub trait IntoValue {
+    /// The template value.
+    fn into_value(self) -> Value;
+}
+
+impl IntoValue for Value {
+    fn into_value(self) -> Value {
+        self
+    }
+}
+
+macro_rules! into_value {
+    ($($rust:ty => $variant:ident as $as:ty),* $(,)?) => {$(
+        impl IntoValue for $rust {
+            fn into_value(self) -> Value {
+                Value::$variant(self as $as)
+            }
+        }
+    )*};
+}
+
+into_value!(i32 => Int as i64, i64 => Int as i64, u32 => Int as i64, f32 => Float as f64, f64 => Float as f64);
+
+impl IntoValue for bool {
+    fn into_value(self) -> Value {
+        Value::Boolean(self)
+    }
+}
+
+impl IntoValue for &str {
+    fn into_value(self) -> Value {
+        Value::String(self.to_owned())
+    }
+}
+
+impl IntoValue for String {
+    fn into_value(self) -> Value {
+        Value::String(self)
+    }
+}
+
+impl<T: IntoValue> IntoValue for Vec<T> {
+    fn into_value(self) -> Value {
+        Value::Tuple(self.into_iter().map(IntoValue::into_value).collect())
+    }
+}
+
+impl<T: IntoValue, const N: usize> IntoValue for [T; N] {
+    fn into_value(self) -> Value {
+        Value::Tuple(self.into_iter().map(IntoValue::into_value).collect())
     }
 }
 
