@@ -66,7 +66,7 @@ fn expressions_fill_attributes_with_round_trip_numbers_and_space_separated_lists
         b.attribute("fromto")
             .unwrap()
             .split(' ')
-            .last()
+            .next_back()
             .unwrap()
             .parse::<f64>()
             .unwrap(),
