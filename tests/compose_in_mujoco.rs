@@ -11,12 +11,14 @@ use yarok::mjc::{Data, Model, ObjectKind};
 struct Playground;
 impl Component for Playground {
     fn declaration() -> Declaration {
-        Declaration::new("playground").uses::<TumbleTower>().template(
-            r#"<mujoco><compiler angle="radian"/><worldbody>
+        Declaration::new("playground")
+            .uses::<TumbleTower>()
+            .template(
+                r#"<mujoco><compiler angle="radian"/><worldbody>
                  <geom name="floor" type="plane" size="2 2 0.1"/>
                  <tumble-tower name="tower"/>
                </worldbody></mujoco>"#,
-        )
+            )
     }
 }
 
@@ -36,8 +38,14 @@ fn the_tumble_tower_compiles_and_stands() {
     let end = data.body_pose(top).pos;
     // The layers start 5 mm apart and settle onto each other; the top block stays above the rest.
     let settled = start[2] - 7.0 * 0.005;
-    assert!((end[2] - settled).abs() < 0.01, "the top block settles: {start:?} → {end:?}");
-    assert!((end[0] - start[0]).hypot(end[1] - start[1]) < 0.01, "the tower does not fall: {start:?} → {end:?}");
+    assert!(
+        (end[2] - settled).abs() < 0.01,
+        "the top block settles: {start:?} → {end:?}"
+    );
+    assert!(
+        (end[0] - start[0]).hypot(end[1] - start[1]) < 0.01,
+        "the tower does not fall: {start:?} → {end:?}"
+    );
 }
 
 fn robot_file() -> PathBuf {

@@ -7,3 +7,10 @@
 //! This crate is being built up issue by issue; today it holds the toys.
 
 pub mod toys;
+
+use yarok_core::compose::ComponentType;
+
+/// Every bundled component, for tools that pick components by tag at run time.
+pub fn catalogue() -> Vec<ComponentType> {
+    vec![ComponentType::of::<toys::TumbleTower>()]
+}

@@ -21,11 +21,21 @@ fn error_of<C: Component>() -> ComposeError {
 }
 
 fn at(error: &ComposeError) -> (u32, u32) {
-    error.position.map(|p| (p.line, p.column)).expect("a position")
+    error
+        .position
+        .map(|p| (p.line, p.column))
+        .expect("a position")
 }
 
-component!(Part, "<mujoco>\n  <worldbody>\n    <geom name=\"g\" size=\"{n / (n - 2)}\"/>\n  </worldbody>\n</mujoco>");
-component!(Holder, "<mujoco><worldbody>\n<part name=\"p\"/></worldbody></mujoco>", Part);
+component!(
+    Part,
+    "<mujoco>\n  <worldbody>\n    <geom name=\"g\" size=\"{n / (n - 2)}\"/>\n  </worldbody>\n</mujoco>"
+);
+component!(
+    Holder,
+    "<mujoco><worldbody>\n<part name=\"p\"/></worldbody></mujoco>",
+    Part
+);
 
 #[test]
 fn an_expression_error_says_everything_about_where() {
@@ -43,18 +53,39 @@ fn an_expression_error_says_everything_about_where() {
     );
 }
 
-component!(Unknown, "<mujoco><worldbody><geom size=\"{radius}\"/></worldbody></mujoco>");
-component!(Syntax, "<mujoco><worldbody><geom size=\"{1 +}\"/></worldbody></mujoco>");
-component!(Unclosed, "<mujoco><worldbody><geom size=\"{1 + 2\"/></worldbody></mujoco>");
+component!(
+    Unknown,
+    "<mujoco><worldbody><geom size=\"{radius}\"/></worldbody></mujoco>"
+);
+component!(
+    Syntax,
+    "<mujoco><worldbody><geom size=\"{1 +}\"/></worldbody></mujoco>"
+);
+component!(
+    Unclosed,
+    "<mujoco><worldbody><geom size=\"{1 + 2\"/></worldbody></mujoco>"
+);
 
 #[test]
 fn expression_messages_are_the_real_ones() {
-    assert_eq!(error_of::<Unknown>().message, "name `radius` is not defined");
-    assert_eq!(error_of::<Syntax>().message, "unexpected end of expression (at character 4)");
-    assert_eq!(error_of::<Unclosed>().message, "unclosed `{` at character 1");
+    assert_eq!(
+        error_of::<Unknown>().message,
+        "name `radius` is not defined"
+    );
+    assert_eq!(
+        error_of::<Syntax>().message,
+        "unexpected end of expression (at character 4)"
+    );
+    assert_eq!(
+        error_of::<Unclosed>().message,
+        "unclosed `{` at character 1"
+    );
 }
 
-component!(Broken, "<mujoco>\n<worldbody>\n  <body>\n</worldbody>\n</mujoco>");
+component!(
+    Broken,
+    "<mujoco>\n<worldbody>\n  <body>\n</worldbody>\n</mujoco>"
+);
 component!(NotMjcf, "<robot/>");
 
 #[test]
@@ -65,16 +96,52 @@ fn malformed_templates_name_the_line() {
     assert!(error_of::<NotMjcf>().message.contains("not <mujoco>"));
 }
 
-component!(Fine, "<mujoco><worldbody><body name=\"palm2\"/></worldbody></mujoco>");
-component!(Nameless, "<mujoco><worldbody><fine/></worldbody></mujoco>", Fine);
-component!(Twice, "<mujoco><worldbody><fine name=\"p\"/><fine name=\"p\"/></worldbody></mujoco>", Fine);
-component!(Slash, "<mujoco><worldbody><fine name=\"a/b\"/></worldbody></mujoco>", Fine);
-component!(Outside, "<mujoco><asset><fine name=\"p\"/></asset><worldbody/></mujoco>", Fine);
-component!(Lost, "<mujoco><worldbody><fine name=\"h\"><site parent=\"palm\"/></fine></worldbody></mujoco>", Fine);
-component!(Stray, "<mujoco><worldbody><site parent=\"x\"/></worldbody></mujoco>");
-component!(Loop, "<mujoco><worldbody><for each=\"range(2)\"><geom/></for></worldbody></mujoco>");
-component!(NotIterable, "<mujoco><worldbody><for each=\"n\" as=\"i\"><geom/></for></worldbody></mujoco>");
-component!(BadKey, "<mujoco><worldbody><fine name=\"p\" m=\"1\"/></worldbody></mujoco>", Fine);
+component!(
+    Fine,
+    "<mujoco><worldbody><body name=\"palm2\"/></worldbody></mujoco>"
+);
+component!(
+    Nameless,
+    "<mujoco><worldbody><fine/></worldbody></mujoco>",
+    Fine
+);
+component!(
+    Twice,
+    "<mujoco><worldbody><fine name=\"p\"/><fine name=\"p\"/></worldbody></mujoco>",
+    Fine
+);
+component!(
+    Slash,
+    "<mujoco><worldbody><fine name=\"a/b\"/></worldbody></mujoco>",
+    Fine
+);
+component!(
+    Outside,
+    "<mujoco><asset><fine name=\"p\"/></asset><worldbody/></mujoco>",
+    Fine
+);
+component!(
+    Lost,
+    "<mujoco><worldbody><fine name=\"h\"><site parent=\"palm\"/></fine></worldbody></mujoco>",
+    Fine
+);
+component!(
+    Stray,
+    "<mujoco><worldbody><site parent=\"x\"/></worldbody></mujoco>"
+);
+component!(
+    Loop,
+    "<mujoco><worldbody><for each=\"range(2)\"><geom/></for></worldbody></mujoco>"
+);
+component!(
+    NotIterable,
+    "<mujoco><worldbody><for each=\"n\" as=\"i\"><geom/></for></worldbody></mujoco>"
+);
+component!(
+    BadKey,
+    "<mujoco><worldbody><fine name=\"p\" m=\"1\"/></worldbody></mujoco>",
+    Fine
+);
 
 #[test]
 fn structural_mistakes_are_explained() {
@@ -82,12 +149,24 @@ fn structural_mistakes_are_explained() {
         (error_of::<Nameless>(), "a component tag needs a `name`"),
         (error_of::<Twice>(), "a component named /p already exists"),
         (error_of::<Slash>(), "\"a/b\" is not a valid component name"),
-        (error_of::<Outside>(), "component tags belong in <worldbody>"),
-        (error_of::<Lost>(), "/h has no body named \"palm\"; did you mean `palm2`?"),
-        (error_of::<Stray>(), "`parent` only places elements written directly inside a component tag"),
+        (
+            error_of::<Outside>(),
+            "component tags belong in <worldbody>",
+        ),
+        (
+            error_of::<Lost>(),
+            "/h has no body named \"palm\"; did you mean `palm2`?",
+        ),
+        (
+            error_of::<Stray>(),
+            "`parent` only places elements written directly inside a component tag",
+        ),
         (error_of::<Loop>(), "<for> needs a `as` attribute"),
         (error_of::<NotIterable>(), "cannot loop over 2"),
-        (error_of::<BadKey>(), "no config key `m` (it has n); did you mean `n`?"),
+        (
+            error_of::<BadKey>(),
+            "no config key `m` (it has n); did you mean `n`?",
+        ),
     ];
     for (error, message) in cases {
         assert_eq!(error.message, message, "{error}");
@@ -106,5 +185,8 @@ impl Component for FromFile {
 fn an_unreadable_template_file_is_named() {
     let error = error_of::<FromFile>();
     assert_eq!(error.template, "/nonexistent/template.xml");
-    assert!(error.message.starts_with("cannot read the template"), "{error}");
+    assert!(
+        error.message.starts_with("cannot read the template"),
+        "{error}"
+    );
 }

@@ -21,10 +21,16 @@ fn fixtures() -> PathBuf {
 }
 
 fn find<'a>(root: &'a Element, tag: &str) -> Vec<&'a Element> {
-    root.descendants().into_iter().filter(|e| e.name == tag).collect()
+    root.descendants()
+        .into_iter()
+        .filter(|e| e.name == tag)
+        .collect()
 }
 
-component!(Robot, Declaration::new("robot").mjcf_file(fixtures().join("robot.xml")));
+component!(
+    Robot,
+    Declaration::new("robot").mjcf_file(fixtures().join("robot.xml"))
+);
 component!(
     Lab,
     Declaration::new("lab").uses::<Robot>().template(
@@ -41,15 +47,37 @@ fn a_wrapped_model_keeps_its_assets_and_is_namespaced_per_copy() {
     let meshes = find(&world.mjcf, "mesh");
     assert_eq!(meshes.len(), 2);
     for (mesh, prefix) in meshes.iter().zip(["r1/", "r2/"]) {
-        assert_eq!(mesh.attribute("name"), Some(format!("{prefix}part").as_str()), "named after its file");
-        assert_eq!(Path::new(mesh.attribute("file").unwrap()), fixtures().join("assets/part.obj"));
+        assert_eq!(
+            mesh.attribute("name"),
+            Some(format!("{prefix}part").as_str()),
+            "named after its file"
+        );
+        assert_eq!(
+            Path::new(mesh.attribute("file").unwrap()),
+            fixtures().join("assets/part.obj")
+        );
     }
     let textures = find(&world.mjcf, "texture");
-    assert_eq!(Path::new(textures[0].attribute("file").unwrap()), fixtures().join("textures/skin.png"));
+    assert_eq!(
+        Path::new(textures[0].attribute("file").unwrap()),
+        fixtures().join("textures/skin.png")
+    );
     assert_eq!(textures[0].attribute("name"), Some("r1/skin"));
-    assert_eq!(find(&world.mjcf, "material")[1].attribute("texture"), Some("r2/skin"));
-    assert_eq!(find(&world.mjcf, "geom")[1].attribute("mesh"), Some("r2/part"));
-    assert_eq!(world.assets, [fixtures().join("assets/part.obj"), fixtures().join("textures/skin.png")]);
+    assert_eq!(
+        find(&world.mjcf, "material")[1].attribute("texture"),
+        Some("r2/skin")
+    );
+    assert_eq!(
+        find(&world.mjcf, "geom")[1].attribute("mesh"),
+        Some("r2/part")
+    );
+    assert_eq!(
+        world.assets,
+        [
+            fixtures().join("assets/part.obj"),
+            fixtures().join("textures/skin.png")
+        ]
+    );
     // meshdir/texturedir are spent; the include is inlined; braces are left alone.
     let compiler = world.mjcf.child("compiler").unwrap();
     assert_eq!(compiler.attribute("meshdir"), None);
@@ -58,12 +86,16 @@ fn a_wrapped_model_keeps_its_assets_and_is_namespaced_per_copy() {
     assert!(world.to_xml().contains(r#"data="{not an expression}""#));
     let defaults = world.mjcf.child("default").unwrap();
     assert_eq!(defaults.children[0].attribute("class"), Some("r1/main"));
-    assert_eq!(defaults.children[0].children[0].attribute("damping"), Some("0.1"));
+    assert_eq!(
+        defaults.children[0].children[0].attribute("damping"),
+        Some("0.1")
+    );
 }
 
 component!(
     Loose,
-    Declaration::new("loose").template(r#"<mujoco><asset><mesh file="part.obj"/></asset><worldbody/></mujoco>"#)
+    Declaration::new("loose")
+        .template(r#"<mujoco><asset><mesh file="part.obj"/></asset><worldbody/></mujoco>"#)
 );
 component!(
     Anchored,
@@ -87,5 +119,8 @@ fn relative_files_need_an_asset_folder_and_must_exist() {
     let error = compose::<Missing>().unwrap_err();
     assert_eq!(error.attribute.as_deref(), Some("file"));
     assert_eq!(error.position.map(|p| (p.line, p.column)), Some((3, 11)));
-    assert!(error.message.contains("nowhere.stl does not exist"), "{error}");
+    assert!(
+        error.message.contains("nowhere.stl does not exist"),
+        "{error}"
+    );
 }

@@ -71,11 +71,14 @@ pub(super) struct Composer<'o> {
     world: World,
     assets: BTreeSet<PathBuf>,
     keyframes: Vec<(usize, Element)>,
+    /// The declaration of a world declared at run time, used for the first component loaded.
+    runtime_world: Option<super::Declaration>,
 }
 
 impl<'o> Composer<'o> {
-    pub(super) fn new(overrides: &'o Overrides) -> Self {
+    pub(super) fn new(overrides: &'o Overrides, runtime_world: Option<super::Declaration>) -> Self {
         Self {
+            runtime_world,
             overrides,
             used_overrides: HashSet::new(),
             origins: Vec::new(),
@@ -183,7 +186,10 @@ impl<'o> Composer<'o> {
         if let Some(loaded) = self.loaded.get(&component.type_id) {
             return Ok(loaded.clone());
         }
-        let declaration = (component.declaration)();
+        let declaration = self
+            .runtime_world
+            .take()
+            .unwrap_or_else(component.declaration);
         let origin = self.origins.len();
         let (text, label, file_dir) = match &declaration.source {
             Some(Source::Inline(text)) => (

@@ -111,6 +111,11 @@ impl ComponentType {
     pub fn type_name(&self) -> &'static str {
         self.type_name
     }
+
+    /// The component's declaration.
+    pub fn declaration(&self) -> Declaration {
+        (self.declaration)()
+    }
 }
 
 impl fmt::Debug for ComponentType {
@@ -160,8 +165,13 @@ impl Declaration {
     }
 
     /// Makes `C`'s tag usable in this template.
-    pub fn uses<C: Component>(mut self) -> Self {
-        self.components.push(ComponentType::of::<C>());
+    pub fn uses<C: Component>(self) -> Self {
+        self.uses_type(ComponentType::of::<C>())
+    }
+
+    /// Makes a component type's tag usable in this template (for types chosen at run time).
+    pub fn uses_type(mut self, component: ComponentType) -> Self {
+        self.components.push(component);
         self
     }
 
@@ -382,5 +392,31 @@ pub fn compose_with(
     world: ComponentType,
     overrides: &Overrides,
 ) -> Result<Composition, ComposeError> {
-    expand::Composer::new(overrides).compose(world)
+    expand::Composer::new(overrides, None).compose(world)
+}
+
+/// Composes a world declared at run time, e.g. from a template file named on a command line.
+///
+/// # Errors
+///
+/// As [`compose_with`].
+pub fn compose_declaration(
+    world: Declaration,
+    overrides: &Overrides,
+) -> Result<Composition, ComposeError> {
+    let world_type = ComponentType {
+        type_id: TypeId::of::<RuntimeWorld>(),
+        type_name: "run-time world",
+        declaration: RuntimeWorld::declaration,
+    };
+    expand::Composer::new(overrides, Some(world)).compose(world_type)
+}
+
+/// Stands for a world declared at run time; its declaration is handed to the composer.
+struct RuntimeWorld;
+
+impl Component for RuntimeWorld {
+    fn declaration() -> Declaration {
+        Declaration::new("world")
+    }
 }

@@ -1,0 +1,82 @@
+//! `yarok compose` dumps composed MJCF from a bundled component or a template file.
+
+use std::process::Command;
+
+fn yarok(args: &[&str]) -> (i32, String, String) {
+    let output = Command::new(env!("CARGO_BIN_EXE_yarok"))
+        .args(args)
+        .output()
+        .unwrap();
+    let text = |bytes: Vec<u8>| String::from_utf8(bytes).unwrap();
+    (
+        output.status.code().unwrap(),
+        text(output.stdout),
+        text(output.stderr),
+    )
+}
+
+#[test]
+fn composes_a_bundled_component_with_overrides() {
+    let (code, xml, _) = yarok(&["compose", "tumble-tower", "--set", "rows=2"]);
+    assert_eq!(code, 0);
+    assert_eq!(xml.matches("<freejoint/>").count(), 6);
+    assert!(
+        xml.contains(r#"<body name="block_1_2" pos="0.58 0.5640000000000001 0.0915""#),
+        "{xml}"
+    );
+}
+
+#[test]
+fn composes_a_template_file_using_bundled_components() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("world.xml");
+    std::fs::write(
+        &file,
+        r#"<mujoco><compiler angle="radian"/><worldbody>
+        <geom name="floor" type="plane" size="1 1 1"/>
+        <tumble-tower name="tower" rows="1"/>
+    </worldbody></mujoco>"#,
+    )
+    .unwrap();
+    let out = dir.path().join("composed.xml");
+    let (code, _, _) = yarok(&[
+        "compose",
+        file.to_str().unwrap(),
+        "--set",
+        "/tower/rows=3",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0);
+    let xml = std::fs::read_to_string(out).unwrap();
+    assert!(
+        xml.contains(r#"name="tower/block_2_0""#) && !xml.contains("block_3_0"),
+        "{xml}"
+    );
+    assert!(xml.contains(r#"<geom name="floor""#));
+}
+
+#[test]
+fn errors_exit_with_2_and_say_where() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("bad.xml");
+    std::fs::write(
+        &file,
+        "<mujoco>\n<worldbody>\n<geom size=\"{missing}\"/>\n</worldbody>\n</mujoco>",
+    )
+    .unwrap();
+    let (code, _, stderr) = yarok(&["compose", file.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains(&format!("{}:3:7", file.display())),
+        "{stderr}"
+    );
+    assert!(stderr.contains("name `missing` is not defined"), "{stderr}");
+
+    let (code, _, stderr) = yarok(&["compose", "tumble-tower", "--set", "rowz=2"]);
+    assert_eq!(code, 2);
+    assert!(stderr.contains("did you mean `rows`?"), "{stderr}");
+    let (code, _, stderr) = yarok(&["compose", "no-such-world"]);
+    assert_eq!(code, 2);
+    assert!(stderr.contains("tumble-tower"), "{stderr}");
+}
