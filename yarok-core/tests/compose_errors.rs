@@ -190,3 +190,23 @@ fn an_unreadable_template_file_is_named() {
         "{error}"
     );
 }
+
+component!(
+    Huge,
+    "<mujoco><worldbody><for each=\"range(1000)\" as=\"i\"><for each=\"range(1001)\" as=\"j\"><geom/></for></for></worldbody></mujoco>"
+);
+
+#[test]
+fn templates_cannot_exhaust_memory_or_stack() {
+    assert_eq!(
+        error_of::<Huge>().message,
+        "the world expands to more than 1000000 elements"
+    );
+    let deep = format!(
+        "<mujoco><worldbody>{}{}</worldbody></mujoco>",
+        "<body>".repeat(300),
+        "</body>".repeat(300)
+    );
+    let error = yarok_core::template::xml::Element::parse(&deep).unwrap_err();
+    assert_eq!(error.message, "elements nested deeper than 256");
+}

@@ -17,6 +17,9 @@ use crate::suggest::did_you_mean;
 use crate::template::expr::{Expr, Variables, format_value};
 use crate::template::xml::{Attribute, Element, Position};
 
+/// Loops may not expand a world beyond this many elements, so that no template exhausts memory.
+const MAX_ELEMENTS: usize = 1_000_000;
+
 /// A loaded (and, for `extends`, merged) template with what its component declares.
 #[derive(Clone)]
 struct Loaded {
@@ -71,6 +74,8 @@ pub(super) struct Composer<'o> {
     world: World,
     assets: BTreeSet<PathBuf>,
     keyframes: Vec<(usize, Element)>,
+    /// Elements produced so far, bounded by [`MAX_ELEMENTS`].
+    produced: usize,
     /// The declaration of a world declared at run time, used for the first component loaded.
     runtime_world: Option<super::Declaration>,
 }
@@ -79,6 +84,7 @@ impl<'o> Composer<'o> {
     pub(super) fn new(overrides: &'o Overrides, runtime_world: Option<super::Declaration>) -> Self {
         Self {
             runtime_world,
+            produced: 0,
             overrides,
             used_overrides: HashSet::new(),
             origins: Vec::new(),
@@ -425,6 +431,12 @@ impl<'o> Composer<'o> {
                                 None,
                                 "`parent` only places elements written directly inside a component tag".into(),
                             ));
+                        }
+                        self.produced += 1;
+                        if self.produced > MAX_ELEMENTS {
+                            let message =
+                                format!("the world expands to more than {MAX_ELEMENTS} elements");
+                            return Err(self.error(&element, None, None, message));
                         }
                         self.interpolate(&mut element, scope)?;
                         let children = std::mem::take(&mut element.children);

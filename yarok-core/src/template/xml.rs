@@ -6,6 +6,9 @@ use std::fmt::{self, Write as _};
 use quick_xml::Reader;
 use quick_xml::events::{BytesStart, Event};
 
+/// Templates nested deeper than this are refused, so that no input can exhaust the stack.
+const MAX_DEPTH: usize = 256;
+
 /// A line and column in a template, both counted from 1 (columns in characters).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
 pub struct Position {
@@ -145,6 +148,12 @@ impl Element {
                     return Err(XmlError {
                         position: lines.position(offset),
                         message: "a template has one root element".into(),
+                    });
+                }
+                Event::Start(_) if stack.len() >= MAX_DEPTH => {
+                    return Err(XmlError {
+                        position: lines.position(offset),
+                        message: format!("elements nested deeper than {MAX_DEPTH}"),
                     });
                 }
                 Event::Start(start) => stack.push(element(&start, offset, source, &lines)?),
