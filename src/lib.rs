@@ -11,6 +11,10 @@
 //! # Cargo features
 //!
 //! - `render` (default): offscreen camera rendering through EGL (see [`mjc::Renderer`]).
+//!
+//! # The project's README
+//!
+#![doc = include_str!("../README.md")]
 
 pub use yarok_components as components;
 pub use yarok_core as core;

@@ -13,9 +13,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use yarok::components::catalogue;
-use yarok::core::compose::{
-    Config, Declaration, Overrides, Value, compose_declaration, compose_with,
-};
+use yarok::core::compose::{Declaration, Overrides, Value, compose_declaration, compose_with};
 
 const USAGE: &str = "usage: yarok compose WORLD [--set [/PATH/]KEY=VALUE]... [--out FILE]
   WORLD  a bundled component tag, or an MJCF template file";
@@ -57,7 +55,7 @@ fn parse(mut args: impl Iterator<Item = String>) -> Result<Args, String> {
                 };
                 overrides
                     .entry(path)
-                    .or_insert_with(Config::default)
+                    .or_default()
                     .set(key, Value::String(value.to_owned()));
             }
             "--out" => out = Some(PathBuf::from(args.next().ok_or("--out needs a file")?)),

@@ -1,7 +1,7 @@
 //! The tumble tower of the original README: `<for>` loops and the Python-style conditional.
 
 use yarok_components::toys::TumbleTower;
-use yarok_core::compose::{ComponentType, Config, Overrides, compose, compose_with};
+use yarok_core::compose::{ComponentType, Config, IntoValue, Overrides, compose, compose_with};
 use yarok_core::template::xml::Element;
 
 fn numbers(element: &Element, attribute: &str) -> Vec<f64> {
@@ -56,8 +56,12 @@ fn eight_rows_make_24_free_blocks_at_the_right_places() {
 
 #[test]
 fn rows_come_from_config() {
-    let overrides = Overrides::from([("/".to_owned(), Config::from([("rows", 3)]))]);
+    let mut config = Config::from([("rows", 3)]);
+    config.set("pos", vec![1.0, -1.0, 0.5].into_value());
+    let overrides = Overrides::from([("/".to_owned(), config)]);
     let world = compose_with(ComponentType::of::<TumbleTower>(), &overrides).unwrap();
-    assert_eq!(free_bodies(&world.mjcf).len(), 9);
+    let blocks = free_bodies(&world.mjcf);
+    assert_eq!(blocks.len(), 9);
+    assert_eq!(numbers(blocks[0], "pos"), [1.5, -0.52, 0.5305]);
     assert_eq!(world.instance("/").unwrap().joints.len(), 9);
 }

@@ -154,3 +154,9 @@ fn errors_say_what_went_wrong() {
     assert_eq!(error("math.system"), "name `math.system` is not defined");
     assert!(error(&"(".repeat(200)).contains("nested too deeply"));
 }
+
+#[test]
+fn conditionals_nested_in_arithmetic_see_variables() {
+    assert_eq!(eval("lst[0] + (0.5 if x else 1)"), Value::Float(0.6));
+    assert_eq!(eval("x + (1 if x > 5 else lst[1])"), Value::Float(2.2));
+}
