@@ -10,13 +10,14 @@
 
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use yarok::core::compose::{Component, Declaration, compose};
 use yarok::core::template::xml::Element;
 use yarok::mjc::Model;
 
-const MEASURE: Duration = Duration::from_secs(2);
+mod measure;
+use measure::mean_time;
 
 static MESHES: OnceLock<PathBuf> = OnceLock::new();
 
@@ -229,17 +230,6 @@ impl Component for DigitWorld {
                </mujoco>"#,
         )
     }
-}
-
-fn mean_time(mut work: impl FnMut()) -> Duration {
-    work();
-    let started = Instant::now();
-    let mut runs = 0u32;
-    while started.elapsed() < MEASURE {
-        work();
-        runs += 1;
-    }
-    started.elapsed() / runs
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

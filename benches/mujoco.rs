@@ -7,23 +7,15 @@
 //! ```
 
 use std::sync::Arc;
-use std::time::{Duration, Instant};
 
 use yarok::mjc::{Data, Model, RenderPreset, Renderer};
 
 const SCENE: &str = include_str!("../examples/sim/falling_boxes.xml");
-const MEASURE: Duration = Duration::from_secs(2);
+mod measure;
 
-/// Runs `work` repeatedly for at least `MEASURE` and returns how many runs per second it did.
-fn rate(mut work: impl FnMut()) -> f64 {
-    work();
-    let started = Instant::now();
-    let mut runs = 0u64;
-    while started.elapsed() < MEASURE {
-        work();
-        runs += 1;
-    }
-    runs as f64 / started.elapsed().as_secs_f64()
+/// How many times per second `work` runs.
+fn rate(work: impl FnMut()) -> f64 {
+    1.0 / measure::mean_time(work).as_secs_f64()
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

@@ -1,22 +1,13 @@
 //! Components in components: paths, nesting with `parent=`, `extends`, merged sections and
 //! complete namespacing.
 
+#[macro_use]
+mod common;
+
 use yarok_core::compose::{
-    Component, ComponentType, Config, Declaration, NameKind, Overrides, Value, compose,
-    compose_with,
+    ComponentType, Config, Declaration, NameKind, Overrides, Value, compose, compose_with,
 };
 use yarok_core::template::xml::Element;
-
-macro_rules! component {
-    ($name:ident, $declaration:expr) => {
-        struct $name;
-        impl Component for $name {
-            fn declaration() -> Declaration {
-                $declaration
-            }
-        }
-    };
-}
 
 /// Every `(tag, attribute, value)` in the subtree, for asserting names and references.
 fn attributes(element: &Element) -> Vec<(String, String, String)> {

@@ -1,20 +1,12 @@
 //! Asset files and wrapped MJCF files: paths resolve against the component that names them.
 
+#[macro_use]
+mod common;
+
 use std::path::{Path, PathBuf};
 
-use yarok_core::compose::{Component, Declaration, compose};
+use yarok_core::compose::{Declaration, compose};
 use yarok_core::template::xml::Element;
-
-macro_rules! component {
-    ($name:ident, $declaration:expr) => {
-        struct $name;
-        impl Component for $name {
-            fn declaration() -> Declaration {
-                $declaration
-            }
-        }
-    };
-}
 
 fn fixtures() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/robot")

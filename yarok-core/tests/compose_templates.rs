@@ -1,19 +1,11 @@
 //! The template language inside MJCF: `{expr}`, `${expr}`, `if=`, `<if the>`, `<for>`, in every
 //! section, in document order, with config and loop variables.
 
-use yarok_core::compose::{Component, Composition, Declaration, compose};
-use yarok_core::template::xml::Element;
+#[macro_use]
+mod common;
 
-macro_rules! component {
-    ($name:ident, $declaration:expr) => {
-        struct $name;
-        impl Component for $name {
-            fn declaration() -> Declaration {
-                $declaration
-            }
-        }
-    };
-}
+use yarok_core::compose::{Composition, Declaration, compose};
+use yarok_core::template::xml::Element;
 
 fn names(parent: &Element) -> Vec<String> {
     parent

@@ -14,7 +14,7 @@ use super::{
     Source, layout,
 };
 use crate::suggest::did_you_mean;
-use crate::template::expr::{Expr, Variables, format_value};
+use crate::template::expr::{Expr, Variables, format_value, truthy};
 use crate::template::xml::{Attribute, Element, Position};
 
 /// Loops may not expand a world beyond this many elements, so that no template exhausts memory.
@@ -754,17 +754,6 @@ fn required(element: &Element, name: &str) -> Result<Attribute, String> {
         .attribute_entry(name)
         .cloned()
         .ok_or_else(|| format!("<{}> needs a `{name}` attribute", element.name))
-}
-
-fn truthy(value: &Value) -> bool {
-    match value {
-        Value::Boolean(b) => *b,
-        Value::Int(n) => *n != 0,
-        Value::Float(x) => *x != 0.0,
-        Value::String(s) => !s.is_empty(),
-        Value::Tuple(items) => !items.is_empty(),
-        Value::Empty => false,
-    }
 }
 
 /// A config value converted to the type of the key's default.

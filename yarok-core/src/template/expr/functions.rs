@@ -79,8 +79,8 @@ pub(super) fn comparison(op: &str) -> &'static str {
     }
 }
 
-/// Python truthiness.
-pub(super) fn truthy(value: &Value) -> bool {
+/// Python truthiness: `0`, `0.0`, `""`, `[]`, `False` and `None` are false.
+pub fn truthy(value: &Value) -> bool {
     match value {
         Value::Boolean(b) => *b,
         Value::Int(n) => *n != 0,

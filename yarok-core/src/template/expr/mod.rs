@@ -15,7 +15,7 @@ mod parser;
 use std::fmt;
 
 use evalexpr::{Context, EvalexprResult, Node, Value};
-pub use functions::FUNCTIONS;
+pub use functions::{FUNCTIONS, truthy};
 use parser::Ast;
 
 /// Names visible to an expression: config values and loop variables.
