@@ -6,5 +6,7 @@
 //! MuJoCo nor any device; simulation lives in `yarok-mjc`, hardware in `yarok-hw`.
 
 pub mod compose;
+pub mod config;
+pub mod runtime;
 mod suggest;
 pub mod template;

@@ -37,7 +37,7 @@ mod layout;
 mod names;
 mod sections;
 
-use std::any::TypeId;
+use std::any::{Any, TypeId};
 use std::collections::BTreeMap;
 use std::fmt;
 use std::path::PathBuf;
@@ -46,6 +46,7 @@ pub use error::{ComposeError, ErrorDetails};
 pub use evalexpr::Value;
 pub use names::{NameKind, NameMap};
 
+use crate::runtime::{Bind, RuntimeError};
 use crate::template::xml::Element;
 
 /// A component: a Rust type with an MJCF template.
@@ -87,6 +88,24 @@ use crate::template::xml::Element;
 pub trait Component: 'static {
     /// What the component is: tag, template, defaults, sub-components.
     fn declaration() -> Declaration;
+
+    /// Makes the handle behaviours use, for the environment [`Bind::environment`] names:
+    /// resolve names to indices, register per-tick steps, reach the backend.
+    ///
+    /// The default says the component has no run-time interface (worlds, props).
+    ///
+    /// # Errors
+    ///
+    /// [`RuntimeError::NoInterface`] when the component cannot run in this environment, or any
+    /// binding error.
+    fn bind(_bind: &mut Bind<'_>) -> Result<Self, RuntimeError>
+    where
+        Self: Sized,
+    {
+        Err(RuntimeError::NoHandle {
+            path: String::new(),
+        })
+    }
 }
 
 /// A component type, as a value.
@@ -95,6 +114,7 @@ pub struct ComponentType {
     type_id: TypeId,
     type_name: &'static str,
     declaration: fn() -> Declaration,
+    bind: fn(&mut Bind<'_>) -> Result<Box<dyn Any>, RuntimeError>,
 }
 
 impl ComponentType {
@@ -104,12 +124,22 @@ impl ComponentType {
             type_id: TypeId::of::<C>(),
             type_name: std::any::type_name::<C>(),
             declaration: C::declaration,
+            bind: |bind| C::bind(bind).map(|handle| Box::new(handle) as Box<dyn Any>),
         }
     }
 
     /// The Rust type's name.
     pub fn type_name(&self) -> &'static str {
         self.type_name
+    }
+
+    /// The `TypeId` of the component's Rust type.
+    pub fn type_id(&self) -> TypeId {
+        self.type_id
+    }
+
+    pub(crate) fn bind(&self, bind: &mut Bind<'_>) -> Result<Box<dyn Any>, RuntimeError> {
+        (self.bind)(bind)
     }
 
     /// The component's declaration.
@@ -405,9 +435,8 @@ pub fn compose_declaration(
     overrides: &Overrides,
 ) -> Result<Composition, ComposeError> {
     let world_type = ComponentType {
-        type_id: TypeId::of::<RuntimeWorld>(),
         type_name: "run-time world",
-        declaration: RuntimeWorld::declaration,
+        ..ComponentType::of::<RuntimeWorld>()
     };
     expand::Composer::new(overrides, Some(world)).compose(world_type)
 }

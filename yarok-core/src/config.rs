@@ -1,0 +1,335 @@
+//! Run configuration: one tree in layers — component defaults < run settings < the selected
+//! environment's settings < settings from code and the command line.
+//!
+//! ```toml
+//! environment = "sim"              # which backend: "sim", "real", "mock"
+//!
+//! [platform]
+//! realtime = true                  # pace simulation to the wall clock (for a viewer)
+//!
+//! [components."/tower"]            # component config, by component path
+//! rows = 4
+//!
+//! [interfaces."/printer"]          # interface settings, by component path
+//! port = "/dev/ttyUSB0"
+//!
+//! [behaviour]                      # the behaviour's own settings
+//! poses = 3
+//!
+//! [plugins.recorder]               # plugins to create, by registered name
+//! every = 10
+//!
+//! [environments.real.components."/printer"]
+//! speed = 0.5                      # only when environment = "real"
+//! ```
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use crate::compose::{Config, Overrides, Value};
+use crate::suggest::did_you_mean;
+
+/// A run configuration could not be read.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{origin}: {message}")]
+pub struct ConfigError {
+    /// The file, `<string>`, or `--set`.
+    pub origin: String,
+    /// What is wrong, with line and column for TOML syntax errors.
+    pub message: String,
+}
+
+/// The sections of one layer.
+#[derive(Debug, Clone, Default, PartialEq)]
+struct Layer {
+    components: BTreeMap<String, Config>,
+    interfaces: BTreeMap<String, Config>,
+    behaviour: Config,
+    plugins: BTreeMap<String, Config>,
+    platform: Config,
+}
+
+const SECTIONS: [&str; 5] = [
+    "components",
+    "interfaces",
+    "behaviour",
+    "plugins",
+    "platform",
+];
+
+impl Layer {
+    fn merge(&mut self, other: Layer) {
+        let by_path = |mine: &mut BTreeMap<String, Config>, theirs: BTreeMap<String, Config>| {
+            for (path, config) in theirs {
+                merge_config(mine.entry(path).or_default(), config);
+            }
+        };
+        by_path(&mut self.components, other.components);
+        by_path(&mut self.interfaces, other.interfaces);
+        by_path(&mut self.plugins, other.plugins);
+        merge_config(&mut self.behaviour, other.behaviour);
+        merge_config(&mut self.platform, other.platform);
+    }
+}
+
+fn merge_config(into: &mut Config, from: Config) {
+    for (key, value) in from.iter() {
+        into.set(key, value.clone());
+    }
+}
+
+/// A run configuration: settings for every environment, and the one selected.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct RunConfig {
+    environment: Option<String>,
+    base: Layer,
+    environments: BTreeMap<String, Layer>,
+}
+
+/// The settings in force for one run: the base layer overlaid with the selected environment's.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Settings {
+    /// The selected environment.
+    pub environment: String,
+    /// Component config by path.
+    pub components: Overrides,
+    /// Interface settings by path.
+    pub interfaces: BTreeMap<String, Config>,
+    /// The behaviour's settings.
+    pub behaviour: Config,
+    /// Plugins to create, by registered name, with their settings.
+    pub plugins: BTreeMap<String, Config>,
+    /// Platform settings (`realtime`, `tick_hz`, …).
+    pub platform: Config,
+}
+
+impl RunConfig {
+    /// Reads TOML text; `origin` names it in errors.
+    ///
+    /// # Errors
+    ///
+    /// [`ConfigError`] for TOML syntax (with line and column), unknown sections (with a
+    /// suggestion) and values of unsupported types.
+    pub fn from_toml(text: &str, origin: &str) -> Result<Self, ConfigError> {
+        let error = |message: String| ConfigError {
+            origin: origin.to_owned(),
+            message,
+        };
+        let table: toml::Table = text
+            .parse()
+            .map_err(|e: toml::de::Error| error(e.to_string().trim().to_owned()))?;
+        let mut config = RunConfig::default();
+        for (key, value) in table {
+            match key.as_str() {
+                "environment" => match value {
+                    toml::Value::String(name) => config.environment = Some(name),
+                    other => {
+                        return Err(error(format!(
+                            "`environment` must be a string, not {}",
+                            other.type_str()
+                        )));
+                    }
+                },
+                "environments" => {
+                    let toml::Value::Table(environments) = value else {
+                        return Err(error(
+                            "`environments` must be a table of environments".into(),
+                        ));
+                    };
+                    for (name, layer) in environments {
+                        let toml::Value::Table(layer) = layer else {
+                            return Err(error(format!("`environments.{name}` must be a table")));
+                        };
+                        let layer =
+                            read_layer(layer, &format!("environments.{name}.")).map_err(error)?;
+                        config.environments.insert(name, layer);
+                    }
+                }
+                _ => {
+                    let mut single = toml::Table::new();
+                    single.insert(key, value);
+                    config.base.merge(read_layer(single, "").map_err(error)?);
+                }
+            }
+        }
+        Ok(config)
+    }
+
+    /// Reads a TOML file.
+    ///
+    /// # Errors
+    ///
+    /// As [`RunConfig::from_toml`], or when the file cannot be read.
+    pub fn from_file(path: impl AsRef<Path>) -> Result<Self, ConfigError> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|e| ConfigError {
+            origin: path.display().to_string(),
+            message: format!("cannot read: {e}"),
+        })?;
+        Self::from_toml(&text, &path.display().to_string())
+    }
+
+    /// Overlays `other`: its values win, key by key.
+    pub fn merge(&mut self, other: RunConfig) {
+        if other.environment.is_some() {
+            self.environment = other.environment;
+        }
+        self.base.merge(other.base);
+        for (name, layer) in other.environments {
+            self.environments.entry(name).or_default().merge(layer);
+        }
+    }
+
+    /// Selects the environment.
+    pub fn set_environment(&mut self, environment: &str) {
+        self.environment = Some(environment.to_owned());
+    }
+
+    /// Sets one value, as the command line's `--set` does: `/path/key=value` for a component
+    /// (`/key=value` for the world), `interfaces/path/key=value`, `behaviour/key=value`,
+    /// `platform/key=value`, `plugins/name/key=value`. The value is read as TOML (`0.5`, `true`,
+    /// `[1, 2]`, `"text"`), and as a plain string when it is not valid TOML.
+    ///
+    /// # Errors
+    ///
+    /// [`ConfigError`] when the assignment is malformed.
+    pub fn set(&mut self, assignment: &str) -> Result<(), ConfigError> {
+        let error = |message: String| ConfigError {
+            origin: format!("--set {assignment}"),
+            message,
+        };
+        let (target, text) = assignment
+            .split_once('=')
+            .ok_or_else(|| error("expected TARGET=VALUE".into()))?;
+        let value = parse_value(text);
+        let (path, key) = target
+            .rsplit_once('/')
+            .ok_or_else(|| error("expected /path/key=value".into()))?;
+        if key.is_empty() {
+            return Err(error("the key is empty".into()));
+        }
+        let layer = &mut self.base;
+        let config = match path
+            .split_once('/')
+            .map_or((path, ""), |(section, rest)| (section, rest))
+        {
+            ("", _) => layer
+                .components
+                .entry(if path.is_empty() {
+                    "/".into()
+                } else {
+                    path.to_owned()
+                })
+                .or_default(),
+            ("interfaces", rest) => layer.interfaces.entry(format!("/{rest}")).or_default(),
+            ("plugins", name) if !name.is_empty() => {
+                layer.plugins.entry(name.to_owned()).or_default()
+            }
+            ("behaviour", "") => &mut layer.behaviour,
+            ("platform", "") => &mut layer.platform,
+            (section, _) => {
+                let hint = did_you_mean(section, SECTIONS);
+                return Err(error(format!("unknown target `{section}`{hint}")));
+            }
+        };
+        config.set(key, value);
+        Ok(())
+    }
+
+    /// The settings in force for the selected environment (`default_environment` when none is).
+    pub fn settings(&self, default_environment: &str) -> Settings {
+        let environment = self
+            .environment
+            .clone()
+            .unwrap_or_else(|| default_environment.to_owned());
+        let mut layer = self.base.clone();
+        if let Some(overlay) = self.environments.get(&environment) {
+            layer.merge(overlay.clone());
+        }
+        Settings {
+            environment,
+            components: layer.components,
+            interfaces: layer.interfaces,
+            behaviour: layer.behaviour,
+            plugins: layer.plugins,
+            platform: layer.platform,
+        }
+    }
+
+    /// The environments the configuration has sections for.
+    pub fn environments(&self) -> impl Iterator<Item = &str> {
+        self.environments.keys().map(String::as_str)
+    }
+}
+
+fn read_layer(table: toml::Table, prefix: &str) -> Result<Layer, String> {
+    let mut layer = Layer::default();
+    for (section, value) in table {
+        let toml::Value::Table(entries) = value else {
+            return Err(format!("`{prefix}{section}` must be a table"));
+        };
+        let named = |entries: toml::Table| -> Result<BTreeMap<String, Config>, String> {
+            entries
+                .into_iter()
+                .map(|(name, config)| match config {
+                    toml::Value::Table(config) => Ok((
+                        name.clone(),
+                        to_config(config, &format!("{prefix}{section}.{name}"))?,
+                    )),
+                    _ => Err(format!("`{prefix}{section}.{name}` must be a table")),
+                })
+                .collect()
+        };
+        match section.as_str() {
+            "components" => layer.components = named(entries)?,
+            "interfaces" => layer.interfaces = named(entries)?,
+            "plugins" => layer.plugins = named(entries)?,
+            "behaviour" => layer.behaviour = to_config(entries, &format!("{prefix}behaviour"))?,
+            "platform" => layer.platform = to_config(entries, &format!("{prefix}platform"))?,
+            other => {
+                let mut known = SECTIONS.to_vec();
+                if prefix.is_empty() {
+                    known.extend(["environment", "environments"]);
+                }
+                return Err(format!(
+                    "unknown section `{prefix}{other}`{}",
+                    did_you_mean(other, known)
+                ));
+            }
+        }
+    }
+    Ok(layer)
+}
+
+fn to_config(table: toml::Table, place: &str) -> Result<Config, String> {
+    let mut config = Config::default();
+    for (key, value) in table {
+        let value = to_value(value)
+            .ok_or_else(|| format!("`{place}.{key}`: tables and dates are not config values"))?;
+        config.set(&key, value);
+    }
+    Ok(config)
+}
+
+fn to_value(value: toml::Value) -> Option<Value> {
+    Some(match value {
+        toml::Value::String(s) => Value::String(s),
+        toml::Value::Integer(n) => Value::Int(n),
+        toml::Value::Float(x) => Value::Float(x),
+        toml::Value::Boolean(b) => Value::Boolean(b),
+        toml::Value::Array(items) => {
+            Value::Tuple(items.into_iter().map(to_value).collect::<Option<_>>()?)
+        }
+        toml::Value::Table(_) | toml::Value::Datetime(_) => return None,
+    })
+}
+
+/// A command-line value: TOML when it parses as TOML, else the text itself.
+fn parse_value(text: &str) -> Value {
+    format!("v = {text}")
+        .parse::<toml::Table>()
+        .ok()
+        .and_then(|mut t| t.remove("v"))
+        .and_then(to_value)
+        .unwrap_or_else(|| Value::String(text.to_owned()))
+}

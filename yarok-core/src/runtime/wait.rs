@@ -1,0 +1,151 @@
+//! [`Wait`]: the future behind every `pl.wait…`, resolved on platform ticks.
+
+use std::cell::{Cell, RefCell};
+use std::fmt;
+use std::future::Future;
+use std::pin::Pin;
+use std::task::{Context, Poll, Waker};
+
+/// Tick state shared by the platform loop and every wait.
+#[derive(Debug)]
+pub(crate) struct Clock {
+    pub(crate) ticks: Cell<u64>,
+    pub(crate) time: Cell<f64>,
+    pub(crate) timestep: f64,
+    pub(crate) stopped: Cell<bool>,
+    waiters: RefCell<Vec<Waker>>,
+}
+
+impl Clock {
+    pub(crate) fn new(time: f64, timestep: f64) -> Self {
+        Self {
+            ticks: Cell::new(0),
+            time: Cell::new(time),
+            timestep,
+            stopped: Cell::new(false),
+            waiters: RefCell::new(Vec::new()),
+        }
+    }
+
+    /// Records a tick and wakes every wait.
+    pub(crate) fn tick(&self, time: f64) {
+        self.ticks.set(self.ticks.get() + 1);
+        self.time.set(time);
+        self.wake_all();
+    }
+
+    pub(crate) fn wake_all(&self) {
+        for waker in self.waiters.borrow_mut().drain(..) {
+            waker.wake();
+        }
+    }
+
+    fn register(&self, waker: &Waker) {
+        let mut waiters = self.waiters.borrow_mut();
+        if !waiters.iter().any(|w| w.will_wake(waker)) {
+            waiters.push(waker.clone());
+        }
+    }
+}
+
+/// Why a wait ended without its condition holding.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum WaitError {
+    /// The timeout (platform seconds) passed first.
+    #[error("wait timed out after {seconds} s of platform time")]
+    Timeout {
+        /// The timeout that passed.
+        seconds: f64,
+    },
+    /// The platform is shutting down.
+    #[error("the platform stopped")]
+    Stopped,
+}
+
+/// A wait for a condition, checked once after every platform tick (the first check after the
+/// next tick: at least one tick always passes).
+///
+/// Build it with [`Pl::wait`](crate::runtime::Pl::wait) and friends; refine it with
+/// [`Wait::timeout`] and [`Wait::on_tick`]; `.await` it.
+///
+/// # Cancel safety
+///
+/// Dropping a `Wait` cancels it; nothing else changes.
+#[must_use = "a wait does nothing unless awaited"]
+pub struct Wait<'a, C> {
+    clock: &'a Clock,
+    condition: C,
+    started_tick: u64,
+    started_time: f64,
+    seen_tick: u64,
+    timeout: Option<f64>,
+    on_tick: Option<Box<dyn FnMut() + 'a>>,
+}
+
+impl<'a, C: FnMut() -> bool + Unpin> Wait<'a, C> {
+    pub(crate) fn new(clock: &'a Clock, condition: C) -> Self {
+        let ticks = clock.ticks.get();
+        Self {
+            clock,
+            condition,
+            started_tick: ticks,
+            started_time: clock.time.get(),
+            seen_tick: ticks,
+            timeout: None,
+            on_tick: None,
+        }
+    }
+
+    /// Fails with [`WaitError::Timeout`] once `seconds` of platform time pass without the
+    /// condition holding.
+    pub fn timeout(mut self, seconds: f64) -> Self {
+        self.timeout = Some(seconds);
+        self
+    }
+
+    /// Calls `callback` on every tick the wait sees, before checking the condition.
+    pub fn on_tick(mut self, callback: impl FnMut() + 'a) -> Self {
+        self.on_tick = Some(Box::new(callback));
+        self
+    }
+}
+
+impl<C: FnMut() -> bool + Unpin> Future for Wait<'_, C> {
+    type Output = Result<(), WaitError>;
+
+    fn poll(self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<Self::Output> {
+        let this = self.get_mut();
+        if this.clock.stopped.get() {
+            return Poll::Ready(Err(WaitError::Stopped));
+        }
+        let ticks = this.clock.ticks.get();
+        if ticks > this.seen_tick {
+            this.seen_tick = ticks;
+            if let Some(callback) = &mut this.on_tick {
+                callback();
+            }
+            if ticks > this.started_tick && (this.condition)() {
+                return Poll::Ready(Ok(()));
+            }
+            if let Some(seconds) = this.timeout {
+                // Half a timestep of slack so that float time never adds or drops a tick.
+                if this.clock.time.get() - this.started_time >= seconds - this.clock.timestep / 2.0
+                {
+                    return Poll::Ready(Err(WaitError::Timeout { seconds }));
+                }
+            }
+        }
+        this.clock.register(cx.waker());
+        Poll::Pending
+    }
+}
+
+impl<C> fmt::Debug for Wait<'_, C> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Wait")
+            .field("started_tick", &self.started_tick)
+            .field("timeout", &self.timeout)
+            .finish()
+    }
+}
