@@ -4,4 +4,8 @@
 //! async drivers generic over their transport (Marlin G-code over serial, the UR controller's
 //! URScript and RTDE, the Robotiq gripper socket, cameras).
 //!
-//! This crate is being built up issue by issue; today it only fixes its place in the workspace.
+//! This crate is being built up issue by issue; today it holds the hardware backend.
+
+mod backend;
+
+pub use backend::{DEFAULT_TICK_HZ, HardwareBackend};

@@ -304,31 +304,23 @@ impl Platform {
             if tasks.iter().all(|t| t.done) || self.pl.inner.stop.load(Ordering::Relaxed) {
                 return Ok(());
             }
-            self.backend.step()?;
-            for (path, step) in &mut self.steps {
-                step().map_err(|source| RuntimeError::Interface {
-                    component: path.clone(),
-                    source,
-                })?;
-            }
-            for plugin in &mut self.plugins {
-                plugin
-                    .step(&self.pl)
-                    .map_err(|source| RuntimeError::Plugin {
-                        name: plugin.name(),
-                        source,
-                    })?;
-            }
-            self.pl.inner.clock.tick(self.backend.time());
-            poll_tasks(&mut tasks)?;
-            let ticks = self.pl.ticks();
+            let ticks = self.pl.ticks() + 1;
             if paced {
-                let due = started
-                    + std::time::Duration::from_secs_f64(ticks as f64 * self.backend.timestep());
+                // On hardware a tick happens at its due time, so tick n reads time n·timestep.
+                let due = started + std::time::Duration::from_secs_f64(ticks as f64 * self.backend.timestep());
                 tokio::time::sleep_until(due).await;
             } else if ticks.is_multiple_of(YIELD_EVERY) {
                 tokio::task::yield_now().await;
             }
+            self.backend.step()?;
+            for (path, step) in &mut self.steps {
+                step().map_err(|source| RuntimeError::Interface { component: path.clone(), source })?;
+            }
+            for plugin in &mut self.plugins {
+                plugin.step(&self.pl).map_err(|source| RuntimeError::Plugin { name: plugin.name(), source })?;
+            }
+            self.pl.inner.clock.tick(self.backend.time());
+            poll_tasks(&mut tasks)?;
             if (paced || ticks.is_multiple_of(YIELD_EVERY)) && interrupted(interrupt.as_mut()) {
                 return Err(RuntimeError::Interrupted);
             }
