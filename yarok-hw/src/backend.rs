@@ -30,9 +30,14 @@ impl HardwareBackend {
     /// [`RuntimeError::Backend`] unless `tick_hz` is a positive, finite rate.
     pub fn new(tick_hz: f64) -> Result<Self, RuntimeError> {
         if !(tick_hz.is_finite() && tick_hz > 0.0) {
-            return Err(RuntimeError::Backend(format!("[platform] tick_hz must be a positive rate, got {tick_hz}")));
+            return Err(RuntimeError::Backend(format!(
+                "[platform] tick_hz must be a positive rate, got {tick_hz}"
+            )));
         }
-        Ok(Self { started: Instant::now(), timestep: 1.0 / tick_hz })
+        Ok(Self {
+            started: Instant::now(),
+            timestep: 1.0 / tick_hz,
+        })
     }
 
     /// Makes the backend from the run settings (`[platform] tick_hz`), as a platform's
@@ -41,12 +46,19 @@ impl HardwareBackend {
     /// # Errors
     ///
     /// As [`HardwareBackend::new`], or when `tick_hz` is not a number.
-    pub fn from_settings(_: &Composition, settings: &Settings) -> Result<Box<dyn Backend>, RuntimeError> {
+    pub fn from_settings(
+        _: &Composition,
+        settings: &Settings,
+    ) -> Result<Box<dyn Backend>, RuntimeError> {
         let tick_hz = match settings.platform.get("tick_hz") {
             None => DEFAULT_TICK_HZ,
             Some(Value::Float(hz)) => *hz,
             Some(Value::Int(hz)) => *hz as f64,
-            Some(other) => return Err(RuntimeError::Backend(format!("[platform] tick_hz must be a number, got {other:?}"))),
+            Some(other) => {
+                return Err(RuntimeError::Backend(format!(
+                    "[platform] tick_hz must be a number, got {other:?}"
+                )));
+            }
         };
         Ok(Box::new(Self::new(tick_hz)?))
     }

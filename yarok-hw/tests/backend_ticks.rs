@@ -31,14 +31,25 @@ async fn ten_seconds_at_100_hz_are_exactly_1000_ticks_and_take_no_wall_time() {
         })
         .behaviour(|pl| async move {
             pl.wait_seconds(10.0).await?;
-            assert!((pl.time() - 10.0).abs() < 1e-6, "platform time {}", pl.time());
+            assert!(
+                (pl.time() - 10.0).abs() < 1e-6,
+                "platform time {}",
+                pl.time()
+            );
             Ok(())
         })
         .build()
         .unwrap();
-    tokio::task::LocalSet::new().run_until(platform.run_local()).await.unwrap();
+    tokio::task::LocalSet::new()
+        .run_until(platform.run_local())
+        .await
+        .unwrap();
     assert_eq!(ticks.get(), 1000);
-    assert_eq!(started.elapsed(), std::time::Duration::from_secs(10), "virtual time, not wall time");
+    assert_eq!(
+        started.elapsed(),
+        std::time::Duration::from_secs(10),
+        "virtual time, not wall time"
+    );
 }
 
 #[test]
@@ -51,5 +62,8 @@ fn a_bad_rate_is_refused() {
         .backend("real", HardwareBackend::from_settings)
         .build()
         .unwrap_err();
-    assert!(matches!(error, RuntimeError::Backend(ref m) if m.contains("positive")), "{error}");
+    assert!(
+        matches!(error, RuntimeError::Backend(ref m) if m.contains("positive")),
+        "{error}"
+    );
 }

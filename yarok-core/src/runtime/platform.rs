@@ -273,17 +273,21 @@ impl Platform {
     ///
     /// As [`Platform::run`].
     pub async fn run_local(mut self) -> Result<(), RuntimeError> {
-        let result = self.run_loop().await;
+        let mut tasks = Vec::new();
+        let result = self.run_loop(&mut tasks).await;
+        // Pending waits now fail with `WaitError::Stopped`, so behaviours can clean up; what
+        // they return after the end no longer changes the result.
+        self.pl.inner.clock.stopped.set(true);
+        self.pl.inner.clock.wake_all();
+        let _after_the_end = poll_tasks(&mut tasks);
         for plugin in &mut self.plugins {
             plugin.on_end(&self.pl);
         }
-        self.pl.inner.clock.stopped.set(true);
-        self.pl.inner.clock.wake_all();
         self.backend.stop();
         result
     }
 
-    async fn run_loop(&mut self) -> Result<(), RuntimeError> {
+    async fn run_loop(&mut self, tasks: &mut Vec<Task>) -> Result<(), RuntimeError> {
         for plugin in &mut self.plugins {
             plugin
                 .start(&self.pl)
@@ -292,14 +296,15 @@ impl Platform {
                     source,
                 })?;
         }
-        let mut tasks: Vec<Task> = std::mem::take(&mut self.behaviours)
-            .into_iter()
-            .map(|f| Task::new(f(self.pl.clone())))
-            .collect();
+        tasks.extend(
+            std::mem::take(&mut self.behaviours)
+                .into_iter()
+                .map(|f| Task::new(f(self.pl.clone()))),
+        );
         let mut interrupt = Box::pin(tokio::signal::ctrl_c());
         let started = tokio::time::Instant::now();
         let paced = self.realtime || self.backend.paced();
-        poll_tasks(&mut tasks)?;
+        poll_tasks(tasks)?;
         loop {
             if tasks.iter().all(|t| t.done) || self.pl.inner.stop.load(Ordering::Relaxed) {
                 return Ok(());
@@ -307,20 +312,29 @@ impl Platform {
             let ticks = self.pl.ticks() + 1;
             if paced {
                 // On hardware a tick happens at its due time, so tick n reads time n·timestep.
-                let due = started + std::time::Duration::from_secs_f64(ticks as f64 * self.backend.timestep());
+                let due = started
+                    + std::time::Duration::from_secs_f64(ticks as f64 * self.backend.timestep());
                 tokio::time::sleep_until(due).await;
             } else if ticks.is_multiple_of(YIELD_EVERY) {
                 tokio::task::yield_now().await;
             }
             self.backend.step()?;
             for (path, step) in &mut self.steps {
-                step().map_err(|source| RuntimeError::Interface { component: path.clone(), source })?;
+                step().map_err(|source| RuntimeError::Interface {
+                    component: path.clone(),
+                    source,
+                })?;
             }
             for plugin in &mut self.plugins {
-                plugin.step(&self.pl).map_err(|source| RuntimeError::Plugin { name: plugin.name(), source })?;
+                plugin
+                    .step(&self.pl)
+                    .map_err(|source| RuntimeError::Plugin {
+                        name: plugin.name(),
+                        source,
+                    })?;
             }
             self.pl.inner.clock.tick(self.backend.time());
-            poll_tasks(&mut tasks)?;
+            poll_tasks(tasks)?;
             if (paced || ticks.is_multiple_of(YIELD_EVERY)) && interrupted(interrupt.as_mut()) {
                 return Err(RuntimeError::Interrupted);
             }

@@ -1,0 +1,400 @@
+//! Components bound per environment, injection, plugins, and layered configuration.
+
+use std::cell::{Cell, RefCell};
+use std::rc::Rc;
+
+use yarok_core::compose::{Component, Declaration, NameKind, Value};
+use yarok_core::config::RunConfig;
+use yarok_core::runtime::{
+    Bind, BoxError, MockBackend, Pl, Platform, PlatformBuilder, Plugin, RuntimeError,
+};
+
+thread_local! {
+    /// The order interfaces stepped in, by path (each test runs on its own thread).
+    static STEPS: RefCell<Vec<String>> = const { RefCell::new(Vec::new()) };
+}
+
+/// A joint with a motor; its handle counts ticks and knows its resolved joint name.
+#[derive(Clone)]
+struct Motor {
+    joint: String,
+    speed: f64,
+    ticks: Rc<Cell<u64>>,
+}
+
+impl Component for Motor {
+    fn declaration() -> Declaration {
+        Declaration::new("motor")
+            .default("speed", 1.0)
+            .template(r#"<mujoco><worldbody><body name="rotor"><joint name="axle"/></body></worldbody></mujoco>"#)
+    }
+
+    fn bind(bind: &mut Bind<'_>) -> Result<Self, RuntimeError> {
+        if bind.environment() == "real" {
+            return Err(bind.no_interface());
+        }
+        let Some(Value::Float(speed)) = bind.config().get("speed").cloned() else {
+            return Err(bind.error("speed must be a number"));
+        };
+        let ticks = Rc::new(Cell::new(0));
+        let counter = Rc::clone(&ticks);
+        let path = bind.path().to_owned();
+        bind.on_step(move || {
+            counter.set(counter.get() + 1);
+            STEPS.with(|s| s.borrow_mut().push(path.clone()));
+            Ok(())
+        });
+        Ok(Motor {
+            joint: bind.name(NameKind::Joint, "axle")?.to_owned(),
+            speed,
+            ticks,
+        })
+    }
+}
+
+/// Two motors; its handle reaches its children through `Bind::child`.
+#[derive(Clone)]
+struct Car {
+    left: Motor,
+    right: Motor,
+}
+
+impl Component for Car {
+    fn declaration() -> Declaration {
+        Declaration::new("car").uses::<Motor>().template(
+            r#"<mujoco><worldbody><body name="chassis">
+                 <motor name="left"/><motor name="right" speed="2"/>
+               </body></worldbody></mujoco>"#,
+        )
+    }
+
+    fn bind(bind: &mut Bind<'_>) -> Result<Self, RuntimeError> {
+        let path = bind.path().to_owned();
+        bind.on_step(move || {
+            STEPS.with(|s| s.borrow_mut().push(path.clone()));
+            Ok(())
+        });
+        Ok(Car {
+            left: bind.child("left")?,
+            right: bind.child("right")?,
+        })
+    }
+}
+
+#[derive(Clone)]
+struct Garage;
+impl Component for Garage {
+    fn declaration() -> Declaration {
+        Declaration::new("garage")
+            .uses::<Car>()
+            .template("<mujoco><worldbody><car name=\"car\"/></worldbody></mujoco>")
+    }
+}
+
+fn platform() -> PlatformBuilder {
+    Platform::builder()
+        .world::<Garage>()
+        .backend("sim", |_, _| Ok(Box::new(MockBackend::new(0.01, false))))
+}
+
+#[test]
+fn interfaces_step_every_tick_children_before_parents() {
+    platform()
+        .behaviour(|pl| async move {
+            pl.wait_seconds(0.02).await?;
+            Ok(())
+        })
+        .run()
+        .unwrap();
+    let steps = STEPS.with(|s| s.borrow().clone());
+    assert_eq!(
+        steps,
+        [
+            "/car/right",
+            "/car/left",
+            "/car",
+            "/car/right",
+            "/car/left",
+            "/car"
+        ]
+    );
+}
+
+#[test]
+fn behaviours_get_typed_handles_by_path_or_name() {
+    platform()
+        .behaviour(|pl| async move {
+            let car: Car = pl.get("/car")?;
+            let left: Motor = pl.get("/car/left")?;
+            let right: Motor = pl.get("right")?;
+            assert_eq!(left.joint, "car/left/axle");
+            assert_eq!((left.speed, right.speed), (1.0, 2.0));
+            pl.wait_seconds(0.03).await?;
+            assert_eq!(car.left.ticks.get(), 3, "handles are shared, not copies");
+            assert_eq!(car.right.speed, 2.0);
+            let wrong = pl.get::<Car>("/car/left").err().unwrap();
+            assert_eq!(
+                wrong.to_string(),
+                format!(
+                    "/car/left is a {}, not a {}",
+                    std::any::type_name::<Motor>(),
+                    std::any::type_name::<Car>()
+                )
+            );
+            let missing = pl.get::<Motor>("/car/lft").err().unwrap();
+            assert_eq!(
+                missing.to_string(),
+                "no component at /car/lft; did you mean `/car/left`?"
+            );
+            assert!(matches!(
+                pl.get::<Garage>("/"),
+                Err(RuntimeError::NoHandle { .. })
+            ));
+            Ok(())
+        })
+        .run()
+        .unwrap();
+}
+
+#[test]
+fn a_component_without_an_interface_for_the_environment_fails_at_start() {
+    let error = platform()
+        .backend("real", |_, _| Ok(Box::new(MockBackend::new(0.01, true))))
+        .environment("real")
+        .build()
+        .unwrap_err();
+    assert_eq!(
+        error.to_string(),
+        "component /car/right has no `real` interface"
+    );
+}
+
+struct Recorder {
+    name: &'static str,
+    log: Rc<RefCell<Vec<String>>>,
+}
+
+impl Plugin for Recorder {
+    fn name(&self) -> String {
+        self.name.to_owned()
+    }
+
+    fn start(&mut self, _: &Pl) -> Result<(), BoxError> {
+        self.log.borrow_mut().push(format!("{} start", self.name));
+        Ok(())
+    }
+
+    fn step(&mut self, pl: &Pl) -> Result<(), BoxError> {
+        self.log
+            .borrow_mut()
+            .push(format!("{} {}", self.name, pl.ticks()));
+        if self.name == "failing" && pl.ticks() == 1 {
+            return Err("disk full".into());
+        }
+        Ok(())
+    }
+
+    fn on_end(&mut self, _: &Pl) {
+        self.log.borrow_mut().push(format!("{} end", self.name));
+    }
+}
+
+#[test]
+fn plugins_step_in_order_and_always_see_the_end() {
+    let log = Rc::new(RefCell::new(Vec::new()));
+    let recorder = |name| Recorder {
+        name,
+        log: Rc::clone(&log),
+    };
+    platform()
+        .plugin(recorder("first"))
+        .plugin(recorder("second"))
+        .behaviour(|pl| async move {
+            pl.wait_seconds(0.02).await?;
+            Ok(())
+        })
+        .run()
+        .unwrap();
+    assert_eq!(
+        *log.borrow(),
+        [
+            "first start",
+            "second start",
+            "first 0",
+            "second 0",
+            "first 1",
+            "second 1",
+            "first end",
+            "second end"
+        ]
+    );
+
+    log.borrow_mut().clear();
+    let error = platform()
+        .plugin(recorder("failing"))
+        .plugin(recorder("after"))
+        .behaviour(|pl| async move {
+            pl.wait_forever().await?;
+            Ok(())
+        })
+        .run()
+        .unwrap_err();
+    assert_eq!(error.to_string(), "plugin failing failed: disk full");
+    assert_eq!(
+        *log.borrow(),
+        [
+            "failing start",
+            "after start",
+            "failing 0",
+            "after 0",
+            "failing 1",
+            "failing end",
+            "after end"
+        ]
+    );
+}
+
+#[test]
+fn plugins_are_created_from_the_run_configuration() {
+    let created = Rc::new(Cell::new(0i64));
+    let seen = Rc::clone(&created);
+    let config = RunConfig::from_toml("[plugins.counter]\nevery = 5\n", "run.toml").unwrap();
+    platform()
+        .config(config)
+        .plugin_factory("counter", move |config| {
+            let Some(Value::Int(every)) = config.get("every") else {
+                return Err("`every` must be an integer".into());
+            };
+            seen.set(*every);
+            Ok(Box::new(|_: &Pl| Ok(())))
+        })
+        .behaviour(|pl| async move {
+            pl.tick().await?;
+            Ok(())
+        })
+        .run()
+        .unwrap();
+    assert_eq!(created.get(), 5);
+    let error = platform()
+        .config(RunConfig::from_toml("[plugins.countr]\n", "run.toml").unwrap())
+        .plugin_factory("counter", |_| Ok(Box::new(|_: &Pl| Ok(()))))
+        .build()
+        .unwrap_err();
+    assert!(
+        error
+            .to_string()
+            .contains("[plugins.countr] names no registered plugin; did you mean `counter`?"),
+        "{error}"
+    );
+}
+
+const RUN: &str = r#"
+environment = "sim"
+
+[components."/car/left"]
+speed = 3.0
+
+[components."/car/right"]
+speed = 4.0
+
+[behaviour]
+laps = 2
+
+[environments.mock.components."/car/left"]
+speed = 5.0
+"#;
+
+fn speeds(builder: PlatformBuilder) -> (f64, f64, i64) {
+    let result = Rc::new(RefCell::new((0.0, 0.0, 0)));
+    let out = Rc::clone(&result);
+    builder
+        .backend("mock", |_, _| Ok(Box::new(MockBackend::new(0.01, false))))
+        .behaviour_default("laps", 1)
+        .behaviour(move |pl| async move {
+            let (left, right): (Motor, Motor) = (pl.get("/car/left")?, pl.get("/car/right")?);
+            let Some(Value::Int(laps)) = pl.config().get("laps") else {
+                return Err("laps".into());
+            };
+            *out.borrow_mut() = (left.speed, right.speed, *laps);
+            Ok(())
+        })
+        .run()
+        .unwrap();
+    let speeds = *result.borrow();
+    speeds
+}
+
+#[test]
+fn configuration_layers_defaults_file_environment_and_command_line() {
+    assert_eq!(
+        speeds(platform()),
+        (1.0, 2.0, 1),
+        "defaults and tag attributes"
+    );
+    let file = || RunConfig::from_toml(RUN, "run.toml").unwrap();
+    assert_eq!(
+        speeds(platform().config(file())),
+        (3.0, 4.0, 2),
+        "the file's base layer"
+    );
+    assert_eq!(
+        speeds(platform().config(file()).environment("mock")),
+        (5.0, 4.0, 2),
+        "the environment's layer"
+    );
+    let args = [
+        "--env",
+        "mock",
+        "--set",
+        "/car/right/speed=6",
+        "--set",
+        "behaviour/laps=7",
+    ]
+    .map(String::from);
+    assert_eq!(
+        speeds(platform().config(file()).args(args).unwrap()),
+        (5.0, 6.0, 7),
+        "the command line last"
+    );
+}
+
+#[test]
+fn unknown_names_in_the_configuration_are_errors_with_the_nearest_name() {
+    let error = |toml: &str| {
+        platform()
+            .backend("mock", |_, _| Ok(Box::new(MockBackend::new(0.01, false))))
+            .config(RunConfig::from_toml(toml, "run.toml").unwrap())
+            .build()
+            .unwrap_err()
+            .to_string()
+    };
+    assert!(error("[components.\"/car/lft\"]\nspeed = 1.0").contains("did you mean `/car/left`?"));
+    assert!(
+        error("[components.\"/car/left\"]\nsped = 1.0")
+            .contains("no config key `sped` (it has speed); did you mean `speed`?")
+    );
+    assert!(
+        error("[components.\"/car/left\"]\nspeed = \"fast\"").contains("`speed` expects a number")
+    );
+    assert!(
+        error("environment = \"mok\"")
+            .contains("no backend for environment `mok` (available: mock, sim)")
+    );
+    assert!(
+        error("[environments.mok.behaviour]\n")
+            .contains("names no known environment; did you mean `mock`?")
+    );
+    assert!(error("[behaviour]\nlaps = 2").contains("[behaviour] has no key `laps`"));
+    assert!(error("[platform]\nrealtim = true").contains("did you mean `realtime`?"));
+    assert!(error("[interfaces.\"/car/lef\"]\nport = 1").contains("did you mean `/car/left`?"));
+    let syntax = RunConfig::from_toml("[behaviour\nlaps = 2", "run.toml").unwrap_err();
+    assert!(
+        syntax.to_string().starts_with("run.toml: ") && syntax.to_string().contains("line 1"),
+        "{syntax}"
+    );
+    let section = RunConfig::from_toml("[behavior]\nlaps = 2", "run.toml").unwrap_err();
+    assert_eq!(
+        section.to_string(),
+        "run.toml: unknown section `behavior`; did you mean `behaviour`?"
+    );
+}

@@ -1,0 +1,164 @@
+//! Waits resolve on ticks, in platform time; timeouts end waits that would never resolve.
+
+use std::cell::{Cell, RefCell};
+use std::rc::Rc;
+
+use yarok_core::compose::{Component, Declaration};
+use yarok_core::runtime::{MockBackend, Platform, PlatformBuilder, RuntimeError, WaitError};
+
+struct Empty;
+impl Component for Empty {
+    fn declaration() -> Declaration {
+        Declaration::new("empty").template("<mujoco><worldbody/></mujoco>")
+    }
+}
+
+/// A platform on a mock backend of 10 ms ticks.
+fn platform() -> PlatformBuilder {
+    Platform::builder()
+        .world::<Empty>()
+        .backend("sim", |_, _| Ok(Box::new(MockBackend::new(0.01, false))))
+}
+
+#[test]
+fn wait_resolves_on_the_first_tick_after_which_the_condition_holds() {
+    platform()
+        .behaviour(|pl| async move {
+            pl.wait(|| true).await?;
+            assert_eq!(pl.ticks(), 1, "at least one tick passes");
+            let start = pl.ticks();
+            let probe = pl.clone();
+            pl.wait(move || probe.ticks() >= start + 5).await?;
+            assert_eq!(pl.ticks(), start + 5);
+            pl.tick().await?;
+            assert_eq!(pl.ticks(), start + 6);
+            Ok(())
+        })
+        .run()
+        .unwrap();
+}
+
+#[test]
+fn wait_seconds_counts_platform_time_to_the_tick() {
+    platform()
+        .behaviour(|pl| async move {
+            pl.wait_seconds(1.0).await?;
+            assert_eq!(pl.ticks(), 100);
+            assert!((pl.time() - 1.0).abs() < 1e-9);
+            pl.wait_seconds(0.004).await?;
+            assert_eq!(
+                pl.ticks(),
+                101,
+                "less than half a tick, but a wait always takes a tick"
+            );
+            pl.wait_seconds(0.016).await?;
+            assert_eq!(pl.ticks(), 103, "rounded to the nearest tick");
+            Ok(())
+        })
+        .run()
+        .unwrap();
+}
+
+#[test]
+fn timeouts_end_waits_that_never_resolve() {
+    platform()
+        .behaviour(|pl| async move {
+            let result = pl.wait(|| false).timeout(0.5).await;
+            assert_eq!(result, Err(WaitError::Timeout { seconds: 0.5 }));
+            assert_eq!(pl.ticks(), 50);
+            let result = pl.wait_forever().timeout(0.25).await;
+            assert_eq!(result, Err(WaitError::Timeout { seconds: 0.25 }));
+            assert_eq!(pl.ticks(), 75);
+            Ok(())
+        })
+        .run()
+        .unwrap();
+}
+
+#[test]
+fn per_tick_callbacks_see_every_tick_of_the_wait() {
+    let seen = Rc::new(RefCell::new(Vec::new()));
+    let log = Rc::clone(&seen);
+    platform()
+        .behaviour(move |pl| async move {
+            let clock = pl.clone();
+            pl.wait_seconds(0.05)
+                .on_tick(|| log.borrow_mut().push(clock.ticks()))
+                .await?;
+            Ok(())
+        })
+        .run()
+        .unwrap();
+    assert_eq!(*seen.borrow(), [1, 2, 3, 4, 5]);
+}
+
+#[test]
+fn behaviours_run_concurrently_and_share_ticks() {
+    let events = Rc::new(RefCell::new(Vec::new()));
+    let (a, b) = (Rc::clone(&events), Rc::clone(&events));
+    platform()
+        .behaviour(move |pl| async move {
+            for _ in 0..3 {
+                pl.wait_seconds(0.02).await?;
+                a.borrow_mut().push(("a", pl.ticks()));
+            }
+            Ok(())
+        })
+        .behaviour(move |pl| async move {
+            for _ in 0..2 {
+                pl.wait_seconds(0.03).await?;
+                b.borrow_mut().push(("b", pl.ticks()));
+            }
+            Ok(())
+        })
+        .run()
+        .unwrap();
+    assert_eq!(
+        *events.borrow(),
+        [("a", 2), ("b", 3), ("a", 4), ("a", 6), ("b", 6)]
+    );
+}
+
+#[test]
+fn a_behaviour_error_reaches_the_caller_and_stops_the_others() {
+    let other_ticks = Rc::new(Cell::new(0));
+    let counter = Rc::clone(&other_ticks);
+    let error = platform()
+        .behaviour(move |pl| async move {
+            loop {
+                pl.tick().await?;
+                counter.set(pl.ticks());
+            }
+        })
+        .behaviour(|pl| async move {
+            pl.wait_seconds(0.1).await?;
+            Err("gripper jammed".into())
+        })
+        .run()
+        .unwrap_err();
+    assert!(
+        matches!(&error, RuntimeError::Behaviour { index: 1, source } if source.to_string() == "gripper jammed"),
+        "{error}"
+    );
+    assert_eq!(other_ticks.get(), 10);
+}
+
+#[test]
+fn stop_ends_the_run_and_pending_waits_report_it() {
+    let reported = Rc::new(Cell::new(false));
+    let flag = Rc::clone(&reported);
+    platform()
+        .behaviour(|pl| async move {
+            pl.wait_seconds(0.1).await?;
+            pl.stop();
+            Ok(())
+        })
+        .behaviour(move |pl| async move {
+            assert_eq!(pl.wait_forever().await, Err(WaitError::Stopped));
+            flag.set(true);
+            Ok(())
+        })
+        .run()
+        .unwrap();
+    assert!(reported.get(), "the waiting behaviour saw the stop");
+}
