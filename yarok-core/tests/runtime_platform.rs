@@ -320,8 +320,7 @@ fn speeds(builder: PlatformBuilder) -> (f64, f64, i64) {
         })
         .run()
         .unwrap();
-    let speeds = *result.borrow();
-    speeds
+    result.take()
 }
 
 #[test]
