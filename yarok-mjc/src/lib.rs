@@ -49,6 +49,7 @@
 #![warn(clippy::undocumented_unsafe_blocks)]
 #![doc(test(attr(deny(warnings))))]
 
+mod backend;
 mod composition;
 mod data;
 mod error;
@@ -72,6 +73,9 @@ mod vfs;
 )]
 pub mod sys;
 
+#[cfg(feature = "render")]
+pub use backend::SharedRenderer;
+pub use backend::{SimBackend, SimBind};
 pub use data::{Data, Pose};
 pub use error::{LibraryError, ModelError};
 pub use library::mujoco_version;
