@@ -16,7 +16,46 @@
 //!
 #![doc = include_str!("../README.md")]
 
+use yarok_core::runtime::{MockBackend, PlatformBuilder};
+
 pub use yarok_components as components;
 pub use yarok_core as core;
 pub use yarok_hw as hw;
 pub use yarok_mjc as mjc;
+
+pub use yarok_core::compose::{Component, Declaration};
+pub use yarok_core::runtime::{
+    BehaviourResult, Bind, BoxError, Pl, Platform, Plugin, RuntimeError, WaitError,
+};
+
+/// Seconds per tick of the `mock` environment.
+pub const MOCK_TIMESTEP: f64 = 0.002;
+
+/// A platform builder with yarok's environments registered: `sim` (MuJoCo, the default),
+/// `real` (hardware, ticking at `[platform] tick_hz`) and `mock` (no backend, 2 ms ticks).
+///
+/// # Examples
+///
+/// ```
+/// use yarok::components::robots::AnetA30;
+/// use yarok::components::worlds::PrinterWorld;
+///
+/// yarok::platform()
+///     .world::<PrinterWorld>()
+///     .behaviour(|pl| async move {
+///         let printer: AnetA30 = pl.get("/printer")?;
+///         let target = printer.move_to([100.0, 50.0, 300.0]);
+///         pl.wait(|| printer.is_at(target)).timeout(5.0).await?;
+///         Ok(())
+///     })
+///     .run()?;
+/// # Ok::<(), yarok::RuntimeError>(())
+/// ```
+pub fn platform() -> PlatformBuilder {
+    Platform::builder()
+        .backend("sim", yarok_mjc::SimBackend::from_settings)
+        .backend("real", yarok_hw::HardwareBackend::from_settings)
+        .backend("mock", |_, _| {
+            Ok(Box::new(MockBackend::new(MOCK_TIMESTEP, false)))
+        })
+}

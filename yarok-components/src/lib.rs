@@ -4,13 +4,19 @@
 //! their optical models, the UR5 arm, the Robotiq 2F-85 gripper, the Anet A30 printer used as a
 //! cartesian robot, worlds and toys, each with one interface per environment.
 //!
-//! This crate is being built up issue by issue; today it holds the toys.
-
+pub mod cameras;
+pub mod robots;
 pub mod toys;
+pub mod worlds;
 
 use yarok_core::compose::ComponentType;
 
 /// Every bundled component, for tools that pick components by tag at run time.
 pub fn catalogue() -> Vec<ComponentType> {
-    vec![ComponentType::of::<toys::TumbleTower>()]
+    vec![
+        ComponentType::of::<worlds::EmptyWorld>(),
+        ComponentType::of::<cameras::Cam>(),
+        ComponentType::of::<robots::AnetA30>(),
+        ComponentType::of::<toys::TumbleTower>(),
+    ]
 }
