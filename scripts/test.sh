@@ -30,4 +30,10 @@ env -u LD_LIBRARY_PATH target/debug/examples/falling_boxes "$out"
 for image in falling_boxes_rgb.png falling_boxes_depth_mm.png; do
   test -s "$out/$image" || { echo "error: the example did not write $image" >&2; exit 1; }
 done
+echo "== embedding and behaviour examples"
+for example in threaded local_set; do
+  env -u LD_LIBRARY_PATH "target/debug/examples/$example"
+done
+env -u LD_LIBRARY_PATH target/debug/examples/printer_camera --set "behaviour/out=\"$out\""
+test -s "$out/printer_camera_3.png" || { echo "error: printer_camera wrote no images" >&2; exit 1; }
 echo "== all checks passed"

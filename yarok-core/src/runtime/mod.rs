@@ -35,12 +35,14 @@ mod backend;
 mod bind;
 mod platform;
 mod plugin;
+mod thread;
 mod wait;
 
 pub use backend::{Backend, BackendFactory, MockBackend};
 pub use bind::Bind;
 pub use platform::{BehaviourResult, Pl, Platform, PlatformBuilder};
 pub use plugin::Plugin;
+pub use thread::PlatformThread;
 pub use wait::{Wait, WaitError};
 
 use crate::compose::ComposeError;

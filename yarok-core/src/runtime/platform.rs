@@ -193,6 +193,7 @@ pub struct PlatformBuilder {
     behaviour_defaults: Config,
     plugins: Vec<Box<dyn Plugin>>,
     plugin_factories: BTreeMap<String, PluginFactory>,
+    stop: Arc<AtomicBool>,
 }
 
 impl std::fmt::Debug for PlatformBuilder {
@@ -233,6 +234,7 @@ impl Platform {
             behaviour_defaults: Config::default(),
             plugins: Vec::new(),
             plugin_factories: BTreeMap::new(),
+            stop: Arc::new(AtomicBool::new(false)),
         }
     }
 
@@ -603,7 +605,7 @@ impl PlatformBuilder {
                 handles,
                 paths,
                 behaviour,
-                stop: Arc::new(AtomicBool::new(false)),
+                stop: self.stop,
             }),
         };
         Ok(Platform {
@@ -615,6 +617,13 @@ impl PlatformBuilder {
             composition,
             realtime,
         })
+    }
+
+    /// Uses `flag` as the platform's stop flag: setting it, from any thread, stops the platform
+    /// after the current tick (see [`Platform::stop_flag`]).
+    pub fn stop_flag(mut self, flag: Arc<AtomicBool>) -> Self {
+        self.stop = flag;
+        self
     }
 
     /// Builds and runs; see [`Platform::run`].
