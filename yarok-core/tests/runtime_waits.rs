@@ -162,3 +162,22 @@ fn stop_ends_the_run_and_pending_waits_report_it() {
         .unwrap();
     assert!(reported.get(), "the waiting behaviour saw the stop");
 }
+
+#[tokio::test(start_paused = true)]
+async fn realtime_pacing_follows_simulated_time_on_tokios_clock() {
+    let started = tokio::time::Instant::now();
+    let platform = platform()
+        .set("platform/realtime=true")
+        .unwrap()
+        .behaviour(|pl| async move {
+            pl.wait_seconds(2.0).await?;
+            Ok(())
+        })
+        .build()
+        .unwrap();
+    tokio::task::LocalSet::new()
+        .run_until(platform.run_local())
+        .await
+        .unwrap();
+    assert_eq!(started.elapsed(), std::time::Duration::from_secs(2));
+}

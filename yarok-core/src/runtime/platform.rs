@@ -304,6 +304,10 @@ impl Platform {
                 .map(|f| Task::new(f(self.pl.clone()))),
         );
         let mut interrupt = Box::pin(tokio::signal::ctrl_c());
+        // The first poll registers the listener, so that a Ctrl-C from now on is not missed.
+        if interrupted(interrupt.as_mut()) {
+            return Err(RuntimeError::Interrupted);
+        }
         let started = tokio::time::Instant::now();
         let paced = self.realtime || self.backend.paced();
         poll_tasks(tasks)?;
