@@ -9,27 +9,13 @@
 
 use std::time::Instant;
 
-use yarok::components::toys::TumbleTower;
+use yarok::components::worlds::TowerWorld;
 use yarok::core::compose::compose;
 use yarok::mjc::{Data, Model};
 use yarok::{Component, Declaration};
 
 /// Seconds of raw stepping each measurement aims for.
 const MEASURE_SECONDS: f64 = 2.0;
-
-struct Tower;
-impl Component for Tower {
-    fn declaration() -> Declaration {
-        Declaration::new("tower_world")
-            .uses::<TumbleTower>()
-            .template(
-                r#"<mujoco><compiler angle="radian"/><worldbody>
-                 <geom name="floor" type="plane" size="2 2 0.1"/>
-                 <tumble-tower name="tower"/>
-               </worldbody></mujoco>"#,
-            )
-    }
-}
 
 /// Just a floor: stepping is so cheap that the executor's own cost shows.
 struct Floor;
@@ -89,7 +75,10 @@ fn main() {
         "model", "raw steps/s", "platform", "ratio", "overhead/tick"
     );
     for (name, (ticks, raw, platform)) in [
-        ("tumble tower (24 blocks, contacts)", compare::<Tower>()),
+        (
+            "tumble tower (24 blocks, contacts)",
+            compare::<TowerWorld>(),
+        ),
         ("floor only (executor cost shows)", compare::<Floor>()),
     ] {
         println!(

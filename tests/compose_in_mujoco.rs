@@ -4,27 +4,13 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use yarok::components::toys::TumbleTower;
+use yarok::components::worlds::TowerWorld;
 use yarok::core::compose::{Component, Declaration, compose};
 use yarok::mjc::{Data, Model, ObjectKind};
 
-struct Playground;
-impl Component for Playground {
-    fn declaration() -> Declaration {
-        Declaration::new("playground")
-            .uses::<TumbleTower>()
-            .template(
-                r#"<mujoco><compiler angle="radian"/><worldbody>
-                 <geom name="floor" type="plane" size="2 2 0.1"/>
-                 <tumble-tower name="tower"/>
-               </worldbody></mujoco>"#,
-            )
-    }
-}
-
 #[test]
 fn the_tumble_tower_compiles_and_stands() {
-    let model = Arc::new(Model::from_composition(&compose::<Playground>().unwrap()).unwrap());
+    let model = Arc::new(Model::from_composition(&compose::<TowerWorld>().unwrap()).unwrap());
     assert_eq!(model.count(ObjectKind::Body), 1 + 24);
     assert_eq!(model.nq(), 24 * 7);
     let mut data = Data::new(&model).unwrap();

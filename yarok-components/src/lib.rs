@@ -15,6 +15,8 @@ use yarok_core::compose::ComponentType;
 pub fn catalogue() -> Vec<ComponentType> {
     vec![
         ComponentType::of::<worlds::EmptyWorld>(),
+        ComponentType::of::<worlds::PrinterWorld>(),
+        ComponentType::of::<worlds::TowerWorld>(),
         ComponentType::of::<cameras::Cam>(),
         ComponentType::of::<robots::AnetA30>(),
         ComponentType::of::<toys::TumbleTower>(),

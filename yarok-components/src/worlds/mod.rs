@@ -46,3 +46,17 @@ impl Component for PrinterWorld {
             )
     }
 }
+
+/// An [`EmptyWorld`] with a tumble tower of `rows` layers (default 8) at `/tower`.
+#[derive(Debug, Clone)]
+pub struct TowerWorld;
+
+impl Component for TowerWorld {
+    fn declaration() -> Declaration {
+        Declaration::new("tower_world")
+            .extends::<EmptyWorld>()
+            .uses::<TumbleTower>()
+            .default("rows", 8)
+            .template(r#"<mujoco><worldbody><tumble-tower name="tower" rows="{rows}"/></worldbody></mujoco>"#)
+    }
+}
