@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Installs what yarok needs besides Rust, once per machine; does nothing when all is present.
 #  - EGL and Mesa (llvmpipe) for headless rendering, from Debian's packages;
+#  - procps (`kill`, used by the Ctrl-C test);
 #  - pip, with which the first build fetches MuJoCo 4.0.1 from PyPI (see yarok-mjc/build.rs).
 set -euo pipefail
 
-packages=(libegl1 libegl-mesa0 libgl1-mesa-dri)
+packages=(libegl1 libegl-mesa0 libgl1-mesa-dri procps)
 missing=()
 for package in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
