@@ -6,6 +6,7 @@
 //!
 pub mod cameras;
 pub mod robots;
+pub mod tactile;
 pub mod toys;
 pub mod worlds;
 

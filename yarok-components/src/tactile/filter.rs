@@ -1,0 +1,137 @@
+//! The image filters the optical models are built from: the reference's Gaussian kernels and
+//! separable correlation with OpenCV's default border (reflect-101).
+
+/// The 1-D factor of the reference's `G(n, σ)` kernel: a unit impulse at `n / 2` smoothed by a
+/// Gaussian of `σ` truncated at 4σ with half-sample reflection at the ends (SciPy's
+/// `gaussian_filter1d` on an impulse), so the tails fold back and the kernel sums to 1.
+pub fn gaussian_kernel(n: usize, sigma: f64) -> Vec<f64> {
+    let radius = (4.0 * sigma + 0.5) as i64;
+    let weights: Vec<f64> = (-radius..=radius)
+        .map(|k| (-0.5 * (k * k) as f64 / (sigma * sigma)).exp())
+        .collect();
+    let total: f64 = weights.iter().sum();
+    let centre = (n / 2) as i64;
+    let mut kernel = vec![0.0; n];
+    for (i, value) in kernel.iter_mut().enumerate() {
+        for (k, weight) in (-radius..=radius).zip(&weights) {
+            if reflect(i as i64 + k, n as i64) == centre {
+                *value += weight / total;
+            }
+        }
+    }
+    kernel
+}
+
+/// SciPy's `reflect` border (`dcba|abcd|dcba`).
+fn reflect(mut index: i64, len: i64) -> i64 {
+    let period = 2 * len;
+    index = index.rem_euclid(period);
+    if index < len {
+        index
+    } else {
+        period - 1 - index
+    }
+}
+
+/// OpenCV's default border (`gfedcb|abcdefgh|gfedcba`), for images at least 2 pixels wide.
+fn reflect_101(index: i64, len: i64) -> usize {
+    if len == 1 {
+        return 0;
+    }
+    let period = 2 * (len - 1);
+    let index = index.rem_euclid(period);
+    (if index < len { index } else { period - index }) as usize
+}
+
+/// Correlates each row of a `height × width` single-channel image with `kernel` (anchored at
+/// `kernel.len() / 2`), writing into `out`.
+pub fn correlate_rows(image: &[f64], width: usize, kernel: &[f64], out: &mut [f64]) {
+    let anchor = (kernel.len() / 2) as i64;
+    for (row, out_row) in image.chunks_exact(width).zip(out.chunks_exact_mut(width)) {
+        for (x, value) in out_row.iter_mut().enumerate() {
+            *value = kernel
+                .iter()
+                .enumerate()
+                .map(|(k, weight)| {
+                    weight * row[reflect_101(x as i64 + k as i64 - anchor, width as i64)]
+                })
+                .sum();
+        }
+    }
+}
+
+/// Correlates each column of a `height × width` single-channel image with `kernel`.
+pub fn correlate_columns(image: &[f64], width: usize, kernel: &[f64], out: &mut [f64]) {
+    let height = image.len() / width;
+    let anchor = (kernel.len() / 2) as i64;
+    for y in 0..height {
+        let out_row = &mut out[y * width..(y + 1) * width];
+        out_row.fill(0.0);
+        for (k, weight) in kernel.iter().enumerate() {
+            let source = reflect_101(y as i64 + k as i64 - anchor, height as i64);
+            let source_row = &image[source * width..(source + 1) * width];
+            for (value, sample) in out_row.iter_mut().zip(source_row) {
+                *value += weight * sample;
+            }
+        }
+    }
+}
+
+/// Correlates a single-channel image with the separable kernel `kernel ⊗ kernel`.
+pub fn gaussian_blur(
+    image: &[f64],
+    width: usize,
+    kernel: &[f64],
+    scratch: &mut [f64],
+    out: &mut [f64],
+) {
+    correlate_rows(image, width, kernel, scratch);
+    correlate_columns(scratch, width, kernel, out);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kernels_match_the_reference_vectors() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../shared/reference/gaussian_kernels.json"
+        );
+        let Ok(text) = std::fs::read_to_string(path) else {
+            panic!("the reference kernels are missing at {path}");
+        };
+        for (name, n, sigma) in [
+            ("gkern2_21_7", 21, 7.0),
+            ("gkern2_52_9", 52, 9.0),
+            ("gkern2_3_1", 3, 1.0),
+            ("gkern2_95_9", 95, 9.0),
+        ] {
+            let start = text.find(&format!("\"{name}\"")).unwrap();
+            let k1 = &text[start..];
+            let open = k1.find('[').unwrap();
+            let close = k1.find(']').unwrap();
+            let expected: Vec<f64> = k1[open + 1..close]
+                .split(',')
+                .map(|v| v.trim().parse().unwrap())
+                .collect();
+            let ours = gaussian_kernel(n, sigma);
+            assert_eq!(ours.len(), expected.len(), "{name}");
+            for (a, b) in ours.iter().zip(&expected) {
+                assert!((a - b).abs() < 1e-15, "{name}: {a} vs {b}");
+            }
+        }
+    }
+
+    #[test]
+    fn borders_reflect_like_opencv() {
+        assert_eq!(
+            [-2, -1, 0, 3, 4, 5].map(|i| reflect_101(i, 4)),
+            [2, 1, 0, 3, 2, 1]
+        );
+        let mut out = [0.0; 4];
+        correlate_rows(&[1.0, 2.0, 3.0, 4.0], 4, &[-0.5, 0.0, 0.5], &mut out);
+        assert_eq!(out, [0.0, 1.0, 1.0, 0.0]);
+    }
+}

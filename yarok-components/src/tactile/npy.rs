@@ -1,0 +1,152 @@
+//! Reading float arrays from NumPy `.npy` files, plain or gzip-compressed (`.npy.gz`).
+
+use std::io::Read;
+use std::path::Path;
+
+/// A float32 array read from a `.npy` file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NpyArray {
+    /// Dimensions, outermost first.
+    pub shape: Vec<usize>,
+    /// Elements in C order.
+    pub data: Vec<f32>,
+}
+
+/// Why a `.npy` file could not be read.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum NpyError {
+    /// The file could not be read or decompressed.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// The content is not a little-endian float32 or float64 `.npy` array in C order.
+    #[error("{path}: {message}")]
+    Format {
+        /// The file.
+        path: String,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+/// Reads a `.npy` or `.npy.gz` file of `<f4` or `<f8` values (float64 is narrowed to float32).
+///
+/// # Errors
+///
+/// [`NpyError`] naming the file.
+pub fn read(path: impl AsRef<Path>) -> Result<NpyArray, NpyError> {
+    let path = path.as_ref();
+    let name = path.display().to_string();
+    let io = |source| NpyError::Io {
+        path: name.clone(),
+        source,
+    };
+    let raw = std::fs::read(path).map_err(io)?;
+    let bytes = if path.extension().is_some_and(|e| e == "gz") {
+        let mut decompressed = Vec::new();
+        flate2::read::GzDecoder::new(raw.as_slice())
+            .read_to_end(&mut decompressed)
+            .map_err(io)?;
+        decompressed
+    } else {
+        raw
+    };
+    parse(&bytes).map_err(|message| NpyError::Format {
+        path: name,
+        message,
+    })
+}
+
+/// Parses the bytes of a `.npy` file.
+///
+/// # Errors
+///
+/// A message saying what is wrong.
+pub fn parse(bytes: &[u8]) -> Result<NpyArray, String> {
+    if bytes.len() < 10 || &bytes[..6] != b"\x93NUMPY" {
+        return Err("not a .npy file".into());
+    }
+    let (header_len, header_start) = match bytes[6] {
+        1 => (usize::from(u16::from_le_bytes([bytes[8], bytes[9]])), 10),
+        2 | 3 if bytes.len() >= 12 => (
+            u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize,
+            12,
+        ),
+        version => return Err(format!("unsupported .npy version {version}")),
+    };
+    let header = bytes
+        .get(header_start..header_start + header_len)
+        .and_then(|h| std::str::from_utf8(h).ok())
+        .ok_or("truncated header")?;
+    if header.contains("'fortran_order': True") {
+        return Err("Fortran-ordered arrays are not supported".into());
+    }
+    let width = if header.contains("'descr': '<f4'") {
+        4
+    } else if header.contains("'descr': '<f8'") {
+        8
+    } else {
+        return Err(format!(
+            "only little-endian float32/float64 arrays are supported: {header}"
+        ));
+    };
+    let shape_text = header
+        .split("'shape': (")
+        .nth(1)
+        .and_then(|s| s.split(')').next())
+        .ok_or("no shape in the header")?;
+    let shape: Vec<usize> = shape_text
+        .split(',')
+        .map(str::trim)
+        .filter(|s| !s.is_empty())
+        .map(|s| s.parse().map_err(|_| format!("bad shape ({shape_text})")))
+        .collect::<Result<_, _>>()?;
+    let count = shape
+        .iter()
+        .try_fold(1usize, |n, d| n.checked_mul(*d))
+        .ok_or("shape too large")?;
+    let body = &bytes[header_start + header_len..];
+    if body.len() != count * width {
+        return Err(format!(
+            "{} data bytes for shape {shape:?}, expected {}",
+            body.len(),
+            count * width
+        ));
+    }
+    let data = if width == 4 {
+        body.chunks_exact(4)
+            .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+            .collect()
+    } else {
+        body.chunks_exact(8)
+            .map(|b| f64::from_le_bytes(b.try_into().unwrap_or([0; 8])) as f32)
+            .collect()
+    };
+    Ok(NpyArray { shape, data })
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn parses_a_small_array_and_refuses_garbage() {
+        let header = "{'descr': '<f4', 'fortran_order': False, 'shape': (2, 1), }";
+        let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+        bytes.extend_from_slice(&(header.len() as u16).to_le_bytes());
+        bytes.extend_from_slice(header.as_bytes());
+        bytes.extend_from_slice(&1.5f32.to_le_bytes());
+        bytes.extend_from_slice(&(-2.0f32).to_le_bytes());
+        let array = super::parse(&bytes).unwrap();
+        assert_eq!((array.shape, array.data), (vec![2, 1], vec![1.5, -2.0]));
+        assert!(
+            super::parse(&bytes[..bytes.len() - 1])
+                .unwrap_err()
+                .contains("data bytes")
+        );
+        assert!(super::parse(b"hello").is_err());
+    }
+}

@@ -1,0 +1,164 @@
+//! Parity with the reference implementation on the golden cases of `shared/golden/tactile`
+//! (noise off): per channel max |ours − ref| ≤ 2, mean ≤ 0.1, at most 0.5 % of pixels off by > 1.
+
+use std::path::PathBuf;
+
+use yarok_components::tactile::npy;
+use yarok_components::tactile::phong::{PhongModel, PhongParams};
+
+fn golden() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/golden/tactile")
+}
+
+fn png_rgb(path: PathBuf) -> (u32, u32, Vec<u8>) {
+    let image = image::open(&path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .to_rgb8();
+    (image.width(), image.height(), image.into_raw())
+}
+
+fn cases(model: &str) -> Vec<String> {
+    let index: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(golden().join("index.json")).unwrap())
+            .unwrap();
+    index["models"][model]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["case"].as_str().unwrap().to_owned())
+        .collect()
+}
+
+/// Per channel: max and mean absolute difference, and the share of pixels off by more than 1.
+fn compare(ours: &[u8], reference: &[u8]) -> [(u8, f64, f64); 3] {
+    let pixels = ours.len() / 3;
+    [0, 1, 2].map(|c| {
+        let diffs: Vec<u8> = (0..pixels)
+            .map(|i| ours[3 * i + c].abs_diff(reference[3 * i + c]))
+            .collect();
+        let max = *diffs.iter().max().unwrap();
+        let mean = diffs.iter().map(|d| f64::from(*d)).sum::<f64>() / pixels as f64;
+        let off = diffs.iter().filter(|d| **d > 1).count() as f64 / pixels as f64;
+        (max, mean, off)
+    })
+}
+
+fn check(model: &str, params: PhongParams, light_key: &str) {
+    let phong = PhongModel::new(params.clone());
+    let (width, height, background) = png_rgb(golden().join(model).join("background.png"));
+    for case in cases(model) {
+        let dir = golden().join(model).join(&case);
+        let manifest: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("manifest.json")).unwrap())
+                .unwrap();
+        let p = &manifest["parameters"];
+        assert_eq!(p["ka"].as_f64(), Some(params.ka), "{model}/{case}: ka");
+        assert_eq!(
+            p["elastomer_thickness"].as_f64(),
+            Some(params.elastomer_thickness)
+        );
+        assert_eq!(p["min_depth"].as_f64(), Some(params.min_depth));
+        for (light, reference) in params
+            .lights
+            .iter()
+            .zip(p["light_sources"].as_array().unwrap())
+        {
+            let native: Vec<f64> = reference[light_key]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|v| v.as_f64().unwrap())
+                .collect();
+            let rgb = if light_key == "color_native_bgr" {
+                [native[2], native[1], native[0]]
+            } else {
+                [native[0], native[1], native[2]]
+            };
+            assert_eq!(light.colour, rgb, "{model}/{case}: light colour");
+            assert_eq!(reference["kd"].as_f64(), Some(light.kd));
+        }
+        let depth = npy::read(dir.join("input_depth.npy.gz")).unwrap();
+        assert_eq!(depth.shape, [height as usize, width as usize]);
+        let ours = phong.render(&depth.data, width as usize, &background);
+        let (_, _, reference) = png_rgb(dir.join("output.png"));
+        let stats = compare(&ours, &reference);
+        eprintln!("{model}/{case}: {stats:?}");
+        for (channel, (max, mean, off)) in stats.into_iter().enumerate() {
+            assert!(
+                max <= 2 && mean <= 0.1 && off <= 0.005,
+                "{model}/{case} channel {channel}: max {max}, mean {mean:.4}, >1 on {:.3} %",
+                off * 100.0
+            );
+        }
+    }
+}
+
+#[test]
+fn digit_matches_the_reference() {
+    check("digit", PhongParams::digit(), "color");
+}
+
+#[test]
+fn gelsight_matches_the_reference() {
+    check("gelsight", PhongParams::gelsight2014(), "color_native_bgr");
+}
+
+fn light_field(path: PathBuf) -> Vec<[f32; 3]> {
+    let field = npy::read(path).unwrap();
+    field
+        .data
+        .chunks_exact(3)
+        .map(|v| [v[0], v[1], v[2]])
+        .collect()
+}
+
+#[test]
+fn geltip_matches_the_reference() {
+    use yarok_components::tactile::geltip::{GelTipModel, GelTipParams};
+    let params_dir = golden().join("geltip/params");
+    let background_depth = npy::read(params_dir.join("bkg_depth_m.npy.gz")).unwrap();
+    let (width, height, background) = png_rgb(golden().join("geltip/background.png"));
+    assert_eq!(background_depth.shape, [height as usize, width as usize]);
+    // Light fields are geometry (unit vectors), so they carry no channel order.
+    let fields: Vec<_> = (0..3)
+        .map(|i| light_field(params_dir.join(format!("light_field_{i}.npy.gz"))))
+        .collect();
+    let params = GelTipParams::default();
+    let model = GelTipModel::new(
+        params.clone(),
+        &background_depth.data,
+        width as usize,
+        &fields,
+    );
+    for case in cases("geltip") {
+        let dir = golden().join("geltip").join(&case);
+        let manifest: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("manifest.json")).unwrap())
+                .unwrap();
+        for (light, reference) in params
+            .lights
+            .iter()
+            .zip(manifest["parameters"]["light_sources"].as_array().unwrap())
+        {
+            let bgr: Vec<f64> = reference["color_native_bgr"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|v| v.as_f64().unwrap())
+                .collect();
+            assert_eq!(light.colour, [bgr[2], bgr[1], bgr[0]]);
+        }
+        let depth = npy::read(dir.join("input_depth.npy.gz")).unwrap();
+        let ours = model.render(&depth.data, &background);
+        let (_, _, reference) = png_rgb(dir.join("output.png"));
+        let stats = compare(&ours, &reference);
+        eprintln!("geltip/{case}: {stats:?}");
+        for (channel, (max, mean, off)) in stats.into_iter().enumerate() {
+            assert!(
+                max <= 2 && mean <= 0.1 && off <= 0.005,
+                "geltip/{case} channel {channel}: max {max}, mean {mean:.4}, >1 on {:.3} %",
+                off * 100.0
+            );
+        }
+    }
+}
