@@ -1,0 +1,54 @@
+//! Measures, side by side in one run, ms per frame of the tactile optical models on the golden
+//! contact cases: DIGIT 320×240 (target ≤ 2 ms), GelSight 640×480 (≤ 8 ms), GelTip 320×240
+//! (≤ 4 ms), single-threaded.
+//!
+//! ```text
+//! cargo bench --bench tactile
+//! ```
+
+use std::path::PathBuf;
+
+use yarok::components::tactile::geltip::{GelTipModel, GelTipParams};
+use yarok::components::tactile::npy;
+use yarok::components::tactile::phong::{PhongModel, PhongParams};
+
+mod measure;
+
+fn golden(path: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/golden/tactile").join(path)
+}
+
+fn background(model: &str) -> Vec<u8> {
+    image::open(golden(&format!("{model}/background.png"))).expect("background").to_rgb8().into_raw()
+}
+
+fn depth(model: &str) -> npy::NpyArray {
+    npy::read(golden(&format!("{model}/sphere_center/input_depth.npy.gz"))).expect("depth")
+}
+
+fn main() {
+    let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
+    println!("{:<22} {:>10} {:>10}", "model", "ms/frame", "target");
+    for (name, model, params, target) in [("DIGIT 320×240", "digit", PhongParams::digit(), 2.0), ("GelSight 640×480", "gelsight", PhongParams::gelsight2014(), 8.0)] {
+        let phong = PhongModel::new(params);
+        let (input, bg) = (depth(model), background(model));
+        let width = input.shape[1];
+        let time = measure::mean_time(|| {
+            std::hint::black_box(phong.render(&input.data, width, &bg));
+        });
+        println!("{name:<22} {:>10.2} {target:>10.1}", ms(time));
+    }
+    let fields: Vec<Vec<[f32; 3]>> = (0..3)
+        .map(|i| {
+            let field = npy::read(golden(&format!("geltip/params/light_field_{i}.npy.gz"))).expect("field");
+            field.data.chunks_exact(3).map(|v| [v[0], v[1], v[2]]).collect()
+        })
+        .collect();
+    let bkg = npy::read(golden("geltip/params/bkg_depth_m.npy.gz")).expect("bkg");
+    let geltip = GelTipModel::new(GelTipParams::default(), &bkg.data, bkg.shape[1], &fields);
+    let (input, bg) = (depth("geltip"), background("geltip"));
+    let time = measure::mean_time(|| {
+        std::hint::black_box(geltip.render(&input.data, &bg));
+    });
+    println!("{:<22} {:>10.2} {:>10.1}", "GelTip 320×240", ms(time), 4.0);
+}
