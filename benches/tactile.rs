@@ -15,11 +15,16 @@ use yarok::components::tactile::phong::{PhongModel, PhongParams};
 mod measure;
 
 fn golden(path: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/golden/tactile").join(path)
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/golden/tactile")
+        .join(path)
 }
 
 fn background(model: &str) -> Vec<u8> {
-    image::open(golden(&format!("{model}/background.png"))).expect("background").to_rgb8().into_raw()
+    image::open(golden(&format!("{model}/background.png")))
+        .expect("background")
+        .to_rgb8()
+        .into_raw()
 }
 
 fn depth(model: &str) -> npy::NpyArray {
@@ -29,7 +34,26 @@ fn depth(model: &str) -> npy::NpyArray {
 fn main() {
     let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
     println!("{:<22} {:>10} {:>10}", "model", "ms/frame", "target");
-    for (name, model, params, target) in [("DIGIT 320×240", "digit", PhongParams::digit(), 2.0), ("GelSight 640×480", "gelsight", PhongParams::gelsight2014(), 8.0)] {
+    for (name, model, params, target) in [
+        (
+            "DIGIT 320×240",
+            "digit",
+            PhongParams {
+                texture_sigma: 0.0,
+                ..PhongParams::digit()
+            },
+            2.0,
+        ),
+        (
+            "GelSight 640×480",
+            "gelsight",
+            PhongParams {
+                texture_sigma: 0.0,
+                ..PhongParams::gelsight2014()
+            },
+            8.0,
+        ),
+    ] {
         let phong = PhongModel::new(params);
         let (input, bg) = (depth(model), background(model));
         let width = input.shape[1];
@@ -40,8 +64,13 @@ fn main() {
     }
     let fields: Vec<Vec<[f32; 3]>> = (0..3)
         .map(|i| {
-            let field = npy::read(golden(&format!("geltip/params/light_field_{i}.npy.gz"))).expect("field");
-            field.data.chunks_exact(3).map(|v| [v[0], v[1], v[2]]).collect()
+            let field =
+                npy::read(golden(&format!("geltip/params/light_field_{i}.npy.gz"))).expect("field");
+            field
+                .data
+                .chunks_exact(3)
+                .map(|v| [v[0], v[1], v[2]])
+                .collect()
         })
         .collect();
     let bkg = npy::read(golden("geltip/params/bkg_depth_m.npy.gz")).expect("bkg");

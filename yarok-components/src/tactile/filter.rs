@@ -46,16 +46,18 @@ fn reflect_101(index: i64, len: i64) -> usize {
 /// Correlates each row of a `height × width` single-channel image with `kernel` (anchored at
 /// `kernel.len() / 2`), writing into `out`.
 pub fn correlate_rows(image: &[f64], width: usize, kernel: &[f64], out: &mut [f64]) {
-    let anchor = (kernel.len() / 2) as i64;
+    let anchor = kernel.len() / 2;
+    let mut padded = vec![0.0; width + kernel.len() - 1];
     for (row, out_row) in image.chunks_exact(width).zip(out.chunks_exact_mut(width)) {
-        for (x, value) in out_row.iter_mut().enumerate() {
-            *value = kernel
-                .iter()
-                .enumerate()
-                .map(|(k, weight)| {
-                    weight * row[reflect_101(x as i64 + k as i64 - anchor, width as i64)]
-                })
-                .sum();
+        for (i, value) in padded.iter_mut().enumerate() {
+            *value = row[reflect_101(i as i64 - anchor as i64, width as i64)];
+        }
+        // Tap by tap across the row, so that the inner loop runs over contiguous pixels.
+        out_row.fill(0.0);
+        for (k, weight) in kernel.iter().enumerate() {
+            for (value, sample) in out_row.iter_mut().zip(&padded[k..k + width]) {
+                *value += weight * sample;
+            }
         }
     }
 }

@@ -9,5 +9,6 @@
 
 pub mod filter;
 pub mod geltip;
+pub mod noise;
 pub mod npy;
 pub mod phong;

@@ -36,6 +36,11 @@ pub struct PhongParams {
     pub iterations: usize,
     /// Extra deformation passes on the wide kernel (GelSight).
     pub extra_passes: bool,
+    /// Standard deviation of the gel's texture noise added to the deformed depth (depth unit);
+    /// 0 turns it off.
+    pub texture_sigma: f64,
+    /// Seed of the texture noise: the same seed gives the same texture, byte for byte.
+    pub seed: u64,
 }
 
 fn light(position: [f64; 3], colour: [f64; 3], kd: f64, ks: f64) -> PhongLight {
@@ -64,6 +69,8 @@ impl PhongParams {
             min_depth: 0.0,
             iterations: 3,
             extra_passes: false,
+            texture_sigma: 1e-5,
+            seed: 0,
         }
     }
 
@@ -82,6 +89,8 @@ impl PhongParams {
             min_depth: 0.03,
             iterations: 3,
             extra_passes: true,
+            texture_sigma: 2e-6,
+            seed: 0,
         }
     }
 
@@ -147,7 +156,16 @@ impl PhongModel {
             })
             .collect();
 
-        let scaled: Vec<f64> = elastomer.iter().map(|e| e / p.px2m_ratio).collect();
+        let noise = if p.texture_sigma > 0.0 {
+            super::noise::SplitMix64::new(p.seed).normal(elastomer.len(), p.texture_sigma)
+        } else {
+            vec![0.0; elastomer.len()]
+        };
+        let scaled: Vec<f64> = elastomer
+            .iter()
+            .zip(&noise)
+            .map(|(e, n)| (e + n) / p.px2m_ratio)
+            .collect();
         let normals = normals(&scaled, width);
         for light in &p.lights {
             for (pixel, n) in normals.iter().enumerate() {

@@ -1,0 +1,154 @@
+//! The optical models make physical sense: deeper presses make larger contacts, an off-centre
+//! sphere moves the imprint, outputs have the documented size.
+
+use std::path::PathBuf;
+
+use yarok_components::tactile::geltip::{GelTipModel, GelTipParams};
+use yarok_components::tactile::npy;
+use yarok_components::tactile::phong::{PhongModel, PhongParams};
+
+fn golden(path: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../shared/golden/tactile")
+        .join(path)
+}
+
+fn background(model: &str) -> Vec<u8> {
+    image::open(golden(&format!("{model}/background.png")))
+        .unwrap()
+        .to_rgb8()
+        .into_raw()
+}
+
+fn depth(model: &str, case: &str) -> npy::NpyArray {
+    npy::read(golden(&format!("{model}/{case}/input_depth.npy.gz"))).unwrap()
+}
+
+/// Pixels whose colour differs from the no-contact image by more than 10 levels, and their
+/// centroid (column, row).
+fn imprint(image: &[u8], untouched: &[u8], width: usize) -> (usize, (f64, f64)) {
+    let changed: Vec<usize> = (0..image.len() / 3)
+        .filter(|&i| (0..3).any(|c| image[3 * i + c].abs_diff(untouched[3 * i + c]) > 10))
+        .collect();
+    let n = changed.len().max(1) as f64;
+    let centroid = changed.iter().fold((0.0, 0.0), |(u, v), &i| {
+        (u + (i % width) as f64 / n, v + (i / width) as f64 / n)
+    });
+    (changed.len(), centroid)
+}
+
+fn check(
+    model: &str,
+    render: impl Fn(&npy::NpyArray) -> Vec<u8>,
+    no_contact: &str,
+    offcentre: (f64, f64),
+) {
+    let untouched = render(&depth(model, no_contact));
+    let width = depth(model, no_contact).shape[1];
+    let (shallow, centre) = imprint(&render(&depth(model, "sphere_center")), &untouched, width);
+    let (deep, _) = imprint(
+        &render(&depth(model, "sphere_center_deep")),
+        &untouched,
+        width,
+    );
+    let (_, moved) = imprint(
+        &render(&depth(model, "sphere_offcenter")),
+        &untouched,
+        width,
+    );
+    assert!(
+        shallow > 100,
+        "{model}: a press leaves an imprint ({shallow} pixels)"
+    );
+    assert!(
+        deep > shallow * 5 / 4,
+        "{model}: a deeper press makes a larger contact ({shallow} → {deep} pixels)"
+    );
+    let height = untouched.len() / 3 / width;
+    let middle = ((width as f64 - 1.0) / 2.0, (height as f64 - 1.0) / 2.0);
+    assert!(
+        (centre.0 - middle.0).abs() < 3.0 && (centre.1 - middle.1).abs() < 3.0,
+        "{model}: centred imprint at {centre:?}"
+    );
+    assert!(
+        (moved.0 - offcentre.0).abs() < 6.0 && (moved.1 - offcentre.1).abs() < 6.0,
+        "{model}: imprint at {moved:?}, sphere at {offcentre:?}"
+    );
+}
+
+#[test]
+fn digit_imprints_grow_with_depth_and_follow_the_object() {
+    let model = PhongModel::new(PhongParams {
+        texture_sigma: 0.0,
+        ..PhongParams::digit()
+    });
+    let bg = background("digit");
+    let image = model.render(&depth("digit", "flat_surface").data, 240, &bg);
+    assert_eq!(
+        image.len(),
+        320 * 240 * 3,
+        "DIGIT: 320 rows × 240 columns, RGB"
+    );
+    check(
+        "digit",
+        |d| model.render(&d.data, d.shape[1], &bg),
+        "flat_surface",
+        (170.0, 95.0),
+    );
+}
+
+#[test]
+fn gelsight_imprints_grow_with_depth_and_follow_the_object() {
+    let model = PhongModel::new(PhongParams {
+        texture_sigma: 0.0,
+        ..PhongParams::gelsight2014()
+    });
+    let bg = background("gelsight");
+    check(
+        "gelsight",
+        |d| model.render(&d.data, d.shape[1], &bg),
+        "flat",
+        (450.0, 160.0),
+    );
+}
+
+#[test]
+fn geltip_imprints_grow_with_depth_and_follow_the_object() {
+    let fields: Vec<Vec<[f32; 3]>> = (0..3)
+        .map(|i| {
+            npy::read(golden(&format!("geltip/params/light_field_{i}.npy.gz")))
+                .unwrap()
+                .data
+                .chunks_exact(3)
+                .map(|v| [v[0], v[1], v[2]])
+                .collect()
+        })
+        .collect();
+    let bkg = npy::read(golden("geltip/params/bkg_depth_m.npy.gz")).unwrap();
+    let model = GelTipModel::new(GelTipParams::default(), &bkg.data, 320, &fields);
+    let bg = background("geltip");
+    check(
+        "geltip",
+        |d| model.render(&d.data, &bg),
+        "flat",
+        (190.0, 95.0),
+    );
+}
+
+#[test]
+fn texture_noise_is_seeded() {
+    let bg = background("digit");
+    let input = depth("digit", "sphere_center");
+    let render = |seed, texture_sigma| {
+        PhongModel::new(PhongParams {
+            seed,
+            texture_sigma,
+            ..PhongParams::digit()
+        })
+        .render(&input.data, 240, &bg)
+    };
+    let first = render(1, 1e-5);
+    assert_eq!(first, render(1, 1e-5), "same seed, same bytes");
+    assert_ne!(first, render(2, 1e-5), "another seed, another texture");
+    assert_ne!(first, render(1, 0.0), "the texture shows");
+}
