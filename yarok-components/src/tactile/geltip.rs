@@ -1,7 +1,8 @@
 //! The GelTip model: a finger-shaped sensor whose lights reach the membrane along per-pixel
 //! "light fields" (Gomes et al.).
 
-use super::filter::{correlate_columns, correlate_rows, gaussian_blur, gaussian_kernel};
+use super::field::Field;
+use super::filter::{correlate_columns, correlate_rows, gaussian_kernel};
 
 /// A light of the GelTip model.
 #[derive(Debug, Clone, PartialEq)]
@@ -60,7 +61,7 @@ pub struct GelTipModel {
     background_depth: Vec<f64>,
     /// Per light, the direction *towards* the light at each pixel (the negated field).
     towards_lights: Vec<Vec<[f64; 3]>>,
-    kernel: Vec<f64>,
+    kernel: Vec<f32>,
 }
 
 impl GelTipModel {
@@ -101,7 +102,10 @@ impl GelTipModel {
             width,
             background_depth: background_depth.iter().map(|&d| f64::from(d)).collect(),
             towards_lights,
-            kernel: gaussian_kernel(95, 9.0),
+            kernel: gaussian_kernel(95, 9.0)
+                .into_iter()
+                .map(|k| k as f32)
+                .collect(),
         }
     }
 
@@ -156,27 +160,20 @@ impl GelTipModel {
         out
     }
 
-    /// `depth = min(depth, bkg − blur(bkg − depth))`, in f32 like the reference.
+    /// `depth = min(depth, bkg − blur(bkg − depth))`, in f32 like the reference, on the part
+    /// of the image a press changes.
     fn deform(&self, depth: &[f32]) -> Vec<f64> {
-        let protrusion: Vec<f64> = depth
+        let protrusion: Vec<f32> = depth
             .iter()
             .zip(&self.background_depth)
-            .map(|(d, b)| f64::from((*b as f32) - d))
+            .map(|(d, b)| (*b as f32) - d)
             .collect();
-        let mut scratch = vec![0.0; depth.len()];
-        let mut blurred = vec![0.0; depth.len()];
-        gaussian_blur(
-            &protrusion,
-            self.width,
-            &self.kernel,
-            &mut scratch,
-            &mut blurred,
-        );
+        let blurred = Field::new(protrusion, self.width).blur(&self.kernel);
         depth
             .iter()
             .zip(&self.background_depth)
-            .zip(&blurred)
-            .map(|((d, b), e)| f64::from(d.min(*b as f32 - *e as f32)))
+            .zip(&blurred.values)
+            .map(|((d, b), e)| f64::from(d.min(*b as f32 - e)))
             .collect()
     }
 

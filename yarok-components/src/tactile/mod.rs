@@ -7,6 +7,7 @@
 //!
 //! Images are row-major, top row first; colours RGB.
 
+mod field;
 pub mod filter;
 pub mod geltip;
 pub mod noise;

@@ -1,6 +1,7 @@
 //! The Phong model of DIGIT and GelSight sensors: a depth map of the elastomer's inside, in,
 //! a sensor image, out (the published simulation of Gomes et al. and its DIGIT port).
 
+use super::field::Field;
 use super::filter::{correlate_columns, correlate_rows, gaussian_blur, gaussian_kernel};
 
 /// A coloured light of the Phong model.
@@ -103,18 +104,19 @@ impl PhongParams {
 #[derive(Debug, Clone)]
 pub struct PhongModel {
     params: PhongParams,
-    narrow: Vec<f64>,
-    wide: Vec<f64>,
+    narrow: Vec<f32>,
+    wide: Vec<f32>,
     blur: Vec<f64>,
 }
 
 impl PhongModel {
     /// A model with these parameters.
     pub fn new(params: PhongParams) -> Self {
+        let single = |kernel: Vec<f64>| kernel.into_iter().map(|k| k as f32).collect();
         Self {
             params,
-            narrow: gaussian_kernel(21, 7.0),
-            wide: gaussian_kernel(52, 9.0),
+            narrow: single(gaussian_kernel(21, 7.0)),
+            wide: single(gaussian_kernel(52, 9.0)),
             blur: gaussian_kernel(3, 1.0),
         }
     }
@@ -184,34 +186,25 @@ impl PhongModel {
     }
 
     /// Elastic deformation: the indentation smoothed by two Gaussians (difference of Gaussians),
-    /// each iteration renormalised to keep the indentation's peak. Runs in f32 like the reference.
+    /// each iteration renormalised to keep the indentation's peak. Runs in f32 like the reference,
+    /// on the part of the image a press changes.
     fn deform(&self, protrusion: &[f64], width: usize, max_depth: f64) -> Vec<f64> {
-        let indentation: Vec<f64> = protrusion
-            .iter()
-            .map(|p| f64::from((max_depth - p) as f32))
-            .collect();
-        let passes = |kernel: &[f64], start: Vec<f64>, times: usize| {
+        let indentation = Field::new(
+            protrusion.iter().map(|p| (max_depth - p) as f32).collect(),
+            width,
+        );
+        let peak = indentation.max();
+        let passes = |kernel: &[f32], start: Field, times: usize| {
             let mut current = start;
-            let mut scratch = vec![0.0; current.len()];
-            let mut blurred = vec![0.0; current.len()];
             for _ in 0..times {
-                correlate_rows(&current, width, kernel, &mut scratch);
-                correlate_columns(&scratch, width, kernel, &mut blurred);
-                for value in &mut blurred {
-                    *value = f64::from(*value as f32);
-                }
-                let peak_in = indentation.iter().copied().fold(f64::MIN, f64::max) as f32;
-                let peak_out = blurred.iter().copied().fold(f64::MIN, f64::max) as f32;
+                let blurred = current.blur(kernel);
+                let peak_out = blurred.max();
                 let ratio = if peak_out <= 0.0 {
-                    1.0f32
+                    1.0
                 } else {
-                    peak_in / peak_out
+                    peak / peak_out
                 };
-                for (value, (blur, floor)) in
-                    current.iter_mut().zip(blurred.iter().zip(&indentation))
-                {
-                    *value = f64::from((ratio * *blur as f32).max(*floor as f32));
-                }
+                current = blurred.scaled_at_least(ratio, &indentation);
             }
             current
         };
@@ -221,12 +214,10 @@ impl PhongModel {
             wide = passes(&self.narrow, wide, self.params.iterations);
         }
         narrow
+            .values
             .iter()
-            .zip(&wide)
-            .map(|(a, b)| {
-                let x = 2.0 * *a as f32 - *b as f32;
-                f64::from(max_depth as f32 - x)
-            })
+            .zip(&wide.values)
+            .map(|(a, b)| f64::from(max_depth as f32 - (2.0 * a - b)))
             .collect()
     }
 

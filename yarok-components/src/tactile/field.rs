@@ -1,0 +1,221 @@
+//! Sparse Gaussian filtering for the elastic deformations: an image that equals a constant
+//! outside a rectangle is blurred by computing only the rectangle (grown by the kernel's reach),
+//! which is exact because a kernel summing to 1 maps a constant to itself. A press touches a small
+//! part of the sensor, so most of the image is skipped.
+
+/// A rectangle of pixels: columns `x0..x1`, rows `y0..y1`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Region {
+    x0: usize,
+    x1: usize,
+    y0: usize,
+    y1: usize,
+}
+
+impl Region {
+    fn union(self, other: Region) -> Region {
+        if other.is_empty() {
+            return self;
+        }
+        if self.is_empty() {
+            return other;
+        }
+        Region {
+            x0: self.x0.min(other.x0),
+            x1: self.x1.max(other.x1),
+            y0: self.y0.min(other.y0),
+            y1: self.y1.max(other.y1),
+        }
+    }
+
+    fn is_empty(self) -> bool {
+        self.x0 >= self.x1 || self.y0 >= self.y1
+    }
+
+    /// Grown by a kernel's reach on each side; an axis that reaches a border spans the whole
+    /// axis, since reflection there can carry values anywhere within reach.
+    fn grown(self, before: usize, after: usize, width: usize, height: usize) -> Region {
+        if self.is_empty() {
+            return self;
+        }
+        let axis = |lo: usize, hi: usize, len: usize| {
+            let (lo, hi) = (
+                lo.saturating_sub(before.max(after)),
+                (hi + before.max(after)).min(len),
+            );
+            if lo == 0 || hi == len {
+                (0, len)
+            } else {
+                (lo, hi)
+            }
+        };
+        let (x0, x1) = axis(self.x0, self.x1, width);
+        let (y0, y1) = axis(self.y0, self.y1, height);
+        Region { x0, x1, y0, y1 }
+    }
+}
+
+/// A single-channel f32 image equal to `background` outside `region`.
+#[derive(Debug, Clone)]
+pub(crate) struct Field {
+    pub(crate) values: Vec<f32>,
+    pub(crate) width: usize,
+    background: f32,
+    region: Region,
+}
+
+/// OpenCV's default border (`gfedcb|abcdefgh|gfedcba`).
+fn reflect_101(index: i64, len: usize) -> usize {
+    let len = len as i64;
+    if len == 1 {
+        return 0;
+    }
+    let period = 2 * (len - 1);
+    let index = index.rem_euclid(period);
+    (if index < len { index } else { period - index }) as usize
+}
+
+impl Field {
+    /// The field of `values`, its background taken as its minimum.
+    pub(crate) fn new(values: Vec<f32>, width: usize) -> Self {
+        let background = values.iter().copied().fold(f32::INFINITY, f32::min);
+        let height = values.len() / width;
+        let mut region = Region {
+            x0: width,
+            x1: 0,
+            y0: height,
+            y1: 0,
+        };
+        for (i, value) in values.iter().enumerate() {
+            if *value != background {
+                let (x, y) = (i % width, i / width);
+                region = region.union(Region {
+                    x0: x,
+                    x1: x + 1,
+                    y0: y,
+                    y1: y + 1,
+                });
+            }
+        }
+        Self {
+            values,
+            width,
+            background,
+            region,
+        }
+    }
+
+    fn height(&self) -> usize {
+        self.values.len() / self.width
+    }
+
+    /// The largest value.
+    pub(crate) fn max(&self) -> f32 {
+        let mut peak = self.background;
+        for y in self.region.y0..self.region.y1 {
+            for value in
+                &self.values[y * self.width + self.region.x0..y * self.width + self.region.x1]
+            {
+                peak = peak.max(*value);
+            }
+        }
+        peak
+    }
+
+    /// Correlation with `kernel ⊗ kernel` (anchored at `len / 2`, reflect-101 borders).
+    pub(crate) fn blur(&self, kernel: &[f32]) -> Field {
+        let (width, height) = (self.width, self.height());
+        let anchor = kernel.len() / 2;
+        let region = self
+            .region
+            .grown(anchor, kernel.len() - 1 - anchor, width, height);
+        let background = kernel.iter().map(|k| k * self.background).sum::<f32>();
+        let mut rows = vec![self.background; self.values.len()];
+        let mut padded = vec![0.0f32; width + kernel.len() - 1];
+        for y in self.region.y0..self.region.y1 {
+            let row = &self.values[y * width..(y + 1) * width];
+            for (i, value) in padded.iter_mut().enumerate() {
+                *value = row[reflect_101(i as i64 - anchor as i64, width)];
+            }
+            let out = &mut rows[y * width + region.x0..y * width + region.x1];
+            out.fill(0.0);
+            for (k, weight) in kernel.iter().enumerate() {
+                for (value, sample) in out.iter_mut().zip(&padded[region.x0 + k..region.x1 + k]) {
+                    *value += weight * sample;
+                }
+            }
+        }
+        let mut values = vec![background; self.values.len()];
+        for y in region.y0..region.y1 {
+            let out = &mut values[y * width + region.x0..y * width + region.x1];
+            out.fill(0.0);
+            for (k, weight) in kernel.iter().enumerate() {
+                let source = reflect_101(y as i64 + k as i64 - anchor as i64, height);
+                let samples = &rows[source * width + region.x0..source * width + region.x1];
+                for (value, sample) in out.iter_mut().zip(samples) {
+                    *value += weight * sample;
+                }
+            }
+        }
+        Field {
+            values,
+            width,
+            background,
+            region,
+        }
+    }
+
+    /// `max(scale · self, floor)` pixel by pixel.
+    pub(crate) fn scaled_at_least(&self, scale: f32, floor: &Field) -> Field {
+        let region = self.region.union(floor.region);
+        let background = (scale * self.background).max(floor.background);
+        let mut values = vec![background; self.values.len()];
+        for y in region.y0..region.y1 {
+            for x in region.x0..region.x1 {
+                let i = y * self.width + x;
+                values[i] = (scale * self.values[i]).max(floor.values[i]);
+            }
+        }
+        Field {
+            values,
+            width: self.width,
+            background,
+            region,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Field;
+    use crate::tactile::filter::{gaussian_blur, gaussian_kernel};
+
+    #[test]
+    fn sparse_blur_equals_the_dense_one() {
+        let (width, height) = (60, 40);
+        for (cx, cy) in [(30, 20), (2, 3), (57, 38)] {
+            let values: Vec<f32> = (0..width * height)
+                .map(|i| {
+                    let (x, y) = ((i % width) as f32, (i / width) as f32);
+                    let r2 = (x - cx as f32).powi(2) + (y - cy as f32).powi(2);
+                    0.25 + if r2 < 16.0 { (16.0 - r2) / 10.0 } else { 0.0 }
+                })
+                .collect();
+            for n in [21, 52] {
+                let kernel = gaussian_kernel(n, if n == 21 { 7.0 } else { 9.0 });
+                let sparse = Field::new(values.clone(), width)
+                    .blur(&kernel.iter().map(|k| *k as f32).collect::<Vec<_>>());
+                let dense_in: Vec<f64> = values.iter().map(|v| f64::from(*v)).collect();
+                let (mut scratch, mut dense) =
+                    (vec![0.0; dense_in.len()], vec![0.0; dense_in.len()]);
+                gaussian_blur(&dense_in, width, &kernel, &mut scratch, &mut dense);
+                for (a, b) in sparse.values.iter().zip(&dense) {
+                    assert!(
+                        (f64::from(*a) - b).abs() < 1e-5,
+                        "{a} vs {b} (centre {cx},{cy}, n {n})"
+                    );
+                }
+            }
+        }
+    }
+}
