@@ -54,7 +54,7 @@ fn main() {
             8.0,
         ),
     ] {
-        let phong = PhongModel::new(params);
+        let mut phong = PhongModel::new(params);
         let (input, bg) = (depth(model), background(model));
         let width = input.shape[1];
         let time = measure::mean_time(|| {
@@ -74,7 +74,7 @@ fn main() {
         })
         .collect();
     let bkg = npy::read(golden("geltip/params/bkg_depth_m.npy.gz")).expect("bkg");
-    let geltip = GelTipModel::new(GelTipParams::default(), &bkg.data, bkg.shape[1], &fields);
+    let mut geltip = GelTipModel::new(GelTipParams::default(), &bkg.data, bkg.shape[1], &fields);
     let (input, bg) = (depth("geltip"), background("geltip"));
     let time = measure::mean_time(|| {
         std::hint::black_box(geltip.render(&input.data, &bg));

@@ -44,7 +44,7 @@ fn compare(ours: &[u8], reference: &[u8]) -> [(u8, f64, f64); 3] {
 }
 
 fn check(model: &str, params: PhongParams, light_key: &str) {
-    let phong = PhongModel::new(params.clone());
+    let mut phong = PhongModel::new(params.clone());
     let (width, height, background) = png_rgb(golden().join(model).join("background.png"));
     for case in cases(model) {
         let dir = golden().join(model).join(&case);
@@ -138,7 +138,7 @@ fn geltip_matches_the_reference() {
         .map(|i| light_field(params_dir.join(format!("light_field_{i}.npy.gz"))))
         .collect();
     let params = GelTipParams::default();
-    let model = GelTipModel::new(
+    let mut model = GelTipModel::new(
         params.clone(),
         &background_depth.data,
         width as usize,

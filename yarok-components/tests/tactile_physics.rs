@@ -39,7 +39,7 @@ fn imprint(image: &[u8], untouched: &[u8], width: usize) -> (usize, (f64, f64)) 
 
 fn check(
     model: &str,
-    render: impl Fn(&npy::NpyArray) -> Vec<u8>,
+    mut render: impl FnMut(&npy::NpyArray) -> Vec<u8>,
     no_contact: &str,
     offcentre: (f64, f64),
 ) {
@@ -78,7 +78,7 @@ fn check(
 
 #[test]
 fn digit_imprints_grow_with_depth_and_follow_the_object() {
-    let model = PhongModel::new(PhongParams {
+    let mut model = PhongModel::new(PhongParams {
         texture_sigma: 0.0,
         ..PhongParams::digit()
     });
@@ -99,7 +99,7 @@ fn digit_imprints_grow_with_depth_and_follow_the_object() {
 
 #[test]
 fn gelsight_imprints_grow_with_depth_and_follow_the_object() {
-    let model = PhongModel::new(PhongParams {
+    let mut model = PhongModel::new(PhongParams {
         texture_sigma: 0.0,
         ..PhongParams::gelsight2014()
     });
@@ -125,7 +125,7 @@ fn geltip_imprints_grow_with_depth_and_follow_the_object() {
         })
         .collect();
     let bkg = npy::read(golden("geltip/params/bkg_depth_m.npy.gz")).unwrap();
-    let model = GelTipModel::new(GelTipParams::default(), &bkg.data, 320, &fields);
+    let mut model = GelTipModel::new(GelTipParams::default(), &bkg.data, 320, &fields);
     let bg = background("geltip");
     check(
         "geltip",

@@ -76,33 +76,59 @@ fn reflect_101(index: i64, len: usize) -> usize {
 }
 
 impl Field {
-    /// The field of `values`, its background taken as its minimum.
-    pub(crate) fn new(values: Vec<f32>, width: usize) -> Self {
-        let background = values.iter().copied().fold(f32::INFINITY, f32::min);
-        let height = values.len() / width;
+    /// An empty field, to be filled with [`Field::assign`].
+    pub(crate) fn empty() -> Self {
+        Self {
+            values: Vec::new(),
+            width: 1,
+            background: 0.0,
+            region: Region {
+                x0: 0,
+                x1: 0,
+                y0: 0,
+                y1: 0,
+            },
+        }
+    }
+
+    /// Fills the field with `values`, `width` wide; its background is taken as its minimum.
+    pub(crate) fn assign(&mut self, width: usize, values: impl Iterator<Item = f32>) {
+        self.values.clear();
+        self.values.extend(values);
+        self.width = width;
+        self.background = self.values.iter().copied().fold(f32::INFINITY, f32::min);
+        let height = self.height();
         let mut region = Region {
             x0: width,
             x1: 0,
             y0: height,
             y1: 0,
         };
-        for (i, value) in values.iter().enumerate() {
-            if *value != background {
-                let (x, y) = (i % width, i / width);
+        for (y, row) in self.values.chunks_exact(width).enumerate() {
+            let mut changed = row
+                .iter()
+                .enumerate()
+                .filter(|(_, v)| **v != self.background)
+                .map(|(x, _)| x);
+            if let Some(first) = changed.next() {
+                let last = changed.last().unwrap_or(first);
                 region = region.union(Region {
-                    x0: x,
-                    x1: x + 1,
+                    x0: first,
+                    x1: last + 1,
                     y0: y,
                     y1: y + 1,
                 });
             }
         }
-        Self {
-            values,
-            width,
-            background,
-            region,
-        }
+        self.region = region;
+    }
+
+    /// Makes this field a copy of `other`, reusing its memory.
+    pub(crate) fn copy_from(&mut self, other: &Field) {
+        self.values.clone_from(&other.values);
+        self.width = other.width;
+        self.background = other.background;
+        self.region = other.region;
     }
 
     fn height(&self) -> usize {
@@ -122,66 +148,82 @@ impl Field {
         peak
     }
 
-    /// Correlation with `kernel ⊗ kernel` (anchored at `len / 2`, reflect-101 borders).
-    pub(crate) fn blur(&self, kernel: &[f32]) -> Field {
+    /// Writes the correlation with `kernel ⊗ kernel` (anchored at `len / 2`, reflect-101
+    /// borders) into `out`, using `rows` as scratch.
+    pub(crate) fn blur_into(
+        &self,
+        kernel: &[f32],
+        rows: &mut Vec<f32>,
+        padded: &mut Vec<f32>,
+        out: &mut Field,
+    ) {
         let (width, height) = (self.width, self.height());
         let anchor = kernel.len() / 2;
         let region = self
             .region
             .grown(anchor, kernel.len() - 1 - anchor, width, height);
         let background = kernel.iter().map(|k| k * self.background).sum::<f32>();
-        let mut rows = vec![self.background; self.values.len()];
-        let mut padded = vec![0.0f32; width + kernel.len() - 1];
+        rows.clear();
+        rows.resize(self.values.len(), self.background);
+        padded.clear();
+        padded.resize(width + kernel.len() - 1, 0.0);
         for y in self.region.y0..self.region.y1 {
             let row = &self.values[y * width..(y + 1) * width];
             for (i, value) in padded.iter_mut().enumerate() {
                 *value = row[reflect_101(i as i64 - anchor as i64, width)];
             }
-            let out = &mut rows[y * width + region.x0..y * width + region.x1];
-            out.fill(0.0);
+            let out_row = &mut rows[y * width + region.x0..y * width + region.x1];
+            out_row.fill(0.0);
             for (k, weight) in kernel.iter().enumerate() {
-                for (value, sample) in out.iter_mut().zip(&padded[region.x0 + k..region.x1 + k]) {
+                for (value, sample) in out_row
+                    .iter_mut()
+                    .zip(&padded[region.x0 + k..region.x1 + k])
+                {
                     *value += weight * sample;
                 }
             }
         }
-        let mut values = vec![background; self.values.len()];
+        out.values.clear();
+        out.values.resize(self.values.len(), background);
+        out.width = width;
+        out.background = background;
+        out.region = region;
         for y in region.y0..region.y1 {
-            let out = &mut values[y * width + region.x0..y * width + region.x1];
-            out.fill(0.0);
+            let out_row = &mut out.values[y * width + region.x0..y * width + region.x1];
+            out_row.fill(0.0);
             for (k, weight) in kernel.iter().enumerate() {
                 let source = reflect_101(y as i64 + k as i64 - anchor as i64, height);
                 let samples = &rows[source * width + region.x0..source * width + region.x1];
-                for (value, sample) in out.iter_mut().zip(samples) {
+                for (value, sample) in out_row.iter_mut().zip(samples) {
                     *value += weight * sample;
                 }
             }
         }
-        Field {
-            values,
-            width,
-            background,
-            region,
-        }
     }
 
-    /// `max(scale · self, floor)` pixel by pixel.
-    pub(crate) fn scaled_at_least(&self, scale: f32, floor: &Field) -> Field {
-        let region = self.region.union(floor.region);
+    /// `self = max(scale · self, floor)` pixel by pixel.
+    pub(crate) fn scale_at_least(&mut self, scale: f32, floor: &Field) {
         let background = (scale * self.background).max(floor.background);
-        let mut values = vec![background; self.values.len()];
-        for y in region.y0..region.y1 {
-            for x in region.x0..region.x1 {
-                let i = y * self.width + x;
-                values[i] = (scale * self.values[i]).max(floor.values[i]);
+        let region = self.region.union(floor.region);
+        let width = self.width;
+        for y in 0..self.height() {
+            let row = &mut self.values[y * width..(y + 1) * width];
+            if y < region.y0 || y >= region.y1 {
+                row.fill(background);
+                continue;
+            }
+            let floor_row = &floor.values[y * width..(y + 1) * width];
+            row[..region.x0].fill(background);
+            row[region.x1..].fill(background);
+            for (value, floor) in row[region.x0..region.x1]
+                .iter_mut()
+                .zip(&floor_row[region.x0..region.x1])
+            {
+                *value = (scale * *value).max(*floor);
             }
         }
-        Field {
-            values,
-            width: self.width,
-            background,
-            region,
-        }
+        self.background = background;
+        self.region = region;
     }
 }
 
@@ -203,8 +245,11 @@ mod tests {
                 .collect();
             for n in [21, 52] {
                 let kernel = gaussian_kernel(n, if n == 21 { 7.0 } else { 9.0 });
-                let sparse = Field::new(values.clone(), width)
-                    .blur(&kernel.iter().map(|k| *k as f32).collect::<Vec<_>>());
+                let mut field = Field::empty();
+                field.assign(width, values.iter().copied());
+                let mut sparse = Field::empty();
+                let single: Vec<f32> = kernel.iter().map(|k| *k as f32).collect();
+                field.blur_into(&single, &mut Vec::new(), &mut Vec::new(), &mut sparse);
                 let dense_in: Vec<f64> = values.iter().map(|v| f64::from(*v)).collect();
                 let (mut scratch, mut dense) =
                     (vec![0.0; dense_in.len()], vec![0.0; dense_in.len()]);

@@ -3,6 +3,7 @@
 
 use super::field::Field;
 use super::filter::{correlate_columns, correlate_rows, gaussian_kernel};
+use super::int_pow;
 
 /// A light of the GelTip model.
 #[derive(Debug, Clone, PartialEq)]
@@ -54,14 +55,23 @@ impl Default for GelTipParams {
 }
 
 /// The GelTip model for one sensor geometry: its undeformed membrane depth and light fields.
+/// Buffers are reused from frame to frame.
 #[derive(Debug, Clone)]
 pub struct GelTipModel {
     params: GelTipParams,
     width: usize,
-    background_depth: Vec<f64>,
+    background_depth: Vec<f32>,
     /// Per light, the direction *towards* the light at each pixel (the negated field).
     towards_lights: Vec<Vec<[f64; 3]>>,
     kernel: Vec<f32>,
+    protrusion: Field,
+    blurred: Field,
+    rows: Vec<f32>,
+    padded: Vec<f32>,
+    points: Vec<[f64; 3]>,
+    coordinate: Vec<f64>,
+    derivative: Vec<f64>,
+    tangents: [Vec<[f64; 3]>; 2],
 }
 
 impl GelTipModel {
@@ -100,12 +110,20 @@ impl GelTipModel {
         Self {
             params,
             width,
-            background_depth: background_depth.iter().map(|&d| f64::from(d)).collect(),
+            background_depth: background_depth.to_vec(),
             towards_lights,
             kernel: gaussian_kernel(95, 9.0)
                 .into_iter()
                 .map(|k| k as f32)
                 .collect(),
+            protrusion: Field::empty(),
+            blurred: Field::empty(),
+            rows: Vec::new(),
+            padded: Vec::new(),
+            points: Vec::new(),
+            coordinate: Vec::new(),
+            derivative: Vec::new(),
+            tangents: [Vec::new(), Vec::new()],
         }
     }
 
@@ -115,7 +133,18 @@ impl GelTipModel {
     /// # Panics
     ///
     /// When sizes do not match the model's.
-    pub fn render(&self, depth: &[f32], background: &[u8]) -> Vec<u8> {
+    pub fn render(&mut self, depth: &[f32], background: &[u8]) -> Vec<u8> {
+        let mut out = vec![0; background.len()];
+        self.render_into(depth, background, &mut out);
+        out
+    }
+
+    /// [`GelTipModel::render`] into a caller's buffer.
+    ///
+    /// # Panics
+    ///
+    /// When sizes do not match the model's.
+    pub fn render_into(&mut self, depth: &[f32], background: &[u8], out: &mut [u8]) {
         assert_eq!(
             depth.len(),
             self.background_depth.len(),
@@ -126,103 +155,112 @@ impl GelTipModel {
             3 * depth.len(),
             "background must be width × height × 3"
         );
-        let deformed = self.deform(depth);
-        let points = self.back_project(&deformed);
-        let normals = self.normals(&points);
-        let mut out = Vec::with_capacity(background.len());
-        for (pixel, (point, normal)) in points.iter().zip(&normals).enumerate() {
+        assert_eq!(
+            out.len(),
+            background.len(),
+            "output must be width × height × 3"
+        );
+        self.deform_and_back_project(depth);
+        self.tangents();
+        let p = &self.params;
+        for (pixel, point) in self.points.iter().enumerate() {
+            let (a, b) = (
+                normalised(self.tangents[0][pixel]),
+                normalised(self.tangents[1][pixel]),
+            );
+            let normal = [
+                -(a[1] * b[2] - a[2] * b[1]),
+                -(a[2] * b[0] - a[0] * b[2]),
+                -(a[0] * b[1] - a[1] * b[0]),
+            ];
             let view = scale(normalised(*point), -1.0);
             let mut light_sum = [0.0; 3];
-            for (light, towards) in self.params.lights.iter().zip(&self.towards_lights) {
+            for (light, towards) in p.lights.iter().zip(&self.towards_lights) {
                 let l = towards[pixel];
-                let ln = dot(l, *normal);
+                let ln = dot(l, normal);
                 let reflected = [
                     2.0 * ln * normal[0] - l[0],
                     2.0 * ln * normal[1] - l[1],
                     2.0 * ln * normal[2] - l[2],
                 ];
-                let diffuse = if self.params.clamp_diffuse {
-                    ln.max(0.0)
-                } else {
-                    ln
-                };
-                let weight = light.id * diffuse + light.is * dot(reflected, view).powi(light.alpha);
+                let diffuse = if p.clamp_diffuse { ln.max(0.0) } else { ln };
+                let weight =
+                    light.id * diffuse + light.is * int_pow(dot(reflected, view), light.alpha);
                 for (sum, colour) in light_sum.iter_mut().zip(light.colour) {
                     *sum += weight * colour / 255.0;
                 }
             }
             for c in 0..3 {
-                let intensity =
-                    self.params.ia * f64::from(background[3 * pixel + c]) / 255.0 + light_sum[c];
-                out.push((intensity * 255.0).clamp(0.0, 255.0) as u8);
+                let intensity = p.ia * f64::from(background[3 * pixel + c]) / 255.0 + light_sum[c];
+                out[3 * pixel + c] = (intensity * 255.0).clamp(0.0, 255.0) as u8;
             }
         }
-        out
     }
 
-    /// `depth = min(depth, bkg − blur(bkg − depth))`, in f32 like the reference, on the part
-    /// of the image a press changes.
-    fn deform(&self, depth: &[f32]) -> Vec<f64> {
-        let protrusion: Vec<f32> = depth
-            .iter()
-            .zip(&self.background_depth)
-            .map(|(d, b)| (*b as f32) - d)
-            .collect();
-        let blurred = Field::new(protrusion, self.width).blur(&self.kernel);
-        depth
-            .iter()
-            .zip(&self.background_depth)
-            .zip(&blurred.values)
-            .map(|((d, b), e)| f64::from(d.min(*b as f32 - e)))
-            .collect()
-    }
-
-    /// Pixels to camera-frame points (`z` = depth / 1000, as the reference's Open3D call).
-    fn back_project(&self, depth: &[f64]) -> Vec<[f64; 3]> {
-        let height = depth.len() / self.width;
+    /// `depth = min(depth, bkg − blur(bkg − depth))` in f32 like the reference, on the part of
+    /// the image a press changes; then pixels to camera-frame points (`z` = depth / 1000, as the
+    /// reference's Open3D call).
+    fn deform_and_back_project(&mut self, depth: &[f32]) {
+        let width = self.width;
+        self.protrusion.assign(
+            width,
+            depth.iter().zip(&self.background_depth).map(|(d, b)| b - d),
+        );
+        self.protrusion.blur_into(
+            &self.kernel,
+            &mut self.rows,
+            &mut self.padded,
+            &mut self.blurred,
+        );
+        let height = depth.len() / width;
         let f = height as f64 / (2.0 * (self.params.fov_deg.to_radians() / 2.0).tan());
-        let (cx, cy) = ((self.width as f64 - 1.0) / 2.0, (height as f64 - 1.0) / 2.0);
-        depth
-            .iter()
-            .enumerate()
-            .map(|(i, d)| {
-                let z = d / 1000.0;
-                let (u, v) = ((i % self.width) as f64, (i / self.width) as f64);
-                [(u - cx) * z / f, (v - cy) * z / f, z]
-            })
-            .collect()
+        let (cx, cy) = ((width as f64 - 1.0) / 2.0, (height as f64 - 1.0) / 2.0);
+        self.points.clear();
+        self.points.extend(
+            depth
+                .iter()
+                .zip(&self.background_depth)
+                .zip(&self.blurred.values)
+                .enumerate()
+                .map(|(i, ((d, b), e))| {
+                    let z = f64::from(d.min(b - e)) / 1000.0;
+                    let (u, v) = ((i % width) as f64, (i / width) as f64);
+                    [(u - cx) * z / f, (v - cy) * z / f, z]
+                }),
+        );
     }
 
-    /// `n = −(normalise(∂x S) × normalise(∂y S))` with central differences per coordinate.
-    fn normals(&self, points: &[[f64; 3]]) -> Vec<[f64; 3]> {
-        let mut tangents = [vec![[0.0; 3]; points.len()], vec![[0.0; 3]; points.len()]];
-        let mut channel = vec![0.0; points.len()];
-        let mut derivative = vec![0.0; points.len()];
+    /// Central differences of the points along rows and columns.
+    fn tangents(&mut self) {
+        let n = self.points.len();
+        self.coordinate.resize(n, 0.0);
+        self.derivative.resize(n, 0.0);
+        for tangent in &mut self.tangents {
+            tangent.resize(n, [0.0; 3]);
+        }
         for c in 0..3 {
-            for (value, point) in channel.iter_mut().zip(points) {
+            for (value, point) in self.coordinate.iter_mut().zip(&self.points) {
                 *value = point[c];
             }
-            correlate_rows(&channel, self.width, &[-0.5, 0.0, 0.5], &mut derivative);
-            for (t, d) in tangents[0].iter_mut().zip(&derivative) {
+            correlate_rows(
+                &self.coordinate,
+                self.width,
+                &[-0.5, 0.0, 0.5],
+                &mut self.derivative,
+            );
+            for (t, d) in self.tangents[0].iter_mut().zip(&self.derivative) {
                 t[c] = *d;
             }
-            correlate_columns(&channel, self.width, &[-0.5, 0.0, 0.5], &mut derivative);
-            for (t, d) in tangents[1].iter_mut().zip(&derivative) {
+            correlate_columns(
+                &self.coordinate,
+                self.width,
+                &[-0.5, 0.0, 0.5],
+                &mut self.derivative,
+            );
+            for (t, d) in self.tangents[1].iter_mut().zip(&self.derivative) {
                 t[c] = *d;
             }
         }
-        tangents[0]
-            .iter()
-            .zip(&tangents[1])
-            .map(|(tx, ty)| {
-                let (a, b) = (normalised(*tx), normalised(*ty));
-                [
-                    -(a[1] * b[2] - a[2] * b[1]),
-                    -(a[2] * b[0] - a[0] * b[2]),
-                    -(a[0] * b[1] - a[1] * b[0]),
-                ]
-            })
-            .collect()
     }
 }
 

@@ -13,3 +13,17 @@ pub mod geltip;
 pub mod noise;
 pub mod npy;
 pub mod phong;
+
+/// `base` to an integer power by repeated squaring (odd powers keep the sign), without the
+/// library call `powi` becomes for a run-time exponent.
+fn int_pow(base: f64, exponent: i32) -> f64 {
+    let (mut result, mut square, mut n) = (1.0, base, exponent.unsigned_abs());
+    while n > 0 {
+        if n & 1 == 1 {
+            result *= square;
+        }
+        square *= square;
+        n >>= 1;
+    }
+    if exponent < 0 { 1.0 / result } else { result }
+}

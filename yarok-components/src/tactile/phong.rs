@@ -3,6 +3,7 @@
 
 use super::field::Field;
 use super::filter::{correlate_columns, correlate_rows, gaussian_blur, gaussian_kernel};
+use super::int_pow;
 
 /// A coloured light of the Phong model.
 #[derive(Debug, Clone, PartialEq)]
@@ -100,13 +101,57 @@ impl PhongParams {
     }
 }
 
-/// The Phong optical model, with its kernels built once.
+/// The Phong optical model, with its kernels built once and its buffers reused from frame to
+/// frame (no allocation per frame once the image size is known).
 #[derive(Debug, Clone)]
 pub struct PhongModel {
     params: PhongParams,
     narrow: Vec<f32>,
     wide: Vec<f32>,
     blur: Vec<f64>,
+    scratch: Scratch,
+}
+
+/// Buffers of one image size.
+#[derive(Debug, Clone)]
+struct Scratch {
+    indentation: Field,
+    narrow: Field,
+    wide: Field,
+    blurred: Field,
+    rows: Vec<f32>,
+    padded: Vec<f32>,
+    shadow: Vec<f64>,
+    height_map: Vec<f64>,
+    noise: Vec<f64>,
+    dx: Vec<f64>,
+    dy: Vec<f64>,
+    image: Vec<u8>,
+    channel: Vec<f64>,
+    channel_rows: Vec<f64>,
+    channel_blurred: Vec<f64>,
+}
+
+impl Scratch {
+    fn new() -> Self {
+        Self {
+            indentation: Field::empty(),
+            narrow: Field::empty(),
+            wide: Field::empty(),
+            blurred: Field::empty(),
+            rows: Vec::new(),
+            padded: Vec::new(),
+            shadow: Vec::new(),
+            height_map: Vec::new(),
+            noise: Vec::new(),
+            dx: Vec::new(),
+            dy: Vec::new(),
+            image: Vec::new(),
+            channel: Vec::new(),
+            channel_rows: Vec::new(),
+            channel_blurred: Vec::new(),
+        }
+    }
 }
 
 impl PhongModel {
@@ -118,6 +163,7 @@ impl PhongModel {
             narrow: single(gaussian_kernel(21, 7.0)),
             wide: single(gaussian_kernel(52, 9.0)),
             blur: gaussian_kernel(3, 1.0),
+            scratch: Scratch::new(),
         }
     }
 
@@ -127,135 +173,153 @@ impl PhongModel {
     /// # Panics
     ///
     /// When `depth` and `background` sizes do not match `width`.
-    pub fn render(&self, depth: &[f32], width: usize, background: &[u8]) -> Vec<u8> {
+    pub fn render(&mut self, depth: &[f32], width: usize, background: &[u8]) -> Vec<u8> {
+        let mut out = vec![0; background.len()];
+        self.render_into(depth, width, background, &mut out);
+        out
+    }
+
+    /// [`PhongModel::render`] into a caller's buffer (`height × width × 3`).
+    ///
+    /// # Panics
+    ///
+    /// When the sizes do not match.
+    pub fn render_into(&mut self, depth: &[f32], width: usize, background: &[u8], out: &mut [u8]) {
         assert_eq!(
             depth.len() * 3,
             background.len(),
             "background must be width × height × 3"
         );
+        assert_eq!(
+            out.len(),
+            background.len(),
+            "output must be width × height × 3"
+        );
         assert_eq!(depth.len() % width, 0, "depth must be width × height");
-        let p = &self.params;
-        let max_depth = p.max_depth();
-        let protrusion: Vec<f64> = depth
-            .iter()
-            .map(|&d| {
-                if f64::from(d) >= max_depth {
-                    max_depth
-                } else {
-                    f64::from(d)
-                }
-            })
-            .collect();
-        let elastomer = self.deform(&protrusion, width, max_depth);
-
-        let mut out: Vec<u8> = background
-            .iter()
-            .enumerate()
-            .map(|(i, &b)| {
-                let shadow =
-                    ((max_depth - protrusion[i / 3]) / p.elastomer_thickness).clamp(0.0, 1.0);
-                overlay(p.ka * f64::from(b), shadow, 0.0)
-            })
-            .collect();
-
-        let noise = if p.texture_sigma > 0.0 {
-            super::noise::SplitMix64::new(p.seed).normal(elastomer.len(), p.texture_sigma)
-        } else {
-            vec![0.0; elastomer.len()]
-        };
-        let scaled: Vec<f64> = elastomer
-            .iter()
-            .zip(&noise)
-            .map(|(e, n)| (e + n) / p.px2m_ratio)
-            .collect();
-        let normals = normals(&scaled, width);
-        for light in &p.lights {
-            for (pixel, n) in normals.iter().enumerate() {
-                let dot =
-                    n[0] * light.position[0] + n[1] * light.position[1] + n[2] * light.position[2];
-                let diffuse = (light.kd * dot).max(0.0);
-                let reflected_z = 2.0 * dot * n[2] - light.position[2];
-                let intensity = diffuse + light.ks * reflected_z.powi(light.alpha);
-                for c in 0..3 {
-                    let value = &mut out[3 * pixel + c];
-                    *value = overlay(f64::from(*value), intensity, light.colour[c]);
-                }
-            }
-        }
-        self.final_blur(&out, width)
+        let max_depth = self.params.max_depth();
+        let thickness = self.params.elastomer_thickness;
+        let s = &mut self.scratch;
+        s.shadow.clear();
+        s.shadow.extend(
+            depth
+                .iter()
+                .map(|&d| ((max_depth - f64::from(d).min(max_depth)) / thickness).clamp(0.0, 1.0)),
+        );
+        s.indentation.assign(
+            width,
+            depth
+                .iter()
+                .map(|&d| (max_depth - f64::from(d).min(max_depth)) as f32),
+        );
+        self.deform(width, max_depth);
+        self.light(width, background);
+        self.final_blur(width, out);
     }
 
     /// Elastic deformation: the indentation smoothed by two Gaussians (difference of Gaussians),
     /// each iteration renormalised to keep the indentation's peak. Runs in f32 like the reference,
-    /// on the part of the image a press changes.
-    fn deform(&self, protrusion: &[f64], width: usize, max_depth: f64) -> Vec<f64> {
-        let indentation = Field::new(
-            protrusion.iter().map(|p| (max_depth - p) as f32).collect(),
-            width,
-        );
-        let peak = indentation.max();
-        let passes = |kernel: &[f32], start: Field, times: usize| {
-            let mut current = start;
+    /// on the part of the image a press changes. Leaves `height_map` = elastomer depth + texture,
+    /// in pixels.
+    fn deform(&mut self, width: usize, max_depth: f64) {
+        let s = &mut self.scratch;
+        let p = &self.params;
+        let peak = s.indentation.max();
+        let mut passes = |kernel: &[f32], field: &mut Field, times: usize| {
             for _ in 0..times {
-                let blurred = current.blur(kernel);
-                let peak_out = blurred.max();
+                field.blur_into(kernel, &mut s.rows, &mut s.padded, &mut s.blurred);
+                let peak_out = s.blurred.max();
                 let ratio = if peak_out <= 0.0 {
                     1.0
                 } else {
                     peak / peak_out
                 };
-                current = blurred.scaled_at_least(ratio, &indentation);
+                s.blurred.scale_at_least(ratio, &s.indentation);
+                std::mem::swap(field, &mut s.blurred);
             }
-            current
         };
-        let narrow = passes(&self.narrow, indentation.clone(), self.params.iterations);
-        let mut wide = passes(&self.wide, indentation.clone(), self.params.iterations);
-        if self.params.extra_passes {
-            wide = passes(&self.narrow, wide, self.params.iterations);
+        s.narrow.copy_from(&s.indentation);
+        passes(&self.narrow, &mut s.narrow, p.iterations);
+        s.wide.copy_from(&s.indentation);
+        passes(&self.wide, &mut s.wide, p.iterations);
+        if p.extra_passes {
+            passes(&self.narrow, &mut s.wide, p.iterations);
         }
-        narrow
-            .values
-            .iter()
-            .zip(&wide.values)
-            .map(|(a, b)| f64::from(max_depth as f32 - (2.0 * a - b)))
-            .collect()
+        if s.noise.len() != s.narrow.values.len() {
+            s.noise = if p.texture_sigma > 0.0 {
+                super::noise::SplitMix64::new(p.seed).normal(s.narrow.values.len(), p.texture_sigma)
+            } else {
+                vec![0.0; s.narrow.values.len()]
+            };
+        }
+        s.height_map.clear();
+        s.height_map.extend(
+            s.narrow
+                .values
+                .iter()
+                .zip(&s.wide.values)
+                .zip(&s.noise)
+                .map(|((a, b), n)| {
+                    (f64::from(max_depth as f32 - (2.0 * a - b)) + n) / p.px2m_ratio
+                }),
+        );
+        let _ = width;
     }
 
-    fn final_blur(&self, image: &[u8], width: usize) -> Vec<u8> {
-        let pixels = image.len() / 3;
-        let mut channel = vec![0.0; pixels];
-        let mut scratch = vec![0.0; pixels];
-        let mut blurred = vec![0.0; pixels];
-        let mut out = vec![0u8; image.len()];
-        for c in 0..3 {
-            for (i, value) in channel.iter_mut().enumerate() {
-                *value = f64::from(image[3 * i + c]);
+    /// The ambient background darkened by the internal shadow, then each light blended in.
+    fn light(&mut self, width: usize, background: &[u8]) {
+        let s = &mut self.scratch;
+        let p = &self.params;
+        s.dx.resize(s.height_map.len(), 0.0);
+        s.dy.resize(s.height_map.len(), 0.0);
+        correlate_rows(&s.height_map, width, &[-0.5, 0.0, 0.5], &mut s.dx);
+        correlate_columns(&s.height_map, width, &[-0.5, 0.0, 0.5], &mut s.dy);
+        s.image.clear();
+        s.image.resize(background.len(), 0);
+        for (pixel, ((dx, dy), shadow)) in s.dx.iter().zip(&s.dy).zip(&s.shadow).enumerate() {
+            let norm = (dx * dx + dy * dy + 1.0).sqrt();
+            let n = [-dx / norm, -dy / norm, 1.0 / norm];
+            let mut rgb = [0u8; 3];
+            for c in 0..3 {
+                rgb[c] = overlay(p.ka * f64::from(background[3 * pixel + c]), *shadow, 0.0);
             }
-            gaussian_blur(&channel, width, &self.blur, &mut scratch, &mut blurred);
-            for (i, value) in blurred.iter().enumerate() {
+            for light in &p.lights {
+                let l = light.position;
+                let dot = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
+                let diffuse = (light.kd * dot).max(0.0);
+                let intensity = diffuse + light.ks * int_pow(2.0 * dot * n[2] - l[2], light.alpha);
+                for (value, colour) in rgb.iter_mut().zip(light.colour) {
+                    *value = overlay(f64::from(*value), intensity, colour);
+                }
+            }
+            s.image[3 * pixel..3 * pixel + 3].copy_from_slice(&rgb);
+        }
+    }
+
+    fn final_blur(&mut self, width: usize, out: &mut [u8]) {
+        let s = &mut self.scratch;
+        let pixels = s.image.len() / 3;
+        s.channel.resize(pixels, 0.0);
+        s.channel_rows.resize(pixels, 0.0);
+        s.channel_blurred.resize(pixels, 0.0);
+        for c in 0..3 {
+            for (i, value) in s.channel.iter_mut().enumerate() {
+                *value = f64::from(s.image[3 * i + c]);
+            }
+            gaussian_blur(
+                &s.channel,
+                width,
+                &self.blur,
+                &mut s.channel_rows,
+                &mut s.channel_blurred,
+            );
+            for (i, value) in s.channel_blurred.iter().enumerate() {
                 out[3 * i + c] = value.round_ties_even().clamp(0.0, 255.0) as u8;
             }
         }
-        out
     }
 }
 
 /// `clip((1 − α)·value + α·colour, 0, 255)` truncated to u8, as the reference's overlay.
 fn overlay(value: f64, alpha: f64, colour: f64) -> u8 {
     ((1.0 - alpha) * value + alpha * colour).clamp(0.0, 255.0) as u8
-}
-
-/// Unit normals `(−∂x, −∂y, 1)/‖·‖` with central differences and reflect-101 borders.
-fn normals(height_map: &[f64], width: usize) -> Vec<[f64; 3]> {
-    let mut dx = vec![0.0; height_map.len()];
-    let mut dy = vec![0.0; height_map.len()];
-    correlate_rows(height_map, width, &[-0.5, 0.0, 0.5], &mut dx);
-    correlate_columns(height_map, width, &[-0.5, 0.0, 0.5], &mut dy);
-    dx.iter()
-        .zip(&dy)
-        .map(|(x, y)| {
-            let norm = (x * x + y * y + 1.0).sqrt();
-            [-x / norm, -y / norm, 1.0 / norm]
-        })
-        .collect()
 }
