@@ -126,8 +126,9 @@ struct Scratch {
     noise: Vec<f64>,
     dx: Vec<f64>,
     dy: Vec<f64>,
-    image: Vec<u8>,
-    channel: Vec<f64>,
+    nz: Vec<f64>,
+    intensity: Vec<f64>,
+    channels: [Vec<f64>; 3],
     channel_rows: Vec<f64>,
     channel_blurred: Vec<f64>,
 }
@@ -146,8 +147,9 @@ impl Scratch {
             noise: Vec::new(),
             dx: Vec::new(),
             dy: Vec::new(),
-            image: Vec::new(),
-            channel: Vec::new(),
+            nz: Vec::new(),
+            intensity: Vec::new(),
+            channels: [Vec::new(), Vec::new(), Vec::new()],
             channel_rows: Vec::new(),
             channel_blurred: Vec::new(),
         }
@@ -265,48 +267,60 @@ impl PhongModel {
         let _ = width;
     }
 
-    /// The ambient background darkened by the internal shadow, then each light blended in.
+    /// The ambient background darkened by the internal shadow, then each light blended in;
+    /// planar, one pass per light, so that the per-pixel work vectorises.
     fn light(&mut self, width: usize, background: &[u8]) {
         let s = &mut self.scratch;
         let p = &self.params;
-        s.dx.resize(s.height_map.len(), 0.0);
-        s.dy.resize(s.height_map.len(), 0.0);
+        let pixels = s.height_map.len();
+        s.dx.resize(pixels, 0.0);
+        s.dy.resize(pixels, 0.0);
         correlate_rows(&s.height_map, width, &[-0.5, 0.0, 0.5], &mut s.dx);
         correlate_columns(&s.height_map, width, &[-0.5, 0.0, 0.5], &mut s.dy);
-        s.image.clear();
-        s.image.resize(background.len(), 0);
-        for (pixel, ((dx, dy), shadow)) in s.dx.iter().zip(&s.dy).zip(&s.shadow).enumerate() {
-            let norm = (dx * dx + dy * dy + 1.0).sqrt();
-            let n = [-dx / norm, -dy / norm, 1.0 / norm];
-            let mut rgb = [0u8; 3];
-            for c in 0..3 {
-                rgb[c] = overlay(p.ka * f64::from(background[3 * pixel + c]), *shadow, 0.0);
+        s.nz.resize(pixels, 0.0);
+        for ((x, y), z) in s.dx.iter_mut().zip(&mut s.dy).zip(&mut s.nz) {
+            let norm = (*x * *x + *y * *y + 1.0).sqrt();
+            (*x, *y, *z) = (-*x / norm, -*y / norm, 1.0 / norm);
+        }
+        for (c, channel) in s.channels.iter_mut().enumerate() {
+            channel.clear();
+            channel.extend(
+                s.shadow.iter().enumerate().map(|(i, shadow)| {
+                    blend(p.ka * f64::from(background[3 * i + c]), *shadow, 0.0)
+                }),
+            );
+        }
+        s.intensity.resize(pixels, 0.0);
+        for light in &p.lights {
+            let [lx, ly, lz] = light.position;
+            for (((intensity, x), y), z) in s.intensity.iter_mut().zip(&s.dx).zip(&s.dy).zip(&s.nz)
+            {
+                let dot = x * lx + y * ly + z * lz;
+                let reflected_z = 2.0 * dot * z - lz;
+                let specular = if light.alpha == 5 {
+                    let square = reflected_z * reflected_z;
+                    square * square * reflected_z
+                } else {
+                    int_pow(reflected_z, light.alpha)
+                };
+                *intensity = (light.kd * dot).max(0.0) + light.ks * specular;
             }
-            for light in &p.lights {
-                let l = light.position;
-                let dot = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
-                let diffuse = (light.kd * dot).max(0.0);
-                let intensity = diffuse + light.ks * int_pow(2.0 * dot * n[2] - l[2], light.alpha);
-                for (value, colour) in rgb.iter_mut().zip(light.colour) {
-                    *value = overlay(f64::from(*value), intensity, colour);
+            for (channel, colour) in s.channels.iter_mut().zip(light.colour) {
+                for (value, intensity) in channel.iter_mut().zip(&s.intensity) {
+                    *value = blend(*value, *intensity, colour);
                 }
             }
-            s.image[3 * pixel..3 * pixel + 3].copy_from_slice(&rgb);
         }
     }
 
     fn final_blur(&mut self, width: usize, out: &mut [u8]) {
         let s = &mut self.scratch;
-        let pixels = s.image.len() / 3;
-        s.channel.resize(pixels, 0.0);
+        let pixels = s.channels[0].len();
         s.channel_rows.resize(pixels, 0.0);
         s.channel_blurred.resize(pixels, 0.0);
-        for c in 0..3 {
-            for (i, value) in s.channel.iter_mut().enumerate() {
-                *value = f64::from(s.image[3 * i + c]);
-            }
+        for (c, channel) in s.channels.iter().enumerate() {
             gaussian_blur(
-                &s.channel,
+                channel,
                 width,
                 &self.blur,
                 &mut s.channel_rows,
@@ -319,7 +333,10 @@ impl PhongModel {
     }
 }
 
-/// `clip((1 − α)·value + α·colour, 0, 255)` truncated to u8, as the reference's overlay.
-fn overlay(value: f64, alpha: f64, colour: f64) -> u8 {
-    ((1.0 - alpha) * value + alpha * colour).clamp(0.0, 255.0) as u8
+/// The reference's overlay: `clip((1 − α)·value + α·colour, 0, 255)` truncated to an integer
+/// (it casts to u8 after every blend).
+fn blend(value: f64, alpha: f64, colour: f64) -> f64 {
+    ((1.0 - alpha) * value + alpha * colour)
+        .clamp(0.0, 255.0)
+        .trunc()
 }
