@@ -105,13 +105,10 @@ impl Field {
             y1: 0,
         };
         for (y, row) in self.values.chunks_exact(width).enumerate() {
-            let mut changed = row
-                .iter()
-                .enumerate()
-                .filter(|(_, v)| **v != self.background)
-                .map(|(x, _)| x);
-            if let Some(first) = changed.next() {
-                let last = changed.last().unwrap_or(first);
+            let background = self.background;
+            let first = row.iter().position(|v| *v != background);
+            let last = row.iter().rposition(|v| *v != background);
+            if let (Some(first), Some(last)) = (first, last) {
                 region = region.union(Region {
                     x0: first,
                     x1: last + 1,
