@@ -152,3 +152,31 @@ fn texture_noise_is_seeded() {
     assert_ne!(first, render(2, 1e-5), "another seed, another texture");
     assert_ne!(first, render(1, 0.0), "the texture shows");
 }
+
+#[test]
+fn digit_metric_mode_sees_only_what_presses_into_the_gel() {
+    let mut model = PhongModel::new(PhongParams {
+        texture_sigma: 0.0,
+        ..PhongParams::digit_metric()
+    });
+    let bg = yarok_components::tactile::default_background(240, 320);
+    assert_eq!(bg.len(), 320 * 240 * 3);
+    let metric =
+        |case: &str| npy::read(golden(&format!("digit/{case}/depth_metric_m.npy.gz"))).unwrap();
+    let untouched = model.render(&metric("flat_surface").data, 240, &bg);
+    let (pixels, centre) = imprint(
+        &model.render(&metric("sphere_center").data, 240, &bg),
+        &untouched,
+        240,
+    );
+    assert!(
+        pixels > 100 && (centre.0 - 119.5).abs() < 3.0 && (centre.1 - 159.5).abs() < 3.0,
+        "{pixels} at {centre:?}"
+    );
+    let (deeper, _) = imprint(
+        &model.render(&metric("sphere_center_deep").data, 240, &bg),
+        &untouched,
+        240,
+    );
+    assert!(deeper > pixels, "{pixels} → {deeper}");
+}

@@ -76,6 +76,18 @@ impl PhongParams {
         }
     }
 
+    /// DIGIT fed metric depth (metres) instead of the raw z-buffer: the gel's outer surface at
+    /// 0.030 m from the camera and 2 mm thick, so only what presses into the gel counts as
+    /// contact. The reference's raw mode makes the look depend on the world's near/far planes;
+    /// this mode does not.
+    pub fn digit_metric() -> Self {
+        Self {
+            elastomer_thickness: 0.002,
+            min_depth: 0.028,
+            ..Self::digit()
+        }
+    }
+
     /// GelSight 2014 (480 × 640), depth in metres: gel from 0.030 to 0.034 m, four lights.
     pub fn gelsight2014() -> Self {
         Self {
