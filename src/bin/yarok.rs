@@ -2,12 +2,19 @@
 //!
 //! ```text
 //! yarok compose WORLD [--set [/PATH/]KEY=VALUE]... [--out FILE]
+//! yarok tactile digit|gelsight|geltip DEPTH OUT.png [--background PNG] [--geltip-params DIR]
+//!               [--noise SIGMA] [--seed N]
 //! ```
 //!
 //! `compose` writes the composed MJCF of WORLD — a bundled component's tag (e.g.
 //! `tumble-tower`) or an MJCF template file, in which bundled components' tags may be used — to
 //! standard output or FILE. `--set` overrides a config value of the world (`rows=4`) or of the
 //! component at a path (`/tower/rows=4`).
+//!
+//! `tactile` turns a depth map into a tactile image with a sensor's optical model. DEPTH is a
+//! 16-bit PNG in millimetres or a `.npy`/`.npy.gz` float array in the model's unit (DIGIT: the raw
+//! z-buffer, as the reference; a PNG selects DIGIT's metric mode). GelTip needs its geometry:
+//! `--geltip-params DIR` with `bkg_depth_m.npy.gz` and `light_field_{0,1,2}.npy.gz`.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -16,7 +23,9 @@ use yarok::components::catalogue;
 use yarok::core::compose::{Declaration, Overrides, Value, compose_declaration, compose_with};
 
 const USAGE: &str = "usage: yarok compose WORLD [--set [/PATH/]KEY=VALUE]... [--out FILE]
-  WORLD  a bundled component tag, or an MJCF template file";
+       yarok tactile digit|gelsight|geltip DEPTH OUT.png [--background PNG] [--geltip-params DIR] [--noise SIGMA] [--seed N]
+  WORLD  a bundled component tag, or an MJCF template file
+  DEPTH  a 16-bit PNG in millimetres, or a .npy/.npy.gz float array";
 
 struct Args {
     world: String,
@@ -25,7 +34,12 @@ struct Args {
 }
 
 fn main() -> ExitCode {
-    match parse(std::env::args().skip(1)).and_then(run) {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let result = match args.first().map(String::as_str) {
+        Some("tactile") => tactile::run(&args[1..]),
+        _ => parse(args.into_iter()).and_then(run),
+    };
+    match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {
             eprintln!("error: {message}");
@@ -104,5 +118,152 @@ fn run(args: Args) -> Result<(), String> {
             print!("{xml}");
             Ok(())
         }
+    }
+}
+
+mod tactile {
+    use std::path::Path;
+
+    use yarok::components::tactile::geltip::{GelTipModel, GelTipParams};
+    use yarok::components::tactile::phong::{PhongModel, PhongParams};
+    use yarok::components::tactile::{default_background, npy};
+
+    struct Options<'a> {
+        sensor: &'a str,
+        depth: &'a str,
+        out: &'a str,
+        background: Option<&'a str>,
+        geltip_params: Option<&'a str>,
+        noise: Option<f64>,
+        seed: u64,
+    }
+
+    fn options(args: &[String]) -> Result<Options<'_>, String> {
+        let [sensor, depth, out, rest @ ..] = args else {
+            return Err(super::USAGE.to_owned());
+        };
+        let mut options = Options {
+            sensor,
+            depth,
+            out,
+            background: None,
+            geltip_params: None,
+            noise: None,
+            seed: 0,
+        };
+        let mut rest = rest.iter();
+        while let Some(flag) = rest.next() {
+            let value = rest.next().ok_or_else(|| format!("{flag} needs a value"))?;
+            match flag.as_str() {
+                "--background" => options.background = Some(value),
+                "--geltip-params" => options.geltip_params = Some(value),
+                "--noise" => {
+                    options.noise = Some(
+                        value
+                            .parse()
+                            .map_err(|_| format!("--noise {value}: not a number"))?,
+                    )
+                }
+                "--seed" => {
+                    options.seed = value
+                        .parse()
+                        .map_err(|_| format!("--seed {value}: not an integer"))?
+                }
+                other => return Err(format!("unknown option {other}\n{}", super::USAGE)),
+            }
+        }
+        Ok(options)
+    }
+
+    /// The depth map and its width; PNGs are millimetres, converted to metres.
+    fn depth(path: &str) -> Result<(Vec<f32>, usize, bool), String> {
+        if path.ends_with(".png") {
+            let image = image::open(path)
+                .map_err(|e| format!("{path}: {e}"))?
+                .to_luma16();
+            let width = image.width() as usize;
+            return Ok((
+                image.pixels().map(|p| f32::from(p[0]) / 1000.0).collect(),
+                width,
+                true,
+            ));
+        }
+        let array = npy::read(path).map_err(|e| e.to_string())?;
+        match array.shape[..] {
+            [_, width] => Ok((array.data, width, false)),
+            _ => Err(format!(
+                "{path}: expected a 2-D array, got shape {:?}",
+                array.shape
+            )),
+        }
+    }
+
+    pub(super) fn run(args: &[String]) -> Result<(), String> {
+        let options = options(args)?;
+        let (depth, width, metric) = depth(options.depth)?;
+        let height = depth.len() / width.max(1);
+        let background = match options.background {
+            Some(path) => {
+                let image = image::open(path)
+                    .map_err(|e| format!("{path}: {e}"))?
+                    .to_rgb8();
+                if (image.width() as usize, image.height() as usize) != (width, height) {
+                    return Err(format!(
+                        "{path} is {}×{}, the depth map {width}×{height}",
+                        image.width(),
+                        image.height()
+                    ));
+                }
+                image.into_raw()
+            }
+            None => default_background(width, height),
+        };
+        let image = match options.sensor {
+            "digit" | "gelsight" => {
+                let mut params = match (options.sensor, metric) {
+                    ("digit", true) => PhongParams::digit_metric(),
+                    ("digit", false) => PhongParams::digit(),
+                    _ => PhongParams::gelsight2014(),
+                };
+                params.texture_sigma = options.noise.unwrap_or(params.texture_sigma);
+                params.seed = options.seed;
+                PhongModel::new(params).render(&depth, width, &background)
+            }
+            "geltip" => {
+                let dir = Path::new(
+                    options
+                        .geltip_params
+                        .ok_or("geltip needs --geltip-params DIR")?,
+                );
+                let read = |name: &str| npy::read(dir.join(name)).map_err(|e| e.to_string());
+                let reference = read("bkg_depth_m.npy.gz")?;
+                if reference.data.len() != depth.len() {
+                    return Err(format!(
+                        "the GelTip geometry is {:?}, the depth map {height}×{width}",
+                        reference.shape
+                    ));
+                }
+                let fields = (0..3)
+                    .map(|i| {
+                        Ok(read(&format!("light_field_{i}.npy.gz"))?
+                            .data
+                            .chunks_exact(3)
+                            .map(|v| [v[0], v[1], v[2]])
+                            .collect())
+                    })
+                    .collect::<Result<Vec<Vec<[f32; 3]>>, String>>()?;
+                GelTipModel::new(GelTipParams::default(), &reference.data, width, &fields)
+                    .render(&depth, &background)
+            }
+            other => {
+                return Err(format!(
+                    "unknown sensor {other:?}: digit, gelsight or geltip"
+                ));
+            }
+        };
+        image::RgbImage::from_raw(width as u32, height as u32, image)
+            .ok_or("internal: image size")?
+            .save(options.out)
+            .map_err(|e| format!("{}: {e}", options.out))
     }
 }

@@ -1,0 +1,121 @@
+//! `yarok tactile` turns depth maps into tactile images from the command line.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+fn golden(path: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/golden/tactile")
+        .join(path)
+}
+
+fn yarok(args: &[&str]) -> (i32, String) {
+    let output = Command::new(env!("CARGO_BIN_EXE_yarok"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        output.status.code().unwrap(),
+        String::from_utf8(output.stderr).unwrap(),
+    )
+}
+
+#[test]
+fn the_digit_model_from_the_command_line_matches_the_reference() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("digit.png");
+    let depth = golden("digit/sphere_center/input_depth.npy.gz");
+    let background = golden("digit/background.png");
+    let (code, stderr) = yarok(&[
+        "tactile",
+        "digit",
+        depth.to_str().unwrap(),
+        out.to_str().unwrap(),
+        "--background",
+        background.to_str().unwrap(),
+        "--noise",
+        "0",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let ours = image::open(&out).unwrap().to_rgb8();
+    let reference = image::open(golden("digit/sphere_center/output.png"))
+        .unwrap()
+        .to_rgb8();
+    assert_eq!(ours.dimensions(), (240, 320));
+    let worst = ours
+        .as_raw()
+        .iter()
+        .zip(reference.as_raw())
+        .map(|(a, b)| a.abs_diff(*b))
+        .max()
+        .unwrap();
+    assert!(worst <= 2, "max difference {worst}");
+}
+
+#[test]
+fn millimetre_pngs_and_geltip_geometry_are_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let depth_png = dir.path().join("depth.png");
+    let flat =
+        image::ImageBuffer::<image::Luma<u16>, _>::from_pixel(320, 240, image::Luma([30u16]));
+    flat.save(&depth_png).unwrap();
+    let out = dir.path().join("out.png");
+    let (code, stderr) = yarok(&[
+        "tactile",
+        "gelsight",
+        depth_png.to_str().unwrap(),
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert_eq!(
+        image::open(&out).unwrap().to_rgb8().dimensions(),
+        (320, 240)
+    );
+
+    let depth = golden("geltip/sphere_center/input_depth.npy.gz");
+    let params = golden("geltip/params");
+    let (code, stderr) = yarok(&[
+        "tactile",
+        "geltip",
+        depth.to_str().unwrap(),
+        out.to_str().unwrap(),
+        "--geltip-params",
+        params.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert_eq!(
+        image::open(&out).unwrap().to_rgb8().dimensions(),
+        (320, 240)
+    );
+}
+
+#[test]
+fn mistakes_are_explained() {
+    let depth = golden("geltip/sphere_center/input_depth.npy.gz");
+    let depth = depth.to_str().unwrap();
+    let (code, stderr) = yarok(&["tactile", "geltip", depth, "/tmp/x.png"]);
+    assert_eq!(
+        (code, stderr.trim()),
+        (2, "error: geltip needs --geltip-params DIR")
+    );
+    let (code, stderr) = yarok(&["tactile", "digits", depth, "/tmp/x.png"]);
+    assert!(
+        code == 2 && stderr.contains("unknown sensor \"digits\""),
+        "{stderr}"
+    );
+    let background = golden("digit/background.png");
+    let (code, stderr) = yarok(&[
+        "tactile",
+        "gelsight",
+        depth,
+        "/tmp/x.png",
+        "--background",
+        background.to_str().unwrap(),
+    ]);
+    assert!(
+        code == 2 && stderr.contains("is 240×320, the depth map 320×240"),
+        "{stderr}"
+    );
+    let (code, stderr) = yarok(&["tactile", "gelsight", "/nonexistent.npy", "/tmp/x.png"]);
+    assert!(code == 2 && stderr.contains("/nonexistent.npy"), "{stderr}");
+}
