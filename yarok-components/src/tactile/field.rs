@@ -3,6 +3,8 @@
 //! which is exact because a kernel summing to 1 maps a constant to itself. A press touches a small
 //! part of the sensor, so most of the image is skipped.
 
+use multiversion::multiversion;
+
 /// A rectangle of pixels: columns `x0..x1`, rows `y0..y1`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Region {
@@ -164,38 +166,29 @@ impl Field {
         rows.resize(self.values.len(), self.background);
         padded.clear();
         padded.resize(width + kernel.len() - 1, 0.0);
-        for y in self.region.y0..self.region.y1 {
-            let row = &self.values[y * width..(y + 1) * width];
-            for (i, value) in padded.iter_mut().enumerate() {
-                *value = row[reflect_101(i as i64 - anchor as i64, width)];
-            }
-            let out_row = &mut rows[y * width + region.x0..y * width + region.x1];
-            out_row.fill(0.0);
-            for (k, weight) in kernel.iter().enumerate() {
-                for (value, sample) in out_row
-                    .iter_mut()
-                    .zip(&padded[region.x0 + k..region.x1 + k])
-                {
-                    *value += weight * sample;
-                }
-            }
-        }
+        let columns = (region.x0, region.x1);
+        row_pass(
+            &self.values,
+            width,
+            (self.region.y0, self.region.y1),
+            columns,
+            kernel,
+            padded,
+            rows,
+        );
         out.values.clear();
         out.values.resize(self.values.len(), background);
         out.width = width;
         out.background = background;
         out.region = region;
-        for y in region.y0..region.y1 {
-            let out_row = &mut out.values[y * width + region.x0..y * width + region.x1];
-            out_row.fill(0.0);
-            for (k, weight) in kernel.iter().enumerate() {
-                let source = reflect_101(y as i64 + k as i64 - anchor as i64, height);
-                let samples = &rows[source * width + region.x0..source * width + region.x1];
-                for (value, sample) in out_row.iter_mut().zip(samples) {
-                    *value += weight * sample;
-                }
-            }
-        }
+        column_pass(
+            rows,
+            width,
+            (region.y0, region.y1),
+            columns,
+            kernel,
+            &mut out.values,
+        );
     }
 
     /// `self = max(scale · self, floor)` pixel by pixel.
@@ -221,6 +214,60 @@ impl Field {
         }
         self.background = background;
         self.region = region;
+    }
+}
+
+/// Row correlation of rows `rows_in`, written for columns `columns` (SIMD-multiversioned).
+#[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
+fn row_pass(
+    values: &[f32],
+    width: usize,
+    (y0, y1): (usize, usize),
+    (x0, x1): (usize, usize),
+    kernel: &[f32],
+    padded: &mut [f32],
+    rows: &mut [f32],
+) {
+    let anchor = kernel.len() / 2;
+    for y in y0..y1 {
+        let row = &values[y * width..(y + 1) * width];
+        for (i, value) in padded.iter_mut().enumerate() {
+            *value = row[reflect_101(i as i64 - anchor as i64, width)];
+        }
+        let out_row = &mut rows[y * width + x0..y * width + x1];
+        out_row.fill(0.0);
+        for (k, weight) in kernel.iter().enumerate() {
+            for (value, sample) in out_row.iter_mut().zip(&padded[x0 + k..x1 + k]) {
+                *value += weight * sample;
+            }
+        }
+    }
+}
+
+/// Column correlation of `rows` for rows `y0..y1` and columns `x0..x1` (SIMD-multiversioned).
+#[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
+fn column_pass(
+    rows: &[f32],
+    width: usize,
+    (y0, y1): (usize, usize),
+    (x0, x1): (usize, usize),
+    kernel: &[f32],
+    out: &mut [f32],
+) {
+    let height = rows.len() / width;
+    let anchor = kernel.len() / 2;
+    for y in y0..y1 {
+        let out_row = &mut out[y * width + x0..y * width + x1];
+        out_row.fill(0.0);
+        for (k, weight) in kernel.iter().enumerate() {
+            let source = reflect_101(y as i64 + k as i64 - anchor as i64, height);
+            for (value, sample) in out_row
+                .iter_mut()
+                .zip(&rows[source * width + x0..source * width + x1])
+            {
+                *value += weight * sample;
+            }
+        }
     }
 }
 

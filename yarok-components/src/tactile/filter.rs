@@ -1,6 +1,8 @@
 //! The image filters the optical models are built from: the reference's Gaussian kernels and
 //! separable correlation with OpenCV's default border (reflect-101).
 
+use multiversion::multiversion;
+
 /// The 1-D factor of the reference's `G(n, σ)` kernel: a unit impulse at `n / 2` smoothed by a
 /// Gaussian of `σ` truncated at 4σ with half-sample reflection at the ends (SciPy's
 /// `gaussian_filter1d` on an impulse), so the tails fold back and the kernel sums to 1.
@@ -45,6 +47,7 @@ fn reflect_101(index: i64, len: i64) -> usize {
 
 /// Correlates each row of a `height × width` single-channel image with `kernel` (anchored at
 /// `kernel.len() / 2`), writing into `out`.
+#[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
 pub fn correlate_rows(image: &[f64], width: usize, kernel: &[f64], out: &mut [f64]) {
     let anchor = kernel.len() / 2;
     let mut padded = vec![0.0; width + kernel.len() - 1];
@@ -63,6 +66,7 @@ pub fn correlate_rows(image: &[f64], width: usize, kernel: &[f64], out: &mut [f6
 }
 
 /// Correlates each column of a `height × width` single-channel image with `kernel`.
+#[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
 pub fn correlate_columns(image: &[f64], width: usize, kernel: &[f64], out: &mut [f64]) {
     let height = image.len() / width;
     let anchor = (kernel.len() / 2) as i64;

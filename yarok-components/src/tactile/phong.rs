@@ -1,6 +1,8 @@
 //! The Phong model of DIGIT and GelSight sensors: a depth map of the elastomer's inside, in,
 //! a sensor image, out (the published simulation of Gomes et al. and its DIGIT port).
 
+use multiversion::multiversion;
+
 use super::field::Field;
 use super::filter::{correlate_columns, correlate_rows, gaussian_blur, gaussian_kernel};
 use super::int_pow;
@@ -318,9 +320,7 @@ impl PhongModel {
                 *intensity = (light.kd * dot).max(0.0) + light.ks * specular;
             }
             for (channel, colour) in s.channels.iter_mut().zip(light.colour) {
-                for (value, intensity) in channel.iter_mut().zip(&s.intensity) {
-                    *value = blend(*value, *intensity, colour);
-                }
+                blend_channel(channel, &s.intensity, colour);
             }
         }
     }
@@ -338,15 +338,32 @@ impl PhongModel {
                 &mut s.channel_rows,
                 &mut s.channel_blurred,
             );
-            for (i, value) in s.channel_blurred.iter().enumerate() {
-                out[3 * i + c] = value.round_ties_even().clamp(0.0, 255.0) as u8;
-            }
+            store_channel(&s.channel_blurred, &mut out[c..]);
         }
+    }
+}
+
+/// Blends `colour` into a channel with per-pixel weights (SIMD-multiversioned: truncation is one
+/// instruction from SSE4.1 on).
+#[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
+fn blend_channel(channel: &mut [f64], weights: &[f64], colour: f64) {
+    for (value, weight) in channel.iter_mut().zip(weights) {
+        *value = blend(*value, *weight, colour);
+    }
+}
+
+/// Rounds (half to even) and saturates a channel into every third byte of `out`, as OpenCV
+/// stores a filtered u8 image.
+#[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
+fn store_channel(channel: &[f64], out: &mut [u8]) {
+    for (value, target) in channel.iter().zip(out.iter_mut().step_by(3)) {
+        *target = value.round_ties_even().clamp(0.0, 255.0) as u8;
     }
 }
 
 /// The reference's overlay: `clip((1 − α)·value + α·colour, 0, 255)` truncated to an integer
 /// (it casts to u8 after every blend).
+#[inline(always)]
 fn blend(value: f64, alpha: f64, colour: f64) -> f64 {
     ((1.0 - alpha) * value + alpha * colour)
         .clamp(0.0, 255.0)
