@@ -5,6 +5,8 @@
 
 use multiversion::multiversion;
 
+use super::filter::{pad_reflect_101, reflect_101};
+
 /// A rectangle of pixels: columns `x0..x1`, rows `y0..y1`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Region {
@@ -64,17 +66,6 @@ pub(crate) struct Field {
     pub(crate) width: usize,
     background: f32,
     region: Region,
-}
-
-/// OpenCV's default border (`gfedcb|abcdefgh|gfedcba`).
-fn reflect_101(index: i64, len: usize) -> usize {
-    let len = len as i64;
-    if len == 1 {
-        return 0;
-    }
-    let period = 2 * (len - 1);
-    let index = index.rem_euclid(period);
-    (if index < len { index } else { period - index }) as usize
 }
 
 impl Field {
@@ -231,9 +222,7 @@ fn row_pass(
     let anchor = kernel.len() / 2;
     for y in y0..y1 {
         let row = &values[y * width..(y + 1) * width];
-        for (i, value) in padded.iter_mut().enumerate() {
-            *value = row[reflect_101(i as i64 - anchor as i64, width)];
-        }
+        pad_reflect_101(row, anchor, padded);
         let out_row = &mut rows[y * width + x0..y * width + x1];
         out_row.fill(0.0);
         for (k, weight) in kernel.iter().enumerate() {
@@ -260,7 +249,7 @@ fn column_pass(
         let out_row = &mut out[y * width + x0..y * width + x1];
         out_row.fill(0.0);
         for (k, weight) in kernel.iter().enumerate() {
-            let source = reflect_101(y as i64 + k as i64 - anchor as i64, height);
+            let source = reflect_101(y as i64 + k as i64 - anchor as i64, height as i64);
             for (value, sample) in out_row
                 .iter_mut()
                 .zip(&rows[source * width + x0..source * width + x1])

@@ -35,8 +35,21 @@ fn reflect(mut index: i64, len: i64) -> i64 {
     }
 }
 
+/// Copies `row` into the middle of `padded`, its ends filled by OpenCV's default border
+/// (`gfedcb|abcdefgh|gfedcba`): `before` values on the left, the rest on the right.
+pub(crate) fn pad_reflect_101<T: Copy>(row: &[T], before: usize, padded: &mut [T]) {
+    let width = row.len() as i64;
+    padded[before..before + row.len()].copy_from_slice(row);
+    for i in 0..before {
+        padded[i] = row[reflect_101(i as i64 - before as i64, width)];
+    }
+    for i in before + row.len()..padded.len() {
+        padded[i] = row[reflect_101(i as i64 - before as i64, width)];
+    }
+}
+
 /// OpenCV's default border (`gfedcb|abcdefgh|gfedcba`), for images at least 2 pixels wide.
-fn reflect_101(index: i64, len: i64) -> usize {
+pub(crate) fn reflect_101(index: i64, len: i64) -> usize {
     if len == 1 {
         return 0;
     }
@@ -52,9 +65,7 @@ pub fn correlate_rows(image: &[f64], width: usize, kernel: &[f64], out: &mut [f6
     let anchor = kernel.len() / 2;
     let mut padded = vec![0.0; width + kernel.len() - 1];
     for (row, out_row) in image.chunks_exact(width).zip(out.chunks_exact_mut(width)) {
-        for (i, value) in padded.iter_mut().enumerate() {
-            *value = row[reflect_101(i as i64 - anchor as i64, width as i64)];
-        }
+        pad_reflect_101(row, anchor, &mut padded);
         // Tap by tap across the row, so that the inner loop runs over contiguous pixels.
         out_row.fill(0.0);
         for (k, weight) in kernel.iter().enumerate() {

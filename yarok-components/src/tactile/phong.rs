@@ -4,7 +4,7 @@
 use multiversion::multiversion;
 
 use super::field::Field;
-use super::filter::{correlate_columns, correlate_rows, gaussian_blur, gaussian_kernel};
+use super::filter::{gaussian_blur, gaussian_kernel};
 use super::int_pow;
 
 /// A coloured light of the Phong model.
@@ -141,7 +141,6 @@ struct Scratch {
     dx: Vec<f64>,
     dy: Vec<f64>,
     nz: Vec<f64>,
-    intensity: Vec<f64>,
     channels: [Vec<f64>; 3],
     channel_rows: Vec<f64>,
     channel_blurred: Vec<f64>,
@@ -162,7 +161,6 @@ impl Scratch {
             dx: Vec::new(),
             dy: Vec::new(),
             nz: Vec::new(),
-            intensity: Vec::new(),
             channels: [Vec::new(), Vec::new(), Vec::new()],
             channel_rows: Vec::new(),
             channel_blurred: Vec::new(),
@@ -289,39 +287,15 @@ impl PhongModel {
         let pixels = s.height_map.len();
         s.dx.resize(pixels, 0.0);
         s.dy.resize(pixels, 0.0);
-        correlate_rows(&s.height_map, width, &[-0.5, 0.0, 0.5], &mut s.dx);
-        correlate_columns(&s.height_map, width, &[-0.5, 0.0, 0.5], &mut s.dy);
         s.nz.resize(pixels, 0.0);
-        for ((x, y), z) in s.dx.iter_mut().zip(&mut s.dy).zip(&mut s.nz) {
-            let norm = (*x * *x + *y * *y + 1.0).sqrt();
-            (*x, *y, *z) = (-*x / norm, -*y / norm, 1.0 / norm);
-        }
+        normals(&s.height_map, width, [&mut s.dx, &mut s.dy, &mut s.nz]);
         for (c, channel) in s.channels.iter_mut().enumerate() {
-            channel.clear();
-            channel.extend(
-                s.shadow.iter().enumerate().map(|(i, shadow)| {
-                    blend(p.ka * f64::from(background[3 * i + c]), *shadow, 0.0)
-                }),
-            );
+            channel.resize(pixels, 0.0);
+            shade_channel(channel, background, c, p.ka, &s.shadow);
         }
-        s.intensity.resize(pixels, 0.0);
+        let [red, green, blue] = &mut s.channels;
         for light in &p.lights {
-            let [lx, ly, lz] = light.position;
-            for (((intensity, x), y), z) in s.intensity.iter_mut().zip(&s.dx).zip(&s.dy).zip(&s.nz)
-            {
-                let dot = x * lx + y * ly + z * lz;
-                let reflected_z = 2.0 * dot * z - lz;
-                let specular = if light.alpha == 5 {
-                    let square = reflected_z * reflected_z;
-                    square * square * reflected_z
-                } else {
-                    int_pow(reflected_z, light.alpha)
-                };
-                *intensity = (light.kd * dot).max(0.0) + light.ks * specular;
-            }
-            for (channel, colour) in s.channels.iter_mut().zip(light.colour) {
-                blend_channel(channel, &s.intensity, colour);
-            }
+            light_pass([&s.dx, &s.dy, &s.nz], [red, green, blue], light);
         }
     }
 
@@ -343,12 +317,95 @@ impl PhongModel {
     }
 }
 
-/// Blends `colour` into a channel with per-pixel weights (SIMD-multiversioned: truncation is one
-/// instruction from SSE4.1 on).
+/// Unit normals `(−∂x, −∂y, 1)/‖·‖` of a height map, with central differences and OpenCV's
+/// reflect-101 border (so the derivative across an edge is zero).
 #[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
-fn blend_channel(channel: &mut [f64], weights: &[f64], colour: f64) {
-    for (value, weight) in channel.iter_mut().zip(weights) {
-        *value = blend(*value, *weight, colour);
+fn normals(height_map: &[f64], width: usize, [nx, ny, nz]: [&mut [f64]; 3]) {
+    let height = height_map.len() / width;
+    for y in 0..height {
+        let row = &height_map[y * width..(y + 1) * width];
+        let above = &height_map[y.saturating_sub(1).max(usize::from(y == 0)) * width..][..width];
+        let below_index = if y + 1 < height {
+            y + 1
+        } else {
+            height.saturating_sub(2)
+        };
+        let below = &height_map[below_index * width..][..width];
+        let (above, below) = if height == 1 {
+            (row, row)
+        } else {
+            (above, below)
+        };
+        let out = y * width..(y + 1) * width;
+        let (rx, ry, rz) = (&mut nx[out.clone()], &mut ny[out.clone()], &mut nz[out]);
+        for x in 0..width {
+            let left = if x == 0 { 1.min(width - 1) } else { x - 1 };
+            let right = if x + 1 < width {
+                x + 1
+            } else {
+                width.saturating_sub(2)
+            };
+            rx[x] = (row[right] - row[left]) / 2.0;
+        }
+        for (((dx, dy), dz), (a, b)) in rx
+            .iter_mut()
+            .zip(ry.iter_mut())
+            .zip(rz.iter_mut())
+            .zip(above.iter().zip(below))
+        {
+            *dy = (b - a) / 2.0;
+            let norm = (*dx * *dx + *dy * *dy + 1.0).sqrt();
+            (*dx, *dy, *dz) = (-*dx / norm, -*dy / norm, 1.0 / norm);
+        }
+    }
+}
+
+/// One channel of the ambient background, darkened by the internal shadow.
+#[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
+fn shade_channel(channel: &mut [f64], background: &[u8], c: usize, ka: f64, shadow: &[f64]) {
+    for ((value, b), shadow) in channel
+        .iter_mut()
+        .zip(background[c..].iter().step_by(3))
+        .zip(shadow)
+    {
+        *value = blend(ka * f64::from(*b), *shadow, 0.0);
+    }
+}
+
+/// Blends one light into the three channels, given the unit normals (SIMD-multiversioned:
+/// truncation is one instruction from SSE4.1 on).
+#[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
+fn light_pass(normals: [&[f64]; 3], channels: [&mut [f64]; 3], light: &PhongLight) {
+    // The reference's exponent is 5; a constant one lets the loop vectorise.
+    if light.alpha == 5 {
+        light_pass_with(normals, channels, light, |x| {
+            let square = x * x;
+            square * square * x
+        });
+    } else {
+        let alpha = light.alpha;
+        light_pass_with(normals, channels, light, |x| int_pow(x, alpha));
+    }
+}
+
+#[inline(always)]
+fn light_pass_with(
+    [nx, ny, nz]: [&[f64]; 3],
+    [red, green, blue]: [&mut [f64]; 3],
+    light: &PhongLight,
+    power: impl Fn(f64) -> f64,
+) {
+    let [lx, ly, lz] = light.position;
+    let [cr, cg, cb] = light.colour;
+    let (kd, ks) = (light.kd, light.ks);
+    let normals = nx.iter().zip(ny).zip(nz);
+    let channels = red.iter_mut().zip(green.iter_mut()).zip(blue.iter_mut());
+    for (((x, y), z), ((r, g), b)) in normals.zip(channels) {
+        let dot = x * lx + y * ly + z * lz;
+        let intensity = (kd * dot).max(0.0) + ks * power(2.0 * dot * z - lz);
+        *r = blend(*r, intensity, cr);
+        *g = blend(*g, intensity, cg);
+        *b = blend(*b, intensity, cb);
     }
 }
 
