@@ -324,35 +324,28 @@ fn normals(height_map: &[f64], width: usize, [nx, ny, nz]: [&mut [f64]; 3]) {
     let height = height_map.len() / width;
     for y in 0..height {
         let row = &height_map[y * width..(y + 1) * width];
-        let above = &height_map[y.saturating_sub(1).max(usize::from(y == 0)) * width..][..width];
+        // Reflect-101 rows: above the first row is the second, below the last the one before it.
+        let above_index = if y == 0 { 1.min(height - 1) } else { y - 1 };
         let below_index = if y + 1 < height {
             y + 1
         } else {
             height.saturating_sub(2)
         };
-        let below = &height_map[below_index * width..][..width];
-        let (above, below) = if height == 1 {
-            (row, row)
-        } else {
-            (above, below)
-        };
+        let above = &height_map[above_index * width..(above_index + 1) * width];
+        let below = &height_map[below_index * width..(below_index + 1) * width];
         let out = y * width..(y + 1) * width;
         let (rx, ry, rz) = (&mut nx[out.clone()], &mut ny[out.clone()], &mut nz[out]);
-        for x in 0..width {
+        for (x, dx) in rx.iter_mut().enumerate() {
             let left = if x == 0 { 1.min(width - 1) } else { x - 1 };
             let right = if x + 1 < width {
                 x + 1
             } else {
                 width.saturating_sub(2)
             };
-            rx[x] = (row[right] - row[left]) / 2.0;
+            *dx = (row[right] - row[left]) / 2.0;
         }
-        for (((dx, dy), dz), (a, b)) in rx
-            .iter_mut()
-            .zip(ry.iter_mut())
-            .zip(rz.iter_mut())
-            .zip(above.iter().zip(below))
-        {
+        let slopes = rx.iter_mut().zip(ry.iter_mut()).zip(rz.iter_mut());
+        for (((dx, dy), dz), (a, b)) in slopes.zip(above.iter().zip(below)) {
             *dy = (b - a) / 2.0;
             let norm = (*dx * *dx + *dy * *dy + 1.0).sqrt();
             (*dx, *dy, *dz) = (-*dx / norm, -*dy / norm, 1.0 / norm);
