@@ -303,11 +303,7 @@ impl Platform {
                 .into_iter()
                 .map(|f| Task::new(f(self.pl.clone()))),
         );
-        let mut interrupt = Box::pin(tokio::signal::ctrl_c());
-        // The first poll registers the listener, so that a Ctrl-C from now on is not missed.
-        if interrupted(interrupt.as_mut()) {
-            return Err(RuntimeError::Interrupted);
-        }
+        let interrupt = Interrupt::listen();
         let started = tokio::time::Instant::now();
         let paced = self.realtime || self.backend.paced();
         poll_tasks(tasks)?;
@@ -341,16 +337,53 @@ impl Platform {
             }
             self.pl.inner.clock.tick(self.backend.time());
             poll_tasks(tasks)?;
-            if (paced || ticks.is_multiple_of(YIELD_EVERY)) && interrupted(interrupt.as_mut()) {
+            if interrupt.happened() {
                 return Err(RuntimeError::Interrupted);
             }
         }
     }
 }
 
-fn interrupted(signal: Pin<&mut (impl Future<Output = std::io::Result<()>> + ?Sized)>) -> bool {
-    let mut context = Context::from_waker(Waker::noop());
-    matches!(signal.poll(&mut context), Poll::Ready(Ok(())))
+/// Ctrl-C while the platform runs: the first one stops it cleanly (a flag checked every tick);
+/// a second one, if shutdown hangs, exits the process with status 130. The default behaviour
+/// comes back when the run ends.
+struct Interrupt {
+    flag: Arc<AtomicBool>,
+    handlers: Vec<signal_hook::SigId>,
+}
+
+impl Interrupt {
+    fn listen() -> Self {
+        let flag = Arc::new(AtomicBool::new(false));
+        let sigint = signal_hook::consts::SIGINT;
+        // Registered first, so that it sees the flag as the previous Ctrl-C left it.
+        let handlers = [
+            signal_hook::flag::register_conditional_shutdown(sigint, 130, Arc::clone(&flag)),
+            signal_hook::flag::register(sigint, Arc::clone(&flag)),
+        ]
+        .into_iter()
+        .filter_map(|registered| {
+            registered
+                .map_err(
+                    |error| tracing::warn!(%error, "Ctrl-C will not stop the platform cleanly"),
+                )
+                .ok()
+        })
+        .collect();
+        Self { flag, handlers }
+    }
+
+    fn happened(&self) -> bool {
+        self.flag.load(Ordering::Relaxed)
+    }
+}
+
+impl Drop for Interrupt {
+    fn drop(&mut self) {
+        for handler in self.handlers.drain(..) {
+            signal_hook::low_level::unregister(handler);
+        }
+    }
 }
 
 /// A behaviour being driven by the platform: polled when woken, until done.
