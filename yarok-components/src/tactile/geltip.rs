@@ -164,15 +164,7 @@ impl GelTipModel {
         self.tangents();
         let p = &self.params;
         for (pixel, point) in self.points.iter().enumerate() {
-            let (a, b) = (
-                normalised(self.tangents[0][pixel]),
-                normalised(self.tangents[1][pixel]),
-            );
-            let normal = [
-                -(a[1] * b[2] - a[2] * b[1]),
-                -(a[2] * b[0] - a[0] * b[2]),
-                -(a[0] * b[1] - a[1] * b[0]),
-            ];
+            let normal = surface_normal(self.tangents[0][pixel], self.tangents[1][pixel]);
             let view = scale(normalised(*point), -1.0);
             let mut light_sum = [0.0; 3];
             for (light, towards) in p.lights.iter().zip(&self.towards_lights) {
@@ -212,9 +204,7 @@ impl GelTipModel {
             &mut self.padded,
             &mut self.blurred,
         );
-        let height = depth.len() / width;
-        let f = height as f64 / (2.0 * (self.params.fov_deg.to_radians() / 2.0).tan());
-        let (cx, cy) = ((width as f64 - 1.0) / 2.0, (height as f64 - 1.0) / 2.0);
+        let (f, cx, cy) = pinhole(width, depth.len() / width, self.params.fov_deg);
         self.points.clear();
         self.points.extend(
             depth
@@ -230,41 +220,65 @@ impl GelTipModel {
         );
     }
 
-    /// Central differences of the points along rows and columns.
     fn tangents(&mut self) {
-        let n = self.points.len();
-        self.coordinate.resize(n, 0.0);
-        self.derivative.resize(n, 0.0);
-        for tangent in &mut self.tangents {
-            tangent.resize(n, [0.0; 3]);
+        tangents_into(
+            &self.points,
+            self.width,
+            &mut self.coordinate,
+            &mut self.derivative,
+            &mut self.tangents,
+        );
+    }
+}
+
+/// Focal length and centre, in pixels, of a camera `height` pixels high with vertical field of
+/// view `fov_deg` (square pixels; the centre between the middle pixels).
+pub(crate) fn pinhole(width: usize, height: usize, fov_deg: f64) -> (f64, f64, f64) {
+    let f = height as f64 / (2.0 * (fov_deg.to_radians() / 2.0).tan());
+    (f, (width as f64 - 1.0) / 2.0, (height as f64 - 1.0) / 2.0)
+}
+
+/// Central differences of a grid of points along rows (`tangents[0]`) and columns
+/// (`tangents[1]`), with reflect-101 borders; `coordinate` and `derivative` are scratch.
+pub(crate) fn tangents_into(
+    points: &[[f64; 3]],
+    width: usize,
+    coordinate: &mut Vec<f64>,
+    derivative: &mut Vec<f64>,
+    tangents: &mut [Vec<[f64; 3]>; 2],
+) {
+    let n = points.len();
+    coordinate.resize(n, 0.0);
+    derivative.resize(n, 0.0);
+    for tangent in tangents.iter_mut() {
+        tangent.resize(n, [0.0; 3]);
+    }
+    for c in 0..3 {
+        for (value, point) in coordinate.iter_mut().zip(points) {
+            *value = point[c];
         }
-        for c in 0..3 {
-            for (value, point) in self.coordinate.iter_mut().zip(&self.points) {
-                *value = point[c];
-            }
-            correlate_rows(
-                &self.coordinate,
-                self.width,
-                &[-0.5, 0.0, 0.5],
-                &mut self.derivative,
-            );
-            for (t, d) in self.tangents[0].iter_mut().zip(&self.derivative) {
-                t[c] = *d;
-            }
-            correlate_columns(
-                &self.coordinate,
-                self.width,
-                &[-0.5, 0.0, 0.5],
-                &mut self.derivative,
-            );
-            for (t, d) in self.tangents[1].iter_mut().zip(&self.derivative) {
-                t[c] = *d;
-            }
+        correlate_rows(coordinate, width, &[-0.5, 0.0, 0.5], derivative);
+        for (t, d) in tangents[0].iter_mut().zip(derivative.iter()) {
+            t[c] = *d;
+        }
+        correlate_columns(coordinate, width, &[-0.5, 0.0, 0.5], derivative);
+        for (t, d) in tangents[1].iter_mut().zip(derivative.iter()) {
+            t[c] = *d;
         }
     }
 }
 
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+/// The surface normal from a pair of tangents, `−(t̂x × t̂y)` as the reference computes it.
+pub(crate) fn surface_normal(tx: [f64; 3], ty: [f64; 3]) -> [f64; 3] {
+    let (a, b) = (normalised(tx), normalised(ty));
+    [
+        -(a[1] * b[2] - a[2] * b[1]),
+        -(a[2] * b[0] - a[0] * b[2]),
+        -(a[0] * b[1] - a[1] * b[0]),
+    ]
+}
+
+pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
@@ -273,7 +287,7 @@ fn scale(a: [f64; 3], s: f64) -> [f64; 3] {
 }
 
 /// The unit vector along `a`; vectors shorter than 1e-9 are left as they are, as in the reference.
-fn normalised(a: [f64; 3]) -> [f64; 3] {
+pub(crate) fn normalised(a: [f64; 3]) -> [f64; 3] {
     let norm = dot(a, a).sqrt();
     if norm < 1e-9 { a } else { scale(a, 1.0 / norm) }
 }

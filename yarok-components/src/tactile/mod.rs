@@ -4,6 +4,7 @@
 //! - [`phong`]: the Phong model of DIGIT and GelSight (elastic deformation by a difference of
 //!   Gaussians, internal shadow, coloured lights, final blur).
 //! - [`geltip`]: the GelTip model (elastic deformation, back-projection, light fields).
+//! - [`light_fields`]: GelTip light fields computed from the sensor geometry (linear, plane).
 //!
 //! Images are row-major, top row first; colours RGB. Output sizes: DIGIT 320 rows × 240 columns,
 //! GelSight 480 × 640, GelTip 240 × 320 (the input depth's size).
@@ -11,6 +12,7 @@
 mod field;
 pub mod filter;
 pub mod geltip;
+pub mod light_fields;
 pub mod noise;
 pub mod npy;
 pub mod phong;
