@@ -208,6 +208,12 @@ impl Field {
     }
 }
 
+/// Whether `kernel` reads the same backwards (the reference's even-sized kernels do not: their
+/// centre is off by half a pixel and their folded tails differ).
+fn is_symmetric(kernel: &[f32]) -> bool {
+    kernel.iter().eq(kernel.iter().rev())
+}
+
 /// Row correlation of rows `rows_in`, written for columns `columns` (SIMD-multiversioned).
 #[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
 fn row_pass(
@@ -225,8 +231,28 @@ fn row_pass(
         pad_reflect_101(row, anchor, padded);
         let out_row = &mut rows[y * width + x0..y * width + x1];
         out_row.fill(0.0);
-        for (k, weight) in kernel.iter().enumerate() {
-            for (value, sample) in out_row.iter_mut().zip(&padded[x0 + k..x1 + k]) {
+        let n = kernel.len();
+        if !is_symmetric(kernel) {
+            for (k, weight) in kernel.iter().enumerate() {
+                for (value, sample) in out_row.iter_mut().zip(&padded[x0 + k..x1 + k]) {
+                    *value += weight * sample;
+                }
+            }
+            continue;
+        }
+        // A symmetric kernel pairs tap k with tap n − 1 − k, halving the multiplications.
+        for (k, weight) in kernel[..n / 2].iter().enumerate() {
+            let (near, far) = (
+                &padded[x0 + k..x1 + k],
+                &padded[x0 + n - 1 - k..x1 + n - 1 - k],
+            );
+            for ((value, a), b) in out_row.iter_mut().zip(near).zip(far) {
+                *value += weight * (a + b);
+            }
+        }
+        if n % 2 == 1 {
+            let weight = kernel[n / 2];
+            for (value, sample) in out_row.iter_mut().zip(&padded[x0 + n / 2..x1 + n / 2]) {
                 *value += weight * sample;
             }
         }
