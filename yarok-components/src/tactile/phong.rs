@@ -143,7 +143,7 @@ struct Scratch {
     nz: Vec<f64>,
     channels: [Vec<f64>; 3],
     channel_rows: Vec<f64>,
-    channel_blurred: Vec<f64>,
+    blurred_channels: [Vec<f64>; 3],
 }
 
 impl Scratch {
@@ -163,7 +163,7 @@ impl Scratch {
             nz: Vec::new(),
             channels: [Vec::new(), Vec::new(), Vec::new()],
             channel_rows: Vec::new(),
-            channel_blurred: Vec::new(),
+            blurred_channels: [Vec::new(), Vec::new(), Vec::new()],
         }
     }
 }
@@ -303,17 +303,14 @@ impl PhongModel {
         let s = &mut self.scratch;
         let pixels = s.channels[0].len();
         s.channel_rows.resize(pixels, 0.0);
-        s.channel_blurred.resize(pixels, 0.0);
-        for (c, channel) in s.channels.iter().enumerate() {
-            gaussian_blur(
-                channel,
-                width,
-                &self.blur,
-                &mut s.channel_rows,
-                &mut s.channel_blurred,
-            );
-            store_channel(&s.channel_blurred, &mut out[c..]);
+        for channel in &mut s.blurred_channels {
+            channel.resize(pixels, 0.0);
         }
+        for (channel, blurred) in s.channels.iter().zip(&mut s.blurred_channels) {
+            gaussian_blur(channel, width, &self.blur, &mut s.channel_rows, blurred);
+        }
+        let [red, green, blue] = &s.blurred_channels;
+        store_pixels([red, green, blue], out);
     }
 }
 
@@ -402,12 +399,13 @@ fn light_pass_with(
     }
 }
 
-/// Rounds (half to even) and saturates a channel into every third byte of `out`, as OpenCV
-/// stores a filtered u8 image.
+/// Rounds (half to even) and saturates three channels into interleaved RGB, as OpenCV stores a
+/// filtered u8 image.
 #[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
-fn store_channel(channel: &[f64], out: &mut [u8]) {
-    for (value, target) in channel.iter().zip(out.iter_mut().step_by(3)) {
-        *target = value.round_ties_even().clamp(0.0, 255.0) as u8;
+fn store_pixels([red, green, blue]: [&[f64]; 3], out: &mut [u8]) {
+    let byte = |value: f64| value.round_ties_even().clamp(0.0, 255.0) as u8;
+    for (((pixel, r), g), b) in out.chunks_exact_mut(3).zip(red).zip(green).zip(blue) {
+        pixel.copy_from_slice(&[byte(*r), byte(*g), byte(*b)]);
     }
 }
 
