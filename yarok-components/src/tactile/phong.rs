@@ -225,7 +225,7 @@ impl PhongModel {
                 .iter()
                 .map(|&d| (max_depth - f64::from(d).min(max_depth)) as f32),
         );
-        self.deform(width, max_depth);
+        self.deform(max_depth);
         self.light(width, background);
         self.final_blur(width, out);
     }
@@ -234,7 +234,7 @@ impl PhongModel {
     /// each iteration renormalised to keep the indentation's peak. Runs in f32 like the reference,
     /// on the part of the image a press changes. Leaves `height_map` = elastomer depth + texture,
     /// in pixels.
-    fn deform(&mut self, width: usize, max_depth: f64) {
+    fn deform(&mut self, max_depth: f64) {
         let s = &mut self.scratch;
         let p = &self.params;
         let peak = s.indentation.max();
@@ -276,7 +276,6 @@ impl PhongModel {
                     (f64::from(max_depth as f32 - (2.0 * a - b)) + n) / p.px2m_ratio
                 }),
         );
-        let _ = width;
     }
 
     /// The ambient background darkened by the internal shadow, then each light blended in;

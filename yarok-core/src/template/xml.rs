@@ -1,7 +1,7 @@
 //! A small XML element tree that remembers where each element and attribute came from, so that
 //! errors can name the template's line and column.
 
-use std::fmt::{self, Write as _};
+use std::fmt;
 
 use quick_xml::Reader;
 use quick_xml::events::{BytesStart, Event};
@@ -143,8 +143,7 @@ impl Element {
                 message: e.to_string(),
             })?;
             match event {
-                Event::Start(start) | Event::Empty(start) if root.is_some() && stack.is_empty() => {
-                    let _ = start;
+                Event::Start(_) | Event::Empty(_) if root.is_some() && stack.is_empty() => {
                     return Err(XmlError {
                         position: lines.position(offset),
                         message: "a template has one root element".into(),
@@ -204,7 +203,9 @@ impl Element {
         out.push('<');
         out.push_str(&self.name);
         for attribute in &self.attributes {
-            let _ = write!(out, " {}=\"", attribute.name);
+            out.push(' ');
+            out.push_str(&attribute.name);
+            out.push_str("=\"");
             escape(&attribute.value, out);
             out.push('"');
         }
@@ -219,7 +220,9 @@ impl Element {
         for _ in 0..depth {
             out.push_str("  ");
         }
-        let _ = writeln!(out, "</{}>", self.name);
+        out.push_str("</");
+        out.push_str(&self.name);
+        out.push_str(">\n");
     }
 }
 
