@@ -31,7 +31,8 @@ fn ctrl_c_stops_the_run_and_plugins_see_the_end() {
     let ended = Rc::new(Cell::new(false));
     let error = Platform::builder()
         .world::<Empty>()
-        .backend("sim", |_, _| Ok(Box::new(MockBackend::new(0.01, false))))
+        // Paced, so that ticks take real time and the signal has time to arrive.
+        .backend("sim", |_, _| Ok(Box::new(MockBackend::new(0.01, true))))
         .plugin(Watch(Rc::clone(&ended)))
         .behaviour(|pl| async move {
             pl.wait_seconds(0.1).await?;
