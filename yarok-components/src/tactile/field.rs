@@ -214,7 +214,33 @@ fn is_symmetric(kernel: &[f32]) -> bool {
     kernel.iter().eq(kernel.iter().rev())
 }
 
-/// Row correlation of rows `rows_in`, written for columns `columns` (SIMD-multiversioned).
+/// `out = Σₖ kernel[k] · taps(k)`, element by element; a symmetric kernel pairs tap k with tap
+/// n − 1 − k, halving the multiplications.
+#[inline(always)]
+fn accumulate<'a>(out: &mut [f32], kernel: &[f32], taps: impl Fn(usize) -> &'a [f32]) {
+    out.fill(0.0);
+    let n = kernel.len();
+    if !is_symmetric(kernel) {
+        for (k, weight) in kernel.iter().enumerate() {
+            for (value, sample) in out.iter_mut().zip(taps(k)) {
+                *value += weight * sample;
+            }
+        }
+        return;
+    }
+    for (k, weight) in kernel[..n / 2].iter().enumerate() {
+        for ((value, a), b) in out.iter_mut().zip(taps(k)).zip(taps(n - 1 - k)) {
+            *value += weight * (a + b);
+        }
+    }
+    if n % 2 == 1 {
+        for (value, sample) in out.iter_mut().zip(taps(n / 2)) {
+            *value += kernel[n / 2] * sample;
+        }
+    }
+}
+
+/// Row correlation of rows `y0..y1`, written for columns `x0..x1` (SIMD-multiversioned).
 #[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
 fn row_pass(
     values: &[f32],
@@ -227,35 +253,11 @@ fn row_pass(
 ) {
     let anchor = kernel.len() / 2;
     for y in y0..y1 {
-        let row = &values[y * width..(y + 1) * width];
-        pad_reflect_101(row, anchor, padded);
-        let out_row = &mut rows[y * width + x0..y * width + x1];
-        out_row.fill(0.0);
-        let n = kernel.len();
-        if !is_symmetric(kernel) {
-            for (k, weight) in kernel.iter().enumerate() {
-                for (value, sample) in out_row.iter_mut().zip(&padded[x0 + k..x1 + k]) {
-                    *value += weight * sample;
-                }
-            }
-            continue;
-        }
-        // A symmetric kernel pairs tap k with tap n − 1 − k, halving the multiplications.
-        for (k, weight) in kernel[..n / 2].iter().enumerate() {
-            let (near, far) = (
-                &padded[x0 + k..x1 + k],
-                &padded[x0 + n - 1 - k..x1 + n - 1 - k],
-            );
-            for ((value, a), b) in out_row.iter_mut().zip(near).zip(far) {
-                *value += weight * (a + b);
-            }
-        }
-        if n % 2 == 1 {
-            let weight = kernel[n / 2];
-            for (value, sample) in out_row.iter_mut().zip(&padded[x0 + n / 2..x1 + n / 2]) {
-                *value += weight * sample;
-            }
-        }
+        pad_reflect_101(&values[y * width..(y + 1) * width], anchor, padded);
+        let padded = &*padded;
+        accumulate(&mut rows[y * width + x0..y * width + x1], kernel, |k| {
+            &padded[x0 + k..x1 + k]
+        });
     }
 }
 
@@ -272,17 +274,11 @@ fn column_pass(
     let height = rows.len() / width;
     let anchor = kernel.len() / 2;
     for y in y0..y1 {
-        let out_row = &mut out[y * width + x0..y * width + x1];
-        out_row.fill(0.0);
-        for (k, weight) in kernel.iter().enumerate() {
-            let source = reflect_101(y as i64 + k as i64 - anchor as i64, height as i64);
-            for (value, sample) in out_row
-                .iter_mut()
-                .zip(&rows[source * width + x0..source * width + x1])
-            {
-                *value += weight * sample;
-            }
-        }
+        let source = |k: usize| {
+            let row = reflect_101(y as i64 + k as i64 - anchor as i64, height as i64);
+            &rows[row * width + x0..row * width + x1]
+        };
+        accumulate(&mut out[y * width + x0..y * width + x1], kernel, source);
     }
 }
 
