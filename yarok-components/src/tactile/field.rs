@@ -196,16 +196,44 @@ impl Field {
             let floor_row = &floor.values[y * width..(y + 1) * width];
             row[..region.x0].fill(background);
             row[region.x1..].fill(background);
-            for (value, floor) in row[region.x0..region.x1]
-                .iter_mut()
-                .zip(&floor_row[region.x0..region.x1])
-            {
-                *value = (scale * *value).max(*floor);
-            }
+            scale_row_at_least(
+                &mut row[region.x0..region.x1],
+                scale,
+                &floor_row[region.x0..region.x1],
+            );
         }
         self.background = background;
         self.region = region;
     }
+}
+
+/// `value = max(scale · value, floor)` along a row (SIMD-multiversioned; a comparison rather than
+/// `f32::max`, whose NaN rule keeps it from vectorising — the values are finite).
+#[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
+fn scale_row_at_least(row: &mut [f32], scale: f32, floor: &[f32]) {
+    for (value, floor) in row.iter_mut().zip(floor) {
+        let scaled = scale * *value;
+        *value = if scaled > *floor { scaled } else { *floor };
+    }
+}
+
+/// The largest of `values` (−∞ for none), in sixteen lanes so that it vectorises (SIMD-
+/// multiversioned); the order of comparisons does not change a maximum.
+#[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
+fn max_of(values: &[f32]) -> f32 {
+    let mut lanes = [f32::NEG_INFINITY; 16];
+    let mut chunks = values.chunks_exact(16);
+    for chunk in &mut chunks {
+        for (lane, value) in lanes.iter_mut().zip(chunk) {
+            *lane = if *value > *lane { *value } else { *lane };
+        }
+    }
+    let tail = chunks
+        .remainder()
+        .iter()
+        .copied()
+        .fold(f32::NEG_INFINITY, f32::max);
+    lanes.iter().copied().fold(tail, f32::max)
 }
 
 /// Whether `kernel` reads the same backwards (the reference's even-sized kernels do not: their
