@@ -62,19 +62,8 @@ fn main() {
         });
         println!("{name:<22} {:>10.2} {target:>10.1}", ms(time));
     }
-    let fields: Vec<Vec<[f32; 3]>> = (0..3)
-        .map(|i| {
-            let field =
-                npy::read(golden(&format!("geltip/params/light_field_{i}.npy.gz"))).expect("field");
-            field
-                .data
-                .chunks_exact(3)
-                .map(|v| [v[0], v[1], v[2]])
-                .collect()
-        })
-        .collect();
-    let bkg = npy::read(golden("geltip/params/bkg_depth_m.npy.gz")).expect("bkg");
-    let mut geltip = GelTipModel::new(GelTipParams::default(), &bkg.data, bkg.shape[1], &fields);
+    let mut geltip = GelTipModel::load(GelTipParams::default(), golden("geltip/params"))
+        .expect("GelTip geometry");
     let (input, bg) = (depth("geltip"), background("geltip"));
     let time = measure::mean_time(|| {
         std::hint::black_box(geltip.render(&input.data, &bg));

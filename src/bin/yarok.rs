@@ -122,8 +122,6 @@ fn run(args: Args) -> Result<(), String> {
 }
 
 mod tactile {
-    use std::path::Path;
-
     use yarok::components::tactile::geltip::{GelTipModel, GelTipParams};
     use yarok::components::tactile::phong::{PhongModel, PhongParams};
     use yarok::components::tactile::{default_background, npy};
@@ -230,30 +228,18 @@ mod tactile {
                 PhongModel::new(params).render(&depth, width, &background)
             }
             "geltip" => {
-                let dir = Path::new(
-                    options
-                        .geltip_params
-                        .ok_or("geltip needs --geltip-params DIR")?,
-                );
-                let read = |name: &str| npy::read(dir.join(name)).map_err(|e| e.to_string());
-                let reference = read("bkg_depth_m.npy.gz")?;
-                if reference.data.len() != depth.len() {
+                let dir = options
+                    .geltip_params
+                    .ok_or("geltip needs --geltip-params DIR")?;
+                let mut model =
+                    GelTipModel::load(GelTipParams::default(), dir).map_err(|e| e.to_string())?;
+                if model.size() != (width, height) {
+                    let (w, h) = model.size();
                     return Err(format!(
-                        "the GelTip geometry is {:?}, the depth map {height}×{width}",
-                        reference.shape
+                        "the GelTip geometry is {h}×{w}, the depth map {height}×{width}"
                     ));
                 }
-                let fields = (0..3)
-                    .map(|i| {
-                        Ok(read(&format!("light_field_{i}.npy.gz"))?
-                            .data
-                            .chunks_exact(3)
-                            .map(|v| [v[0], v[1], v[2]])
-                            .collect())
-                    })
-                    .collect::<Result<Vec<Vec<[f32; 3]>>, String>>()?;
-                GelTipModel::new(GelTipParams::default(), &reference.data, width, &fields)
-                    .render(&depth, &background)
+                model.render(&depth, &background)
             }
             other => {
                 return Err(format!(

@@ -117,33 +117,13 @@ fn gelsight_matches_the_reference() {
     );
 }
 
-fn light_field(path: PathBuf) -> Vec<[f32; 3]> {
-    let field = npy::read(path).unwrap();
-    field
-        .data
-        .chunks_exact(3)
-        .map(|v| [v[0], v[1], v[2]])
-        .collect()
-}
-
 #[test]
 fn geltip_matches_the_reference() {
     use yarok_components::tactile::geltip::{GelTipModel, GelTipParams};
-    let params_dir = golden().join("geltip/params");
-    let background_depth = npy::read(params_dir.join("bkg_depth_m.npy.gz")).unwrap();
     let (width, height, background) = png_rgb(golden().join("geltip/background.png"));
-    assert_eq!(background_depth.shape, [height as usize, width as usize]);
-    // Light fields are geometry (unit vectors), so they carry no channel order.
-    let fields: Vec<_> = (0..3)
-        .map(|i| light_field(params_dir.join(format!("light_field_{i}.npy.gz"))))
-        .collect();
     let params = GelTipParams::default();
-    let mut model = GelTipModel::new(
-        params.clone(),
-        &background_depth.data,
-        width as usize,
-        &fields,
-    );
+    let mut model = GelTipModel::load(params.clone(), golden().join("geltip/params")).unwrap();
+    assert_eq!(model.size(), (width as usize, height as usize));
     for case in cases("geltip") {
         let dir = golden().join("geltip").join(&case);
         let manifest: serde_json::Value =

@@ -114,18 +114,7 @@ fn gelsight_imprints_grow_with_depth_and_follow_the_object() {
 
 #[test]
 fn geltip_imprints_grow_with_depth_and_follow_the_object() {
-    let fields: Vec<Vec<[f32; 3]>> = (0..3)
-        .map(|i| {
-            npy::read(golden(&format!("geltip/params/light_field_{i}.npy.gz")))
-                .unwrap()
-                .data
-                .chunks_exact(3)
-                .map(|v| [v[0], v[1], v[2]])
-                .collect()
-        })
-        .collect();
-    let bkg = npy::read(golden("geltip/params/bkg_depth_m.npy.gz")).unwrap();
-    let mut model = GelTipModel::new(GelTipParams::default(), &bkg.data, 320, &fields);
+    let mut model = GelTipModel::load(GelTipParams::default(), golden("geltip/params")).unwrap();
     let bg = background("geltip");
     check(
         "geltip",

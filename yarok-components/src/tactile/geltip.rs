@@ -1,11 +1,14 @@
 //! The GelTip model: a finger-shaped sensor whose lights reach the membrane along per-pixel
 //! "light fields" (Gomes et al.).
 
+use std::path::Path;
+
 use multiversion::multiversion;
 
 use super::field::Field;
 use super::filter::{correlate_columns, correlate_rows, gaussian_kernel};
 use super::int_pow;
+use super::npy::{self, NpyError};
 
 /// A light of the GelTip model.
 #[derive(Debug, Clone, PartialEq)]
@@ -127,6 +130,52 @@ impl GelTipModel {
             derivative: Vec::new(),
             tangents: [Vec::new(), Vec::new()],
         }
+    }
+
+    /// A model whose geometry is stored in `dir` as the reference stores it:
+    /// `bkg_depth_m.npy.gz` (the undeformed membrane depth, metres, `height × width`) and
+    /// `light_field_{i}.npy.gz` (`height × width × 3`), one per light.
+    ///
+    /// # Errors
+    ///
+    /// [`NpyError`] naming the file that is missing or has the wrong shape.
+    pub fn load(params: GelTipParams, dir: impl AsRef<Path>) -> Result<Self, NpyError> {
+        let dir = dir.as_ref();
+        let background = npy::read(dir.join("bkg_depth_m.npy.gz"))?;
+        let [height, width] = background.shape[..] else {
+            let message = format!("expected a 2-D depth map, got shape {:?}", background.shape);
+            return Err(NpyError::Format {
+                path: dir.join("bkg_depth_m.npy.gz").display().to_string(),
+                message,
+            });
+        };
+        let fields = (0..params.lights.len())
+            .map(|i| {
+                let path = dir.join(format!("light_field_{i}.npy.gz"));
+                let field = npy::read(&path)?;
+                if field.shape != [height, width, 3] {
+                    let message = format!(
+                        "expected shape [{height}, {width}, 3], got {:?}",
+                        field.shape
+                    );
+                    return Err(NpyError::Format {
+                        path: path.display().to_string(),
+                        message,
+                    });
+                }
+                Ok(field
+                    .data
+                    .chunks_exact(3)
+                    .map(|v| [v[0], v[1], v[2]])
+                    .collect())
+            })
+            .collect::<Result<Vec<_>, NpyError>>()?;
+        Ok(Self::new(params, &background.data, width, &fields))
+    }
+
+    /// The size of the images the model renders: `(width, height)`.
+    pub fn size(&self) -> (usize, usize) {
+        (self.width, self.background_depth.len() / self.width)
     }
 
     /// Renders the sensor image for `depth` (metres; the membrane where nothing presses, less
