@@ -35,7 +35,8 @@ struct InstanceState {
     tag: String,
     component: ComponentType,
     config: Config,
-    components: Vec<ComponentType>,
+    /// The component types usable in its template, by tag.
+    components: Vec<(String, ComponentType)>,
     verbatim: bool,
 }
 
@@ -282,12 +283,17 @@ impl<'o> Composer<'o> {
     ) -> Result<Vec<Element>, ComposeError> {
         let loaded = self.load(component, path)?;
         let id = self.instances.len();
+        let components = loaded
+            .components
+            .iter()
+            .map(|c| (self.tag_of(*c), *c))
+            .collect();
         self.instances.push(InstanceState {
             path: path.to_owned(),
             tag: loaded.tag.clone(),
             component,
             config: config.clone(),
-            components: loaded.components.clone(),
+            components,
             verbatim: loaded.verbatim,
         });
         let mut tree = loaded.tree;
@@ -450,16 +456,19 @@ impl<'o> Composer<'o> {
     }
 
     fn component_for(&self, owner: usize, tag: &str) -> Option<ComponentType> {
-        let components = &self.instances[owner].components;
-        components
+        self.instances[owner]
+            .components
             .iter()
             .rev()
-            .find(|c| {
-                self.loaded
-                    .get(&c.type_id)
-                    .map_or_else(|| (c.declaration)().tag == tag, |l| l.tag == tag)
-            })
-            .copied()
+            .find(|(t, _)| t == tag)
+            .map(|(_, c)| *c)
+    }
+
+    /// A component type's tag, from its loaded template when there is one.
+    fn tag_of(&self, component: ComponentType) -> String {
+        self.loaded
+            .get(&component.type_id)
+            .map_or_else(|| (component.declaration)().tag, |l| l.tag.clone())
     }
 
     fn instantiate(
