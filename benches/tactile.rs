@@ -3,7 +3,8 @@
 //! (≤ 4 ms), single-threaded.
 //!
 //! ```text
-//! cargo bench --bench tactile
+//! cargo bench --bench tactile            # every model
+//! cargo bench --bench tactile -- gelsight # the models whose name contains `gelsight`
 //! ```
 
 use std::path::PathBuf;
@@ -32,6 +33,12 @@ fn depth(model: &str) -> npy::NpyArray {
 }
 
 fn main() {
+    let filter = std::env::args()
+        .skip(1)
+        .find(|a| !a.starts_with('-'))
+        .unwrap_or_default()
+        .to_lowercase();
+    let selected = |name: &str| name.to_lowercase().contains(&filter);
     let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
     println!("{:<22} {:>10} {:>10}", "model", "ms/frame", "target");
     for (name, model, params, target) in [
@@ -54,6 +61,9 @@ fn main() {
             8.0,
         ),
     ] {
+        if !selected(name) {
+            continue;
+        }
         let mut phong = PhongModel::new(params);
         let (input, bg) = (depth(model), background(model));
         let width = input.shape[1];
@@ -61,6 +71,9 @@ fn main() {
             std::hint::black_box(phong.render(&input.data, width, &bg));
         });
         println!("{name:<22} {:>10.2} {target:>10.1}", ms(time));
+    }
+    if !selected("GelTip") {
+        return;
     }
     let mut geltip = GelTipModel::load(GelTipParams::default(), golden("geltip/params"))
         .expect("GelTip geometry");

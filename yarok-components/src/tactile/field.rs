@@ -127,15 +127,10 @@ impl Field {
 
     /// The largest value.
     pub(crate) fn max(&self) -> f32 {
-        let mut peak = self.background;
-        for y in self.region.y0..self.region.y1 {
-            for value in
-                &self.values[y * self.width + self.region.x0..y * self.width + self.region.x1]
-            {
-                peak = peak.max(*value);
-            }
-        }
-        peak
+        let Region { x0, x1, y0, y1 } = self.region;
+        (y0..y1)
+            .map(|y| max_of(&self.values[y * self.width + x0..y * self.width + x1]))
+            .fold(self.background, f32::max)
     }
 
     /// Writes the correlation with `kernel ⊗ kernel` (anchored at `len / 2`, reflect-101

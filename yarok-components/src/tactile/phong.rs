@@ -4,7 +4,7 @@
 use multiversion::multiversion;
 
 use super::field::Field;
-use super::filter::{gaussian_blur, gaussian_kernel};
+use super::filter::gaussian_kernel;
 use super::int_pow;
 
 /// A coloured light of the Phong model.
@@ -122,7 +122,7 @@ pub struct PhongModel {
     params: PhongParams,
     narrow: Vec<f32>,
     wide: Vec<f32>,
-    blur: Vec<f64>,
+    blur: [f64; 3],
     scratch: Scratch,
 }
 
@@ -135,49 +135,30 @@ struct Scratch {
     blurred: Field,
     rows: Vec<f32>,
     padded: Vec<f32>,
-    shadow: Vec<f64>,
-    height_map: Vec<f64>,
     noise: Vec<f64>,
-    dx: Vec<f64>,
-    dy: Vec<f64>,
-    nz: Vec<f64>,
-    channels: [Vec<f64>; 3],
-    channel_rows: Vec<f64>,
-    blurred_channels: [Vec<f64>; 3],
-}
-
-impl Scratch {
-    fn new() -> Self {
-        Self {
-            indentation: Field::empty(),
-            narrow: Field::empty(),
-            wide: Field::empty(),
-            blurred: Field::empty(),
-            rows: Vec::new(),
-            padded: Vec::new(),
-            shadow: Vec::new(),
-            height_map: Vec::new(),
-            noise: Vec::new(),
-            dx: Vec::new(),
-            dy: Vec::new(),
-            nz: Vec::new(),
-            channels: [Vec::new(), Vec::new(), Vec::new()],
-            channel_rows: Vec::new(),
-            blurred_channels: [Vec::new(), Vec::new(), Vec::new()],
-        }
-    }
+    band: RowBuffers,
 }
 
 impl PhongModel {
     /// A model with these parameters.
     pub fn new(params: PhongParams) -> Self {
         let single = |kernel: Vec<f64>| kernel.into_iter().map(|k| k as f32).collect();
+        let blur = gaussian_kernel(3, 1.0);
         Self {
             params,
             narrow: single(gaussian_kernel(21, 7.0)),
             wide: single(gaussian_kernel(52, 9.0)),
-            blur: gaussian_kernel(3, 1.0),
-            scratch: Scratch::new(),
+            blur: [blur[0], blur[1], blur[2]],
+            scratch: Scratch {
+                indentation: Field::empty(),
+                narrow: Field::empty(),
+                wide: Field::empty(),
+                blurred: Field::empty(),
+                rows: Vec::new(),
+                padded: Vec::new(),
+                noise: Vec::new(),
+                band: RowBuffers::default(),
+            },
         }
     }
 
@@ -211,30 +192,32 @@ impl PhongModel {
         );
         assert_eq!(depth.len() % width, 0, "depth must be width × height");
         let max_depth = self.params.max_depth();
-        let thickness = self.params.elastomer_thickness;
-        let s = &mut self.scratch;
-        s.shadow.clear();
-        s.shadow.extend(
-            depth
-                .iter()
-                .map(|&d| ((max_depth - f64::from(d).min(max_depth)) / thickness).clamp(0.0, 1.0)),
-        );
-        s.indentation.assign(
+        self.scratch.indentation.assign(
             width,
             depth
                 .iter()
                 .map(|&d| (max_depth - f64::from(d).min(max_depth)) as f32),
         );
-        self.deform(max_depth);
-        self.light(width, background);
-        self.final_blur(width, out);
+        self.deform();
+        let s = &mut self.scratch;
+        let frame = Frame {
+            width,
+            height: depth.len() / width,
+            depth,
+            background,
+            narrow: &s.narrow.values,
+            wide: &s.wide.values,
+            noise: &s.noise,
+        };
+        let shading = Shading::new(&self.params, self.blur);
+        shade_rows(&shading, &frame, 0..frame.height, &mut s.band, out);
     }
 
     /// Elastic deformation: the indentation smoothed by two Gaussians (difference of Gaussians),
     /// each iteration renormalised to keep the indentation's peak. Runs in f32 like the reference,
-    /// on the part of the image a press changes. Leaves `height_map` = elastomer depth + texture,
-    /// in pixels.
-    fn deform(&mut self, max_depth: f64) {
+    /// on the part of the image a press changes. Leaves the two smoothed fields in `narrow` and
+    /// `wide`, and the texture noise for this image size in `noise`.
+    fn deform(&mut self) {
         let s = &mut self.scratch;
         let p = &self.params;
         let peak = s.indentation.max();
@@ -258,129 +241,249 @@ impl PhongModel {
         if p.extra_passes {
             passes(&self.narrow, &mut s.wide, p.iterations);
         }
-        if s.noise.len() != s.narrow.values.len() {
-            s.noise = if p.texture_sigma > 0.0 {
-                super::noise::SplitMix64::new(p.seed).normal(s.narrow.values.len(), p.texture_sigma)
-            } else {
-                vec![0.0; s.narrow.values.len()]
-            };
-        }
-        s.height_map.clear();
-        s.height_map.extend(
-            s.narrow
-                .values
-                .iter()
-                .zip(&s.wide.values)
-                .zip(&s.noise)
-                .map(|((a, b), n)| {
-                    (f64::from(max_depth as f32 - (2.0 * a - b)) + n) / p.px2m_ratio
-                }),
-        );
-    }
-
-    /// The ambient background darkened by the internal shadow, then each light blended in;
-    /// planar, one pass per light, so that the per-pixel work vectorises.
-    fn light(&mut self, width: usize, background: &[u8]) {
-        let s = &mut self.scratch;
-        let p = &self.params;
-        let pixels = s.height_map.len();
-        s.dx.resize(pixels, 0.0);
-        s.dy.resize(pixels, 0.0);
-        s.nz.resize(pixels, 0.0);
-        normals(&s.height_map, width, [&mut s.dx, &mut s.dy, &mut s.nz]);
-        for (c, channel) in s.channels.iter_mut().enumerate() {
-            channel.resize(pixels, 0.0);
-            shade_channel(channel, background, c, p.ka, &s.shadow);
-        }
-        let [red, green, blue] = &mut s.channels;
-        for light in &p.lights {
-            light_pass([&s.dx, &s.dy, &s.nz], [red, green, blue], light);
-        }
-    }
-
-    fn final_blur(&mut self, width: usize, out: &mut [u8]) {
-        let s = &mut self.scratch;
-        let pixels = s.channels[0].len();
-        s.channel_rows.resize(pixels, 0.0);
-        for channel in &mut s.blurred_channels {
-            channel.resize(pixels, 0.0);
-        }
-        for (channel, blurred) in s.channels.iter().zip(&mut s.blurred_channels) {
-            gaussian_blur(channel, width, &self.blur, &mut s.channel_rows, blurred);
-        }
-        let [red, green, blue] = &s.blurred_channels;
-        store_pixels([red, green, blue], out);
-    }
-}
-
-/// Unit normals `(−∂x, −∂y, 1)/‖·‖` of a height map, with central differences and OpenCV's
-/// reflect-101 border (so the derivative across an edge is zero).
-#[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
-fn normals(height_map: &[f64], width: usize, [nx, ny, nz]: [&mut [f64]; 3]) {
-    let height = height_map.len() / width;
-    for y in 0..height {
-        let row = &height_map[y * width..(y + 1) * width];
-        // Reflect-101 rows: above the first row is the second, below the last the one before it.
-        let above_index = if y == 0 { 1.min(height - 1) } else { y - 1 };
-        let below_index = if y + 1 < height {
-            y + 1
-        } else {
-            height.saturating_sub(2)
-        };
-        let above = &height_map[above_index * width..(above_index + 1) * width];
-        let below = &height_map[below_index * width..(below_index + 1) * width];
-        let out = y * width..(y + 1) * width;
-        let (rx, ry, rz) = (&mut nx[out.clone()], &mut ny[out.clone()], &mut nz[out]);
-        for (x, dx) in rx.iter_mut().enumerate() {
-            let left = if x == 0 { 1.min(width - 1) } else { x - 1 };
-            let right = if x + 1 < width {
-                x + 1
-            } else {
-                width.saturating_sub(2)
-            };
-            *dx = (row[right] - row[left]) / 2.0;
-        }
-        let slopes = rx.iter_mut().zip(ry.iter_mut()).zip(rz.iter_mut());
-        for (((dx, dy), dz), (a, b)) in slopes.zip(above.iter().zip(below)) {
-            *dy = (b - a) / 2.0;
-            let norm = (*dx * *dx + *dy * *dy + 1.0).sqrt();
-            (*dx, *dy, *dz) = (-*dx / norm, -*dy / norm, 1.0 / norm);
+        let pixels = s.narrow.values.len();
+        if p.texture_sigma <= 0.0 {
+            s.noise.clear();
+        } else if s.noise.len() != pixels {
+            s.noise = super::noise::SplitMix64::new(p.seed).normal(pixels, p.texture_sigma);
         }
     }
 }
 
-/// One channel of the ambient background, darkened by the internal shadow.
+/// What one frame's shading reads: the input, the two deformation fields and the texture noise
+/// (empty for none).
+struct Frame<'a> {
+    width: usize,
+    height: usize,
+    depth: &'a [f32],
+    background: &'a [u8],
+    narrow: &'a [f32],
+    wide: &'a [f32],
+    noise: &'a [f64],
+}
+
+/// The parameters of the shading stage, in the form its loops use.
+struct Shading<'a> {
+    lights: &'a [PhongLight],
+    ka: f64,
+    max_depth: f64,
+    thickness: f64,
+    px2m_ratio: f64,
+    blur: [f64; 3],
+}
+
+impl<'a> Shading<'a> {
+    fn new(params: &'a PhongParams, blur: [f64; 3]) -> Self {
+        Self {
+            lights: &params.lights,
+            ka: params.ka,
+            max_depth: params.max_depth(),
+            thickness: params.elastomer_thickness,
+            px2m_ratio: params.px2m_ratio,
+            blur,
+        }
+    }
+}
+
+/// Row buffers of the shading stage: three rows of the height map and three lit rows (each the
+/// row's index, or `usize::MAX` when empty), so that each is computed once while the stage walks
+/// down the image.
+#[derive(Debug, Clone, Default)]
+struct RowBuffers {
+    heights: [(usize, Vec<f64>); 3],
+    lit: [(usize, [Vec<f64>; 3]); 3],
+    normals: [Vec<f64>; 3],
+    column_blurred: Vec<f64>,
+    blurred: [Vec<f64>; 3],
+}
+
+impl RowBuffers {
+    fn prepare(&mut self, width: usize) {
+        let rows = self.heights.iter_mut().map(|(index, row)| (index, row));
+        for (index, row) in rows {
+            *index = usize::MAX;
+            row.resize(width, 0.0);
+        }
+        for (index, channels) in &mut self.lit {
+            *index = usize::MAX;
+            for channel in channels {
+                channel.resize(width, 0.0);
+            }
+        }
+        for row in self.normals.iter_mut().chain(&mut self.blurred) {
+            row.resize(width, 0.0);
+        }
+        self.column_blurred.resize(width, 0.0);
+    }
+}
+
+/// OpenCV's default border for rows: `row` (which may be one beyond either end) inside
+/// `0..height`.
+fn reflect_row(row: isize, height: usize) -> usize {
+    if height < 2 {
+        0
+    } else if row < 0 {
+        1
+    } else if row as usize >= height {
+        height - 2
+    } else {
+        row as usize
+    }
+}
+
+/// Shades output rows `rows` of the frame into `out` (those rows, RGB interleaved): the height
+/// map and its normals, the internal shadow, each light, and the final 3×3 blur, row by row so
+/// that every buffer stays in cache (SIMD-multiversioned; the helpers inline into it).
 #[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
-fn shade_channel(channel: &mut [f64], background: &[u8], c: usize, ka: f64, shadow: &[f64]) {
-    for ((value, b), shadow) in channel
+fn shade_rows<'a>(
+    shading: &Shading<'a>,
+    frame: &Frame<'a>,
+    rows: std::ops::Range<usize>,
+    buffers: &mut RowBuffers,
+    out: &mut [u8],
+) {
+    let (width, height) = (frame.width, frame.height);
+    buffers.prepare(width);
+    let [a, b, c] = shading.blur;
+    for (y, out_row) in rows.zip(out.chunks_exact_mut(3 * width)) {
+        let above = reflect_row(y as isize - 1, height);
+        let below = reflect_row(y as isize + 1, height);
+        for row in [above, y, below] {
+            lit_row(shading, frame, row, buffers);
+        }
+        let [lit_above, lit, lit_below] = [above, y, below].map(|row| &buffers.lit[row % 3].1);
+        for channel in 0..3 {
+            let column = &mut buffers.column_blurred;
+            let rows = lit_above[channel].iter().zip(&lit[channel]);
+            for ((value, (up, centre)), down) in
+                column.iter_mut().zip(rows).zip(&lit_below[channel])
+            {
+                *value = a * up + b * centre + c * down;
+            }
+            blur_row(column, [a, b, c], &mut buffers.blurred[channel]);
+        }
+        let [red, green, blue] = &buffers.blurred;
+        store_row([red, green, blue], out_row);
+    }
+}
+
+/// Makes `buffers.lit[row % 3]` hold the lit (pre-blur) channels of `row`.
+#[inline(always)]
+fn lit_row(shading: &Shading<'_>, frame: &Frame<'_>, row: usize, buffers: &mut RowBuffers) {
+    if buffers.lit[row % 3].0 == row {
+        return;
+    }
+    let height = frame.height;
+    let above = reflect_row(row as isize - 1, height);
+    let below = reflect_row(row as isize + 1, height);
+    for r in [above, row, below] {
+        height_row(shading, frame, r, &mut buffers.heights[r % 3]);
+    }
+    let [up, centre, down] = [above, row, below].map(|r| &buffers.heights[r % 3].1);
+    normals_row([up, centre, down], &mut buffers.normals);
+    let (index, channels) = &mut buffers.lit[row % 3];
+    *index = row;
+    let width = frame.width;
+    let depth = &frame.depth[row * width..(row + 1) * width];
+    let background = &frame.background[3 * row * width..3 * (row + 1) * width];
+    for (c, channel) in channels.iter_mut().enumerate() {
+        shadowed_ambient(shading, depth, background, c, channel);
+    }
+    let [red, green, blue] = channels;
+    let [nx, ny, nz] = &buffers.normals;
+    for light in shading.lights {
+        light_row([nx, ny, nz], [red, green, blue], light);
+    }
+}
+
+/// Makes `slot` hold `row` of the height map: the elastomer's depth (minus the deformation) plus
+/// texture, in pixels.
+#[inline(always)]
+fn height_row(shading: &Shading<'_>, frame: &Frame<'_>, row: usize, slot: &mut (usize, Vec<f64>)) {
+    if slot.0 == row {
+        return;
+    }
+    slot.0 = row;
+    let range = row * frame.width..(row + 1) * frame.width;
+    let max_depth = shading.max_depth as f32;
+    let scale = shading.px2m_ratio;
+    let deformed = frame.narrow[range.clone()]
+        .iter()
+        .zip(&frame.wide[range.clone()]);
+    let elastomer = deformed.map(|(a, b)| f64::from(max_depth - (2.0 * a - b)));
+    if frame.noise.is_empty() {
+        for (height, depth) in slot.1.iter_mut().zip(elastomer) {
+            *height = depth / scale;
+        }
+    } else {
+        for ((height, depth), noise) in slot.1.iter_mut().zip(elastomer).zip(&frame.noise[range]) {
+            *height = (depth + noise) / scale;
+        }
+    }
+}
+
+/// Unit normals `(−∂x, −∂y, 1)/‖·‖` of the centre row of three height-map rows, with central
+/// differences and OpenCV's reflect-101 border (so the derivative across an edge is zero).
+#[inline(always)]
+fn normals_row([above, row, below]: [&[f64]; 3], [nx, ny, nz]: &mut [Vec<f64>; 3]) {
+    let width = row.len();
+    nx[0] = 0.0;
+    nx[width - 1] = 0.0;
+    if width > 2 {
+        let interior = nx[1..width - 1]
+            .iter_mut()
+            .zip(row[2..].iter().zip(&row[..width - 2]));
+        for (dx, (right, left)) in interior {
+            *dx = (right - left) / 2.0;
+        }
+    }
+    let slopes = nx.iter_mut().zip(ny.iter_mut()).zip(nz.iter_mut());
+    for (((dx, dy), dz), (a, b)) in slopes.zip(above.iter().zip(below)) {
+        *dy = (b - a) / 2.0;
+        let norm = (*dx * *dx + *dy * *dy + 1.0).sqrt();
+        (*dx, *dy, *dz) = (-*dx / norm, -*dy / norm, 1.0 / norm);
+    }
+}
+
+/// One channel of a row of the ambient background, darkened by the internal shadow.
+#[inline(always)]
+fn shadowed_ambient(
+    shading: &Shading<'_>,
+    depth: &[f32],
+    background: &[u8],
+    c: usize,
+    channel: &mut [f64],
+) {
+    let (max_depth, thickness, ka) = (shading.max_depth, shading.thickness, shading.ka);
+    let pixels = channel
         .iter_mut()
         .zip(background[c..].iter().step_by(3))
-        .zip(shadow)
-    {
-        *value = blend(ka * f64::from(*b), *shadow, 0.0);
+        .zip(depth);
+    for ((value, b), d) in pixels {
+        let shadow = ((max_depth - f64::from(*d).min(max_depth)) / thickness).clamp(0.0, 1.0);
+        *value = blend(ka * f64::from(*b), shadow, 0.0);
     }
 }
 
-/// Blends one light into the three channels, given the unit normals (SIMD-multiversioned:
-/// truncation is one instruction from SSE4.1 on).
-#[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
-fn light_pass(normals: [&[f64]; 3], channels: [&mut [f64]; 3], light: &PhongLight) {
+/// Blends one light into a row's three channels, given its unit normals.
+#[inline(always)]
+fn light_row(normals: [&[f64]; 3], channels: [&mut Vec<f64>; 3], light: &PhongLight) {
     // The reference's exponent is 5; a constant one lets the loop vectorise.
     if light.alpha == 5 {
-        light_pass_with(normals, channels, light, |x| {
+        light_row_with(normals, channels, light, |x| {
             let square = x * x;
             square * square * x
         });
     } else {
         let alpha = light.alpha;
-        light_pass_with(normals, channels, light, |x| int_pow(x, alpha));
+        light_row_with(normals, channels, light, |x| int_pow(x, alpha));
     }
 }
 
 #[inline(always)]
-fn light_pass_with(
+fn light_row_with(
     [nx, ny, nz]: [&[f64]; 3],
-    [red, green, blue]: [&mut [f64]; 3],
+    [red, green, blue]: [&mut Vec<f64>; 3],
     light: &PhongLight,
     power: impl Fn(f64) -> f64,
 ) {
@@ -398,10 +501,26 @@ fn light_pass_with(
     }
 }
 
-/// Rounds (half to even) and saturates three channels into interleaved RGB, as OpenCV stores a
-/// filtered u8 image.
-#[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
-fn store_pixels([red, green, blue]: [&[f64]; 3], out: &mut [u8]) {
+/// The row part of the final blur, `[a, b, c]` across `row` with reflect-101 ends.
+#[inline(always)]
+fn blur_row(row: &[f64], [a, b, c]: [f64; 3], out: &mut [f64]) {
+    let width = row.len();
+    if width < 2 {
+        out.copy_from_slice(row);
+        return;
+    }
+    out[0] = a * row[1] + b * row[0] + c * row[1];
+    out[width - 1] = a * row[width - 2] + b * row[width - 1] + c * row[width - 2];
+    let taps = row.iter().zip(&row[1..]).zip(&row[2..]);
+    for (value, ((left, centre), right)) in out[1..width - 1].iter_mut().zip(taps) {
+        *value = a * left + b * centre + c * right;
+    }
+}
+
+/// Rounds (half to even) and saturates three channel rows into interleaved RGB, as OpenCV stores
+/// a filtered u8 image.
+#[inline(always)]
+fn store_row([red, green, blue]: [&[f64]; 3], out: &mut [u8]) {
     let byte = |value: f64| value.round_ties_even().clamp(0.0, 255.0) as u8;
     for (((pixel, r), g), b) in out.chunks_exact_mut(3).zip(red).zip(green).zip(blue) {
         pixel.copy_from_slice(&[byte(*r), byte(*g), byte(*b)]);
