@@ -6,9 +6,10 @@ use std::path::Path;
 use multiversion::multiversion;
 
 use super::field::Field;
-use super::filter::{correlate_columns, correlate_rows, gaussian_kernel};
+use super::filter::gaussian_kernel;
 use super::int_pow;
 use super::npy::{self, NpyError};
+use super::rows::{RowRing, neighbours};
 
 /// A light of the GelTip model.
 #[derive(Debug, Clone, PartialEq)]
@@ -66,17 +67,16 @@ pub struct GelTipModel {
     params: GelTipParams,
     width: usize,
     background_depth: Vec<f32>,
-    /// Per light, the direction *towards* the light at each pixel (the negated field).
-    towards_lights: Vec<Vec<[f64; 3]>>,
+    /// Per light, the direction *towards* the light at each pixel (the negated field), as three
+    /// planes x, y, z.
+    towards_lights: Vec<[Vec<f32>; 3]>,
     kernel: Vec<f32>,
     protrusion: Field,
     blurred: Field,
     rows: Vec<f32>,
     padded: Vec<f32>,
-    points: Vec<[f64; 3]>,
-    coordinate: Vec<f64>,
-    derivative: Vec<f64>,
-    tangents: [Vec<[f64; 3]>; 2],
+    surface: Vec<f32>,
+    buffers: RowBuffers,
 }
 
 impl GelTipModel {
@@ -105,12 +105,7 @@ impl GelTipModel {
         );
         let towards_lights = light_fields
             .iter()
-            .map(|field| {
-                field
-                    .iter()
-                    .map(|v| [-f64::from(v[0]), -f64::from(v[1]), -f64::from(v[2])])
-                    .collect()
-            })
+            .map(|field| [0, 1, 2].map(|c| field.iter().map(|v| -v[c]).collect()))
             .collect();
         Self {
             params,
@@ -125,10 +120,8 @@ impl GelTipModel {
             blurred: Field::empty(),
             rows: Vec::new(),
             padded: Vec::new(),
-            points: Vec::new(),
-            coordinate: Vec::new(),
-            derivative: Vec::new(),
-            tangents: [Vec::new(), Vec::new()],
+            surface: Vec::new(),
+            buffers: RowBuffers::default(),
         }
     }
 
@@ -211,25 +204,24 @@ impl GelTipModel {
             background.len(),
             "output must be width × height × 3"
         );
-        self.deform_and_back_project(depth);
-        self.tangents();
-        shade(
-            &self.params,
-            &self.points,
-            &self.tangents,
-            &self.towards_lights,
+        self.deform(depth);
+        let (width, height) = self.size();
+        let frame = Frame {
+            camera: Camera::new(width, height, self.params.fov_deg),
+            width,
+            height,
+            surface: &self.surface,
+            towards_lights: &self.towards_lights,
             background,
-            out,
-        );
+        };
+        shade_rows(&self.params, &frame, 0..height, &mut self.buffers, out);
     }
 
-    /// `depth = min(depth, bkg − blur(bkg − depth))` in f32 like the reference, on the part of
-    /// the image a press changes; then pixels to camera-frame points (`z` = depth / 1000, as the
-    /// reference's Open3D call).
-    fn deform_and_back_project(&mut self, depth: &[f32]) {
-        let width = self.width;
+    /// `surface = min(depth, bkg − blur(bkg − depth))` in f32 like the reference, the blur on
+    /// the part of the image a press changes.
+    fn deform(&mut self, depth: &[f32]) {
         self.protrusion.assign(
-            width,
+            self.width,
             depth.iter().zip(&self.background_depth).map(|(d, b)| b - d),
         );
         self.protrusion.blur_into(
@@ -238,76 +230,167 @@ impl GelTipModel {
             &mut self.padded,
             &mut self.blurred,
         );
-        let (f, cx, cy) = pinhole(width, depth.len() / width, self.params.fov_deg);
-        self.points.clear();
-        self.points.extend(
+        self.surface.clear();
+        self.surface.extend(
             depth
                 .iter()
                 .zip(&self.background_depth)
                 .zip(&self.blurred.values)
-                .enumerate()
-                .map(|(i, ((d, b), e))| {
-                    let z = f64::from(d.min(b - e)) / 1000.0;
-                    let (u, v) = ((i % width) as f64, (i / width) as f64);
-                    [(u - cx) * z / f, (v - cy) * z / f, z]
-                }),
-        );
-    }
-
-    fn tangents(&mut self) {
-        tangents_into(
-            &self.points,
-            self.width,
-            &mut self.coordinate,
-            &mut self.derivative,
-            &mut self.tangents,
+                .map(|((d, b), e)| d.min(b - e)),
         );
     }
 }
 
-/// The Phong-like shading of every pixel from its point, tangents and the light fields
-/// (SIMD-multiversioned; the reference's exponent 100 is unrolled).
+/// The depth scale of the reference's back-projection (Open3D's, depth / 1000). It does not
+/// change the unit vectors the model uses, only which tangents count as too short to normalise.
+const BACK_PROJECTION_SCALE: f64 = 1e-3;
+
+/// What one frame's shading reads.
+struct Frame<'a> {
+    camera: Camera,
+    width: usize,
+    height: usize,
+    surface: &'a [f32],
+    towards_lights: &'a [[Vec<f32>; 3]],
+    background: &'a [u8],
+}
+
+/// Row buffers of the shading: back-projected rows, and the current row's normals, view
+/// directions and light sums.
+#[derive(Debug, Clone, Default)]
+struct RowBuffers {
+    points: RowRing<[Vec<f64>; 3]>,
+    tangent: [Vec<f64>; 3],
+    normal: [Vec<f64>; 3],
+    view: [Vec<f64>; 3],
+    light_sum: [Vec<f64>; 3],
+}
+
+impl RowBuffers {
+    fn prepare(&mut self, width: usize) {
+        self.points
+            .reset(|row| row.iter_mut().for_each(|c| c.resize(width, 0.0)));
+        let rows = [
+            &mut self.tangent,
+            &mut self.normal,
+            &mut self.view,
+            &mut self.light_sum,
+        ];
+        for row in rows.into_iter().flatten() {
+            row.resize(width, 0.0);
+        }
+    }
+}
+
+/// Shades output rows `rows` into `out` (those rows, RGB interleaved): back-projection, normals
+/// and the Phong-like lighting along the light fields, row by row (SIMD-multiversioned; the
+/// reference's exponent 100 is unrolled).
 #[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
-fn shade(
+fn shade_rows<'a>(
     params: &GelTipParams,
-    points: &[[f64; 3]],
-    tangents: &[Vec<[f64; 3]>; 2],
-    towards_lights: &[Vec<[f64; 3]>],
-    background: &[u8],
+    frame: &Frame<'a>,
+    rows: std::ops::Range<usize>,
+    buffers: &mut RowBuffers,
     out: &mut [u8],
 ) {
-    for (pixel, point) in points.iter().enumerate() {
-        let normal = surface_normal(tangents[0][pixel], tangents[1][pixel]);
-        let view = scale(normalised(*point), -1.0);
-        let mut light_sum = [0.0; 3];
-        for (light, towards) in params.lights.iter().zip(towards_lights) {
-            let l = towards[pixel];
-            let ln = dot(l, normal);
-            let reflected = [
-                2.0 * ln * normal[0] - l[0],
-                2.0 * ln * normal[1] - l[1],
-                2.0 * ln * normal[2] - l[2],
-            ];
-            let diffuse = if params.clamp_diffuse {
-                ln.max(0.0)
-            } else {
-                ln
-            };
-            let alignment = dot(reflected, view);
-            let specular = if light.alpha == 100 {
-                pow100(alignment)
-            } else {
-                int_pow(alignment, light.alpha)
-            };
-            let weight = light.id * diffuse + light.is * specular;
-            for (sum, colour) in light_sum.iter_mut().zip(light.colour) {
-                *sum += weight * colour / 255.0;
+    let width = frame.width;
+    buffers.prepare(width);
+    for (y, out_row) in rows.zip(out.chunks_exact_mut(3 * width)) {
+        let neighbours = neighbours(y, frame.height);
+        for row in neighbours {
+            let surface = &frame.surface[row * width..(row + 1) * width];
+            if let Some(points) = buffers.points.claim(row) {
+                back_project_row(frame.camera, row, surface, BACK_PROJECTION_SCALE, points);
             }
         }
-        for c in 0..3 {
-            let intensity = params.ia * f64::from(background[3 * pixel + c]) / 255.0 + light_sum[c];
-            out[3 * pixel + c] = (intensity * 255.0).clamp(0.0, 255.0) as u8;
+        let [above, points, below] = neighbours.map(|row| buffers.points.get(row));
+        normals_row(
+            [above, points, below],
+            &mut buffers.tangent,
+            &mut buffers.normal,
+        );
+        view_row(points, &mut buffers.view);
+        for sum in &mut buffers.light_sum {
+            sum.fill(0.0);
         }
+        for (light, towards) in params.lights.iter().zip(frame.towards_lights) {
+            let towards = towards
+                .each_ref()
+                .map(|plane| &plane[y * width..(y + 1) * width]);
+            light_row(params, light, towards, buffers);
+        }
+        let background = &frame.background[3 * y * width..3 * (y + 1) * width];
+        store_row(params.ia, &buffers.light_sum, background, out_row);
+    }
+}
+
+/// Adds one light's diffuse and specular terms, weighted by its colour, to the row's light sums.
+#[inline(always)]
+fn light_row(
+    params: &GelTipParams,
+    light: &GelTipLight,
+    [lx, ly, lz]: [&[f32]; 3],
+    buffers: &mut RowBuffers,
+) {
+    if light.alpha == 100 {
+        light_row_with(params.clamp_diffuse, light, [lx, ly, lz], buffers, pow100);
+    } else {
+        let alpha = light.alpha;
+        light_row_with(params.clamp_diffuse, light, [lx, ly, lz], buffers, |x| {
+            int_pow(x, alpha)
+        });
+    }
+}
+
+#[inline(always)]
+fn light_row_with(
+    clamp_diffuse: bool,
+    light: &GelTipLight,
+    [lx, ly, lz]: [&[f32]; 3],
+    buffers: &mut RowBuffers,
+    power: impl Fn(f64) -> f64,
+) {
+    let [nx, ny, nz] = &buffers.normal;
+    let [vx, vy, vz] = &buffers.view;
+    let [red, green, blue] = &mut buffers.light_sum;
+    let [cr, cg, cb] = light.colour.map(|c| c / 255.0);
+    let normals = nx.iter().zip(ny).zip(nz);
+    let views = vx.iter().zip(vy).zip(vz);
+    let towards = lx.iter().zip(ly).zip(lz);
+    let sums = red.iter_mut().zip(green.iter_mut()).zip(blue.iter_mut());
+    for (((((nx, ny), nz), ((vx, vy), vz)), ((lx, ly), lz)), ((r, g), b)) in
+        normals.zip(views).zip(towards).zip(sums)
+    {
+        let n = [*nx, *ny, *nz];
+        let l = [f64::from(*lx), f64::from(*ly), f64::from(*lz)];
+        let ln = dot(l, n);
+        let reflected = [
+            2.0 * ln * n[0] - l[0],
+            2.0 * ln * n[1] - l[1],
+            2.0 * ln * n[2] - l[2],
+        ];
+        let diffuse = if clamp_diffuse { ln.max(0.0) } else { ln };
+        let alignment = dot(reflected, [*vx, *vy, *vz]);
+        let weight = light.id * diffuse + light.is * power(alignment);
+        *r += weight * cr;
+        *g += weight * cg;
+        *b += weight * cb;
+    }
+}
+
+/// `ia · background + light sums`, saturated and truncated to bytes as the reference does.
+#[inline(always)]
+fn store_row(ia: f64, [red, green, blue]: &[Vec<f64>; 3], background: &[u8], out: &mut [u8]) {
+    let sums = red.iter().zip(green).zip(blue);
+    for ((pixel, base), ((r, g), b)) in out
+        .chunks_exact_mut(3)
+        .zip(background.chunks_exact(3))
+        .zip(sums)
+    {
+        let byte = |base: u8, sum: f64| {
+            ((ia * f64::from(base) / 255.0 + sum) * 255.0).clamp(0.0, 255.0) as u8
+        };
+        pixel.copy_from_slice(&[byte(base[0], *r), byte(base[1], *g), byte(base[2], *b)]);
     }
 }
 
@@ -322,44 +405,104 @@ fn pow100(x: f64) -> f64 {
     x32 * x32 * x32 * x4
 }
 
-/// Focal length and centre, in pixels, of a camera `height` pixels high with vertical field of
-/// view `fov_deg` (square pixels; the centre between the middle pixels).
-pub(crate) fn pinhole(width: usize, height: usize, fov_deg: f64) -> (f64, f64, f64) {
-    let f = height as f64 / (2.0 * (fov_deg.to_radians() / 2.0).tan());
-    (f, (width as f64 - 1.0) / 2.0, (height as f64 - 1.0) / 2.0)
+/// A pinhole camera: focal length and centre, in pixels.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Camera {
+    f: f64,
+    cx: f64,
+    cy: f64,
 }
 
-/// Central differences of a grid of points along rows (`tangents[0]`) and columns
-/// (`tangents[1]`), with reflect-101 borders; `coordinate` and `derivative` are scratch.
-pub(crate) fn tangents_into(
-    points: &[[f64; 3]],
-    width: usize,
-    coordinate: &mut Vec<f64>,
-    derivative: &mut Vec<f64>,
-    tangents: &mut [Vec<[f64; 3]>; 2],
-) {
-    let n = points.len();
-    coordinate.resize(n, 0.0);
-    derivative.resize(n, 0.0);
-    for tangent in tangents.iter_mut() {
-        tangent.resize(n, [0.0; 3]);
+impl Camera {
+    /// The camera of an image `width × height` with vertical field of view `fov_deg` (square
+    /// pixels; the centre between the middle pixels).
+    pub(crate) fn new(width: usize, height: usize, fov_deg: f64) -> Self {
+        Self {
+            f: height as f64 / (2.0 * (fov_deg.to_radians() / 2.0).tan()),
+            cx: (width as f64 - 1.0) / 2.0,
+            cy: (height as f64 - 1.0) / 2.0,
+        }
     }
-    for c in 0..3 {
-        for (value, point) in coordinate.iter_mut().zip(points) {
-            *value = point[c];
+
+    /// The point pixel `(u, v)` sees at depth `z` (along the camera axis).
+    pub(crate) fn point(self, u: f64, v: f64, z: f64) -> [f64; 3] {
+        [(u - self.cx) * z / self.f, (v - self.cy) * z / self.f, z]
+    }
+}
+
+/// Row `row` of camera-frame points (x, y, z planes) from depths along the camera axis, scaled
+/// by `scale`.
+#[inline(always)]
+pub(crate) fn back_project_row(
+    camera: Camera,
+    row: usize,
+    depth: &[f32],
+    scale: f64,
+    [px, py, pz]: &mut [Vec<f64>; 3],
+) {
+    let v = row as f64;
+    let mut u = 0.0;
+    for (((x, y), z), d) in px
+        .iter_mut()
+        .zip(py.iter_mut())
+        .zip(pz.iter_mut())
+        .zip(depth)
+    {
+        [*x, *y, *z] = camera.point(u, v, f64::from(*d) * scale);
+        u += 1.0;
+    }
+}
+
+/// Surface normals `−(t̂x × t̂y)` of the middle of three rows of points, from central differences
+/// along the row (`tangent` is its scratch) and across the rows, with reflect-101 borders.
+#[inline(always)]
+pub(crate) fn normals_row(
+    [above, row, below]: [&[Vec<f64>; 3]; 3],
+    tangent: &mut [Vec<f64>; 3],
+    [nx, ny, nz]: &mut [Vec<f64>; 3],
+) {
+    let width = nx.len();
+    for (t, p) in tangent.iter_mut().zip(row) {
+        t[0] = 0.0;
+        t[width - 1] = 0.0;
+        if width > 2 {
+            for (t, (right, left)) in t[1..width - 1]
+                .iter_mut()
+                .zip(p[2..].iter().zip(&p[..width - 2]))
+            {
+                *t = (right - left) / 2.0;
+            }
         }
-        correlate_rows(coordinate, width, &[-0.5, 0.0, 0.5], derivative);
-        for (t, d) in tangents[0].iter_mut().zip(derivative.iter()) {
-            t[c] = *d;
-        }
-        correlate_columns(coordinate, width, &[-0.5, 0.0, 0.5], derivative);
-        for (t, d) in tangents[1].iter_mut().zip(derivative.iter()) {
-            t[c] = *d;
-        }
+    }
+    let [tx, ty, tz] = &*tangent;
+    let along = tx.iter().zip(ty).zip(tz);
+    let up = above[0].iter().zip(&above[1]).zip(&above[2]);
+    let down = below[0].iter().zip(&below[1]).zip(&below[2]);
+    let normals = nx.iter_mut().zip(ny.iter_mut()).zip(nz.iter_mut());
+    for ((((x, y), z), ((ax, ay), az)), (((ux, uy), uz), ((dx, dy), dz))) in
+        normals.zip(along).zip(up.zip(down))
+    {
+        let across = [(dx - ux) / 2.0, (dy - uy) / 2.0, (dz - uz) / 2.0];
+        [*x, *y, *z] = surface_normal([*ax, *ay, *az], across);
+    }
+}
+
+/// Unit vectors from each point of a row towards the camera.
+#[inline(always)]
+fn view_row([px, py, pz]: &[Vec<f64>; 3], [vx, vy, vz]: &mut [Vec<f64>; 3]) {
+    let points = px.iter().zip(py).zip(pz);
+    for (((x, y), z), ((px, py), pz)) in vx
+        .iter_mut()
+        .zip(vy.iter_mut())
+        .zip(vz.iter_mut())
+        .zip(points)
+    {
+        [*x, *y, *z] = scale(normalised([*px, *py, *pz]), -1.0);
     }
 }
 
 /// The surface normal from a pair of tangents, `−(t̂x × t̂y)` as the reference computes it.
+#[inline(always)]
 pub(crate) fn surface_normal(tx: [f64; 3], ty: [f64; 3]) -> [f64; 3] {
     let (a, b) = (normalised(tx), normalised(ty));
     [
@@ -369,16 +512,20 @@ pub(crate) fn surface_normal(tx: [f64; 3], ty: [f64; 3]) -> [f64; 3] {
     ]
 }
 
+#[inline(always)]
 pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
+#[inline(always)]
 fn scale(a: [f64; 3], s: f64) -> [f64; 3] {
     [a[0] * s, a[1] * s, a[2] * s]
 }
 
 /// The unit vector along `a`; vectors shorter than 1e-9 are left as they are, as in the reference.
+#[inline(always)]
 pub(crate) fn normalised(a: [f64; 3]) -> [f64; 3] {
     let norm = dot(a, a).sqrt();
-    if norm < 1e-9 { a } else { scale(a, 1.0 / norm) }
+    let inverse = if norm < 1e-9 { 1.0 } else { 1.0 / norm };
+    scale(a, inverse)
 }

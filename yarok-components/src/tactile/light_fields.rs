@@ -2,7 +2,8 @@
 //! precomputed files: for each pixel, the unit direction in which an LED's light travels when it
 //! reaches the membrane point that pixel sees.
 
-use super::geltip::{dot, normalised, pinhole, surface_normal, tangents_into};
+use super::geltip::{Camera, back_project_row, dot, normalised, normals_row};
+use super::rows::{RowRing, neighbours};
 
 /// How light is taken to travel from an LED to a membrane point.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -28,41 +29,37 @@ pub fn light_field(
     method: LightFieldMethod,
 ) -> Vec<[f32; 3]> {
     let height = membrane_depth.len() / width;
-    let (f, cx, cy) = pinhole(width, height, fov_deg);
-    let points: Vec<[f64; 3]> = membrane_depth
-        .iter()
-        .enumerate()
-        .map(|(i, d)| {
-            let z = f64::from(*d);
-            [
-                ((i % width) as f64 - cx) * z / f,
-                ((i / width) as f64 - cy) * z / f,
-                z,
-            ]
-        })
-        .collect();
-    let mut tangents = [Vec::new(), Vec::new()];
-    tangents_into(
-        &points,
-        width,
-        &mut Vec::new(),
-        &mut Vec::new(),
-        &mut tangents,
+    let camera = Camera::new(width, height, fov_deg);
+    let mut points = RowRing::<[Vec<f64>; 3]>::default();
+    points.reset(|row| row.iter_mut().for_each(|c| c.resize(width, 0.0)));
+    let (mut tangent, mut normal) = (
+        [0; 3].map(|_| vec![0.0; width]),
+        [0; 3].map(|_| vec![0.0; width]),
     );
-    points
-        .iter()
-        .enumerate()
-        .map(|(i, point)| {
+    let mut field = Vec::with_capacity(membrane_depth.len());
+    for y in 0..height {
+        let rows = neighbours(y, height);
+        for row in rows {
+            let depth = &membrane_depth[row * width..(row + 1) * width];
+            if let Some(points) = points.claim(row) {
+                back_project_row(camera, row, depth, 1.0, points);
+            }
+        }
+        normals_row(rows.map(|row| points.get(row)), &mut tangent, &mut normal);
+        let row = points.get(y);
+        for x in 0..width {
+            let point = [row[0][x], row[1][x], row[2][x]];
             let away = [point[0] - led[0], point[1] - led[1], point[2] - led[2]];
             let direction = match method {
                 LightFieldMethod::Linear => normalised(away),
                 LightFieldMethod::Plane => {
-                    along_membrane(away, surface_normal(tangents[0][i], tangents[1][i]))
+                    along_membrane(away, [normal[0][x], normal[1][x], normal[2][x]])
                 }
             };
-            direction.map(|v| v as f32)
-        })
-        .collect()
+            field.push(direction.map(|v| v as f32));
+        }
+    }
+    field
 }
 
 /// The tangent of the membrane's cut by the plane holding `away` and the sensor axis (+z),
@@ -93,14 +90,10 @@ mod tests {
 
     /// A hemispherical membrane of radius 12 mm centred 30 mm in front of the camera.
     fn dome(width: usize, height: usize) -> Vec<f32> {
-        let (f, cx, cy) = pinhole(width, height, 70.0);
+        let camera = Camera::new(width, height, 70.0);
         (0..width * height)
             .map(|i| {
-                let ray = normalised([
-                    ((i % width) as f64 - cx) / f,
-                    ((i / width) as f64 - cy) / f,
-                    1.0,
-                ]);
+                let ray = normalised(camera.point((i % width) as f64, (i / width) as f64, 1.0));
                 // Nearest intersection of the ray with the sphere |p − c| = r, c = (0, 0, 0.030).
                 let (c, r) = (0.030, 0.012);
                 let b = ray[2] * c;
@@ -120,18 +113,14 @@ mod tests {
         let (width, height) = (64, 48);
         let depth = dome(width, height);
         let led = [0.012, 0.0, 0.030];
-        let (f, cx, cy) = pinhole(width, height, 70.0);
+        let camera = Camera::new(width, height, 70.0);
         for method in [LightFieldMethod::Linear, LightFieldMethod::Plane] {
             let field = light_field(&depth, width, 70.0, led, method);
             for (i, v) in field.iter().enumerate() {
                 let v = v.map(f64::from);
                 assert!((dot(v, v) - 1.0).abs() < 1e-5, "{method:?} pixel {i}");
                 let z = f64::from(depth[i]);
-                let point = [
-                    ((i % width) as f64 - cx) * z / f,
-                    ((i / width) as f64 - cy) * z / f,
-                    z,
-                ];
+                let point = camera.point((i % width) as f64, (i / width) as f64, z);
                 let away = [point[0] - led[0], point[1] - led[1], point[2] - led[2]];
                 assert!(
                     dot(v, away) >= -1e-9,

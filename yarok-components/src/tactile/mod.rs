@@ -16,6 +16,7 @@ pub mod light_fields;
 pub mod noise;
 pub mod npy;
 pub mod phong;
+mod rows;
 
 /// `base` to an integer power by repeated squaring (odd powers keep the sign), without the
 /// library call `powi` becomes for a run-time exponent.

@@ -6,6 +6,7 @@ use multiversion::multiversion;
 use super::field::Field;
 use super::filter::gaussian_kernel;
 use super::int_pow;
+use super::rows::{RowRing, neighbours};
 
 /// A coloured light of the Phong model.
 #[derive(Debug, Clone, PartialEq)]
@@ -285,13 +286,12 @@ impl<'a> Shading<'a> {
     }
 }
 
-/// Row buffers of the shading stage: three rows of the height map and three lit rows (each the
-/// row's index, or `usize::MAX` when empty), so that each is computed once while the stage walks
-/// down the image.
+/// Row buffers of the shading stage: rows of the height map and lit (pre-blur) rows, each
+/// computed once while the stage walks down the image.
 #[derive(Debug, Clone, Default)]
 struct RowBuffers {
-    heights: [(usize, Vec<f64>); 3],
-    lit: [(usize, [Vec<f64>; 3]); 3],
+    heights: RowRing<Vec<f64>>,
+    lit: RowRing<[Vec<f64>; 3]>,
     normals: [Vec<f64>; 3],
     column_blurred: Vec<f64>,
     blurred: [Vec<f64>; 3],
@@ -299,35 +299,13 @@ struct RowBuffers {
 
 impl RowBuffers {
     fn prepare(&mut self, width: usize) {
-        let rows = self.heights.iter_mut().map(|(index, row)| (index, row));
-        for (index, row) in rows {
-            *index = usize::MAX;
-            row.resize(width, 0.0);
-        }
-        for (index, channels) in &mut self.lit {
-            *index = usize::MAX;
-            for channel in channels {
-                channel.resize(width, 0.0);
-            }
-        }
+        self.heights.reset(|row| row.resize(width, 0.0));
+        self.lit
+            .reset(|channels| channels.iter_mut().for_each(|c| c.resize(width, 0.0)));
         for row in self.normals.iter_mut().chain(&mut self.blurred) {
             row.resize(width, 0.0);
         }
         self.column_blurred.resize(width, 0.0);
-    }
-}
-
-/// OpenCV's default border for rows: `row` (which may be one beyond either end) inside
-/// `0..height`.
-fn reflect_row(row: isize, height: usize) -> usize {
-    if height < 2 {
-        0
-    } else if row < 0 {
-        1
-    } else if row as usize >= height {
-        height - 2
-    } else {
-        row as usize
     }
 }
 
@@ -342,16 +320,15 @@ fn shade_rows<'a>(
     buffers: &mut RowBuffers,
     out: &mut [u8],
 ) {
-    let (width, height) = (frame.width, frame.height);
+    let width = frame.width;
     buffers.prepare(width);
     let [a, b, c] = shading.blur;
     for (y, out_row) in rows.zip(out.chunks_exact_mut(3 * width)) {
-        let above = reflect_row(y as isize - 1, height);
-        let below = reflect_row(y as isize + 1, height);
-        for row in [above, y, below] {
+        let rows = neighbours(y, frame.height);
+        for row in rows {
             lit_row(shading, frame, row, buffers);
         }
-        let [lit_above, lit, lit_below] = [above, y, below].map(|row| &buffers.lit[row % 3].1);
+        let [lit_above, lit, lit_below] = rows.map(|row| buffers.lit.get(row));
         for channel in 0..3 {
             let column = &mut buffers.column_blurred;
             let rows = lit_above[channel].iter().zip(&lit[channel]);
@@ -367,22 +344,25 @@ fn shade_rows<'a>(
     }
 }
 
-/// Makes `buffers.lit[row % 3]` hold the lit (pre-blur) channels of `row`.
+/// Makes `buffers.lit` hold the lit (pre-blur) channels of `row`.
 #[inline(always)]
 fn lit_row(shading: &Shading<'_>, frame: &Frame<'_>, row: usize, buffers: &mut RowBuffers) {
-    if buffers.lit[row % 3].0 == row {
+    let RowBuffers {
+        heights,
+        lit,
+        normals,
+        ..
+    } = buffers;
+    let Some(channels) = lit.claim(row) else {
         return;
+    };
+    let rows = neighbours(row, frame.height);
+    for r in rows {
+        if let Some(slot) = heights.claim(r) {
+            height_row(shading, frame, r, slot);
+        }
     }
-    let height = frame.height;
-    let above = reflect_row(row as isize - 1, height);
-    let below = reflect_row(row as isize + 1, height);
-    for r in [above, row, below] {
-        height_row(shading, frame, r, &mut buffers.heights[r % 3]);
-    }
-    let [up, centre, down] = [above, row, below].map(|r| &buffers.heights[r % 3].1);
-    normals_row([up, centre, down], &mut buffers.normals);
-    let (index, channels) = &mut buffers.lit[row % 3];
-    *index = row;
+    normals_row(rows.map(|r| heights.get(r).as_slice()), normals);
     let width = frame.width;
     let depth = &frame.depth[row * width..(row + 1) * width];
     let background = &frame.background[3 * row * width..3 * (row + 1) * width];
@@ -390,20 +370,16 @@ fn lit_row(shading: &Shading<'_>, frame: &Frame<'_>, row: usize, buffers: &mut R
         shadowed_ambient(shading, depth, background, c, channel);
     }
     let [red, green, blue] = channels;
-    let [nx, ny, nz] = &buffers.normals;
+    let [nx, ny, nz] = &*normals;
     for light in shading.lights {
         light_row([nx, ny, nz], [red, green, blue], light);
     }
 }
 
-/// Makes `slot` hold `row` of the height map: the elastomer's depth (minus the deformation) plus
-/// texture, in pixels.
+/// Row `row` of the height map: the elastomer's depth (minus the deformation) plus texture, in
+/// pixels.
 #[inline(always)]
-fn height_row(shading: &Shading<'_>, frame: &Frame<'_>, row: usize, slot: &mut (usize, Vec<f64>)) {
-    if slot.0 == row {
-        return;
-    }
-    slot.0 = row;
+fn height_row(shading: &Shading<'_>, frame: &Frame<'_>, row: usize, heights: &mut [f64]) {
     let range = row * frame.width..(row + 1) * frame.width;
     let max_depth = shading.max_depth as f32;
     let scale = shading.px2m_ratio;
@@ -412,11 +388,11 @@ fn height_row(shading: &Shading<'_>, frame: &Frame<'_>, row: usize, slot: &mut (
         .zip(&frame.wide[range.clone()]);
     let elastomer = deformed.map(|(a, b)| f64::from(max_depth - (2.0 * a - b)));
     if frame.noise.is_empty() {
-        for (height, depth) in slot.1.iter_mut().zip(elastomer) {
+        for (height, depth) in heights.iter_mut().zip(elastomer) {
             *height = depth / scale;
         }
     } else {
-        for ((height, depth), noise) in slot.1.iter_mut().zip(elastomer).zip(&frame.noise[range]) {
+        for ((height, depth), noise) in heights.iter_mut().zip(elastomer).zip(&frame.noise[range]) {
             *height = (depth + noise) / scale;
         }
     }
