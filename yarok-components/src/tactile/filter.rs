@@ -1,7 +1,5 @@
-//! The image filters the optical models are built from: the reference's Gaussian kernels and
-//! separable correlation with OpenCV's default border (reflect-101).
-
-use multiversion::multiversion;
+//! The reference's Gaussian kernels, and OpenCV's default border (reflect-101) that the optical
+//! models' filters use.
 
 /// The 1-D factor of the reference's `G(n, σ)` kernel: a unit impulse at `n / 2` smoothed by a
 /// Gaussian of `σ` truncated at 4σ with half-sample reflection at the ends (SciPy's
@@ -58,54 +56,6 @@ pub(crate) fn reflect_101(index: i64, len: i64) -> usize {
     (if index < len { index } else { period - index }) as usize
 }
 
-/// Correlates each row of a `height × width` single-channel image with `kernel` (anchored at
-/// `kernel.len() / 2`), writing into `out`.
-#[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
-pub fn correlate_rows(image: &[f64], width: usize, kernel: &[f64], out: &mut [f64]) {
-    let anchor = kernel.len() / 2;
-    let mut padded = vec![0.0; width + kernel.len() - 1];
-    for (row, out_row) in image.chunks_exact(width).zip(out.chunks_exact_mut(width)) {
-        pad_reflect_101(row, anchor, &mut padded);
-        // Tap by tap across the row, so that the inner loop runs over contiguous pixels.
-        out_row.fill(0.0);
-        for (k, weight) in kernel.iter().enumerate() {
-            for (value, sample) in out_row.iter_mut().zip(&padded[k..k + width]) {
-                *value += weight * sample;
-            }
-        }
-    }
-}
-
-/// Correlates each column of a `height × width` single-channel image with `kernel`.
-#[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
-pub fn correlate_columns(image: &[f64], width: usize, kernel: &[f64], out: &mut [f64]) {
-    let height = image.len() / width;
-    let anchor = (kernel.len() / 2) as i64;
-    for y in 0..height {
-        let out_row = &mut out[y * width..(y + 1) * width];
-        out_row.fill(0.0);
-        for (k, weight) in kernel.iter().enumerate() {
-            let source = reflect_101(y as i64 + k as i64 - anchor, height as i64);
-            let source_row = &image[source * width..(source + 1) * width];
-            for (value, sample) in out_row.iter_mut().zip(source_row) {
-                *value += weight * sample;
-            }
-        }
-    }
-}
-
-/// Correlates a single-channel image with the separable kernel `kernel ⊗ kernel`.
-pub fn gaussian_blur(
-    image: &[f64],
-    width: usize,
-    kernel: &[f64],
-    scratch: &mut [f64],
-    out: &mut [f64],
-) {
-    correlate_rows(image, width, kernel, scratch);
-    correlate_columns(scratch, width, kernel, out);
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -144,8 +94,8 @@ mod tests {
             [-2, -1, 0, 3, 4, 5].map(|i| reflect_101(i, 4)),
             [2, 1, 0, 3, 2, 1]
         );
-        let mut out = [0.0; 4];
-        correlate_rows(&[1.0, 2.0, 3.0, 4.0], 4, &[-0.5, 0.0, 0.5], &mut out);
-        assert_eq!(out, [0.0, 1.0, 1.0, 0.0]);
+        let mut padded = [0; 8];
+        pad_reflect_101(&[1, 2, 3, 4], 2, &mut padded);
+        assert_eq!(padded, [3, 2, 1, 2, 3, 4, 3, 2]);
     }
 }
