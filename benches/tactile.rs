@@ -1,9 +1,10 @@
 //! Measures, side by side in one run, ms per frame of the tactile optical models on the golden
-//! contact cases: DIGIT 320×240 (target ≤ 2 ms), GelSight 640×480 (≤ 8 ms), GelTip 320×240
-//! (≤ 4 ms), single-threaded.
+//! `sphere_center` case, single-threaded and split over rayon's pool: DIGIT 320×240 (target
+//! ≤ 2 ms single-threaded), GelSight 640×480 (≤ 8 ms), GelTip 320×240 (≤ 4 ms). Texture noise is
+//! on, as sensors run by default.
 //!
 //! ```text
-//! cargo bench --bench tactile            # every model
+//! cargo bench --bench tactile             # every model
 //! cargo bench --bench tactile -- gelsight # the models whose name contains `gelsight`
 //! ```
 
@@ -32,54 +33,107 @@ fn depth(model: &str) -> npy::NpyArray {
     npy::read(golden(&format!("{model}/sphere_center/input_depth.npy.gz"))).expect("depth")
 }
 
+/// Renders one frame with the model split over threads or not.
+trait Model {
+    fn set_parallel(&mut self, parallel: bool);
+    fn render(&mut self) -> Vec<u8>;
+}
+
+struct Phong {
+    model: PhongModel,
+    depth: npy::NpyArray,
+    background: Vec<u8>,
+}
+
+impl Model for Phong {
+    fn set_parallel(&mut self, parallel: bool) {
+        self.model.set_parallel(parallel);
+    }
+    fn render(&mut self) -> Vec<u8> {
+        let width = self.depth.shape[1];
+        self.model.render(&self.depth.data, width, &self.background)
+    }
+}
+
+struct GelTip {
+    model: GelTipModel,
+    depth: npy::NpyArray,
+    background: Vec<u8>,
+}
+
+impl Model for GelTip {
+    fn set_parallel(&mut self, parallel: bool) {
+        self.model.set_parallel(parallel);
+    }
+    fn render(&mut self) -> Vec<u8> {
+        self.model.render(&self.depth.data, &self.background)
+    }
+}
+
+fn phong(name: &str, params: PhongParams) -> Box<dyn Model> {
+    Box::new(Phong {
+        model: PhongModel::new(params),
+        depth: depth(name),
+        background: background(name),
+    })
+}
+
 fn main() {
     let filter = std::env::args()
         .skip(1)
         .find(|a| !a.starts_with('-'))
         .unwrap_or_default()
         .to_lowercase();
-    let selected = |name: &str| name.to_lowercase().contains(&filter);
     let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
-    println!("{:<22} {:>10} {:>10}", "model", "ms/frame", "target");
-    for (name, model, params, target) in [
-        (
-            "DIGIT 320×240",
-            "digit",
-            PhongParams {
-                texture_sigma: 0.0,
-                ..PhongParams::digit()
-            },
-            2.0,
-        ),
-        (
-            "GelSight 640×480",
-            "gelsight",
-            PhongParams {
-                texture_sigma: 0.0,
-                ..PhongParams::gelsight2014()
-            },
-            8.0,
-        ),
-    ] {
-        if !selected(name) {
+    println!(
+        "{:<18} {:>16} {:>12} {:>9} {:>10}   ({} threads)",
+        "model",
+        "single ms/frame",
+        "parallel ms",
+        "speed-up",
+        "target",
+        std::thread::available_parallelism().map_or(1, |n| n.get())
+    );
+    type Make = fn() -> Box<dyn Model>;
+    let models: [(&str, f64, Make); 3] = [
+        ("DIGIT 320×240", 2.0, || {
+            phong("digit", PhongParams::digit())
+        }),
+        ("GelSight 640×480", 8.0, || {
+            phong("gelsight", PhongParams::gelsight2014())
+        }),
+        ("GelTip 320×240", 4.0, || {
+            Box::new(GelTip {
+                model: GelTipModel::load(GelTipParams::default(), golden("geltip/params"))
+                    .expect("GelTip geometry"),
+                depth: depth("geltip"),
+                background: background("geltip"),
+            })
+        }),
+    ];
+    for (name, target, make) in models {
+        if !name.to_lowercase().contains(&filter) {
             continue;
         }
-        let mut phong = PhongModel::new(params);
-        let (input, bg) = (depth(model), background(model));
-        let width = input.shape[1];
-        let time = measure::mean_time(|| {
-            std::hint::black_box(phong.render(&input.data, width, &bg));
+        let mut model = make();
+        let single_image = model.render();
+        let single = measure::mean_time(|| {
+            std::hint::black_box(model.render());
         });
-        println!("{name:<22} {:>10.2} {target:>10.1}", ms(time));
+        model.set_parallel(true);
+        assert_eq!(
+            model.render(),
+            single_image,
+            "{name}: threads change the image"
+        );
+        let parallel = measure::mean_time(|| {
+            std::hint::black_box(model.render());
+        });
+        println!(
+            "{name:<18} {:>16.2} {:>12.2} {:>8.2}× {target:>10.1}",
+            ms(single),
+            ms(parallel),
+            single.as_secs_f64() / parallel.as_secs_f64()
+        );
     }
-    if !selected("GelTip") {
-        return;
-    }
-    let mut geltip = GelTipModel::load(GelTipParams::default(), golden("geltip/params"))
-        .expect("GelTip geometry");
-    let (input, bg) = (depth("geltip"), background("geltip"));
-    let time = measure::mean_time(|| {
-        std::hint::black_box(geltip.render(&input.data, &bg));
-    });
-    println!("{:<22} {:>10.2} {:>10.1}", "GelTip 320×240", ms(time), 4.0);
 }

@@ -169,3 +169,45 @@ fn digit_metric_mode_sees_only_what_presses_into_the_gel() {
     );
     assert!(deeper > pixels, "{pixels} → {deeper}");
 }
+
+/// Splitting a frame over threads gives the same bytes, noise on, for every golden input (each
+/// case is rendered after another, so reused buffers are exercised too).
+#[cfg(feature = "parallel")]
+#[test]
+fn threads_do_not_change_images() {
+    let cases = [
+        "flat",
+        "sphere_center",
+        "sphere_offcenter",
+        "cylinder_angled",
+        "sphere_center_deep",
+    ];
+    for (model, params) in [
+        ("digit", PhongParams::digit()),
+        ("gelsight", PhongParams::gelsight2014()),
+    ] {
+        let bg = background(model);
+        let (mut single, mut parallel) = (PhongModel::new(params.clone()), PhongModel::new(params));
+        parallel.set_parallel(true);
+        for case in cases {
+            let d = depth(model, case);
+            assert_eq!(
+                single.render(&d.data, d.shape[1], &bg),
+                parallel.render(&d.data, d.shape[1], &bg),
+                "{model}/{case}"
+            );
+        }
+    }
+    let load = || GelTipModel::load(GelTipParams::default(), golden("geltip/params")).unwrap();
+    let (mut single, mut parallel) = (load(), load());
+    parallel.set_parallel(true);
+    let bg = background("geltip");
+    for case in cases {
+        let d = depth("geltip", case);
+        assert_eq!(
+            single.render(&d.data, &bg),
+            parallel.render(&d.data, &bg),
+            "geltip/{case}"
+        );
+    }
+}

@@ -5,7 +5,10 @@
 
 use multiversion::multiversion;
 
+use std::ops::Range;
+
 use super::filter::{pad_reflect_101, reflect_101};
+use super::rows::{in_bands, in_bands_with};
 
 /// A rectangle of pixels: columns `x0..x1`, rows `y0..y1`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -17,6 +20,13 @@ pub(crate) struct Region {
 }
 
 impl Region {
+    const EMPTY: Region = Region {
+        x0: 0,
+        x1: 0,
+        y0: 0,
+        y1: 0,
+    };
+
     fn union(self, other: Region) -> Region {
         if other.is_empty() {
             return self;
@@ -75,12 +85,7 @@ impl Field {
             values: Vec::new(),
             width: 1,
             background: 0.0,
-            region: Region {
-                x0: 0,
-                x1: 0,
-                y0: 0,
-                y1: 0,
-            },
+            region: Region::EMPTY,
         }
     }
 
@@ -90,13 +95,7 @@ impl Field {
         self.values.extend(values);
         self.width = width;
         self.background = self.values.iter().copied().fold(f32::INFINITY, f32::min);
-        let height = self.height();
-        let mut region = Region {
-            x0: width,
-            x1: 0,
-            y0: height,
-            y1: 0,
-        };
+        let mut region = Region::EMPTY;
         for (y, row) in self.values.chunks_exact(width).enumerate() {
             let background = self.background;
             let first = row.iter().position(|v| *v != background);
@@ -134,13 +133,13 @@ impl Field {
     }
 
     /// Writes the correlation with `kernel ⊗ kernel` (anchored at `len / 2`, reflect-101
-    /// borders) into `out`, using `rows` as scratch.
+    /// borders) into `out`, in bands of rows across threads when `parallel`.
     pub(crate) fn blur_into(
         &self,
         kernel: &[f32],
-        rows: &mut Vec<f32>,
-        padded: &mut Vec<f32>,
+        scratch: &mut BlurScratch,
         out: &mut Field,
+        parallel: bool,
     ) {
         let (width, height) = (self.width, self.height());
         let anchor = kernel.len() / 2;
@@ -148,58 +147,76 @@ impl Field {
             .region
             .grown(anchor, kernel.len() - 1 - anchor, width, height);
         let background = kernel.iter().map(|k| k * self.background).sum::<f32>();
+        let BlurScratch { rows, padded } = scratch;
         rows.clear();
         rows.resize(self.values.len(), self.background);
-        padded.clear();
-        padded.resize(width + kernel.len() - 1, 0.0);
         let columns = (region.x0, region.x1);
-        row_pass(
-            &self.values,
+        let (y0, y1) = (self.region.y0, self.region.y1);
+        in_bands_with(
+            y0..y1,
             width,
-            (self.region.y0, self.region.y1),
-            columns,
-            kernel,
+            &mut rows[y0 * width..y1 * width],
             padded,
-            rows,
+            parallel,
+            |band, padded, out| {
+                padded.resize(width + kernel.len() - 1, 0.0);
+                row_pass(&self.values, width, band, columns, kernel, padded, out);
+            },
         );
         out.values.clear();
         out.values.resize(self.values.len(), background);
         out.width = width;
         out.background = background;
         out.region = region;
-        column_pass(
-            rows,
+        let rows = &*rows;
+        in_bands(
+            region.y0..region.y1,
             width,
-            (region.y0, region.y1),
-            columns,
-            kernel,
-            &mut out.values,
+            &mut out.values[region.y0 * width..region.y1 * width],
+            parallel,
+            |band, out| column_pass(rows, width, band, columns, kernel, out),
         );
     }
 
-    /// `self = max(scale · self, floor)` pixel by pixel.
-    pub(crate) fn scale_at_least(&mut self, scale: f32, floor: &Field) {
+    /// `self = max(scale · self, floor)` pixel by pixel, in bands of rows across threads when
+    /// `parallel`.
+    pub(crate) fn scale_at_least(&mut self, scale: f32, floor: &Field, parallel: bool) {
         let background = (scale * self.background).max(floor.background);
         let region = self.region.union(floor.region);
         let width = self.width;
-        for y in 0..self.height() {
-            let row = &mut self.values[y * width..(y + 1) * width];
-            if y < region.y0 || y >= region.y1 {
-                row.fill(background);
-                continue;
-            }
-            let floor_row = &floor.values[y * width..(y + 1) * width];
-            row[..region.x0].fill(background);
-            row[region.x1..].fill(background);
-            scale_row_at_least(
-                &mut row[region.x0..region.x1],
-                scale,
-                &floor_row[region.x0..region.x1],
-            );
-        }
+        let height = self.height();
+        in_bands(
+            0..height,
+            width,
+            &mut self.values,
+            parallel,
+            |band, rows| {
+                for (y, row) in band.zip(rows.chunks_exact_mut(width)) {
+                    if y < region.y0 || y >= region.y1 {
+                        row.fill(background);
+                        continue;
+                    }
+                    let floor_row = &floor.values[y * width..(y + 1) * width];
+                    row[..region.x0].fill(background);
+                    row[region.x1..].fill(background);
+                    scale_row_at_least(
+                        &mut row[region.x0..region.x1],
+                        scale,
+                        &floor_row[region.x0..region.x1],
+                    );
+                }
+            },
+        );
         self.background = background;
         self.region = region;
     }
+}
+
+/// Scratch of [`Field::blur_into`]: the row-filtered image, and a padded row per band.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct BlurScratch {
+    rows: Vec<f32>,
+    padded: Vec<Vec<f32>>,
 }
 
 /// `value = max(scale · value, floor)` along a row (SIMD-multiversioned; a comparison rather than
@@ -263,51 +280,51 @@ fn accumulate<'a>(out: &mut [f32], kernel: &[f32], taps: impl Fn(usize) -> &'a [
     }
 }
 
-/// Row correlation of rows `y0..y1`, written for columns `x0..x1` (SIMD-multiversioned).
+/// Row correlation of `rows`, written for columns `x0..x1` into `out` (those rows;
+/// SIMD-multiversioned).
 #[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
 fn row_pass(
     values: &[f32],
     width: usize,
-    (y0, y1): (usize, usize),
+    rows: Range<usize>,
     (x0, x1): (usize, usize),
     kernel: &[f32],
     padded: &mut [f32],
-    rows: &mut [f32],
+    out: &mut [f32],
 ) {
     let anchor = kernel.len() / 2;
-    for y in y0..y1 {
+    for (y, out) in rows.zip(out.chunks_exact_mut(width)) {
         pad_reflect_101(&values[y * width..(y + 1) * width], anchor, padded);
         let padded = &*padded;
-        accumulate(&mut rows[y * width + x0..y * width + x1], kernel, |k| {
-            &padded[x0 + k..x1 + k]
-        });
+        accumulate(&mut out[x0..x1], kernel, |k| &padded[x0 + k..x1 + k]);
     }
 }
 
-/// Column correlation of `rows` for rows `y0..y1` and columns `x0..x1` (SIMD-multiversioned).
+/// Column correlation of `source` for `rows` and columns `x0..x1`, into `out` (those rows;
+/// SIMD-multiversioned).
 #[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
 fn column_pass(
-    rows: &[f32],
+    source: &[f32],
     width: usize,
-    (y0, y1): (usize, usize),
+    rows: Range<usize>,
     (x0, x1): (usize, usize),
     kernel: &[f32],
     out: &mut [f32],
 ) {
-    let height = rows.len() / width;
+    let height = source.len() / width;
     let anchor = kernel.len() / 2;
-    for y in y0..y1 {
-        let source = |k: usize| {
+    for (y, out) in rows.zip(out.chunks_exact_mut(width)) {
+        let taps = |k: usize| {
             let row = reflect_101(y as i64 + k as i64 - anchor as i64, height as i64);
-            &rows[row * width + x0..row * width + x1]
+            &source[row * width + x0..row * width + x1]
         };
-        accumulate(&mut out[y * width + x0..y * width + x1], kernel, source);
+        accumulate(&mut out[x0..x1], kernel, taps);
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::Field;
+    use super::{BlurScratch, Field};
     use crate::tactile::filter::{gaussian_kernel, reflect_101};
 
     /// The correlation with `kernel ⊗ kernel` computed directly, tap by tap over the 2-D window,
@@ -343,15 +360,21 @@ mod tests {
                 let kernel = gaussian_kernel(n, sigma);
                 let mut field = Field::empty();
                 field.assign(width, values.iter().copied());
-                let mut sparse = Field::empty();
                 let single: Vec<f32> = kernel.iter().map(|k| *k as f32).collect();
-                field.blur_into(&single, &mut Vec::new(), &mut Vec::new(), &mut sparse);
                 let direct = direct_blur(&values, width, &kernel);
+                let mut scratch = BlurScratch::default();
+                let mut sparse = Field::empty();
+                field.blur_into(&single, &mut scratch, &mut sparse, false);
                 for (a, b) in sparse.values.iter().zip(&direct) {
                     assert!(
                         (f64::from(*a) - b).abs() < 1e-5,
                         "{a} vs {b} (centre {cx},{cy}, n {n})"
                     );
+                }
+                if cfg!(feature = "parallel") {
+                    let mut banded = Field::empty();
+                    field.blur_into(&single, &mut scratch, &mut banded, true);
+                    assert_eq!(banded.values, sparse.values, "bands change the blur");
                 }
             }
         }

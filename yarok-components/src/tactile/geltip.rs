@@ -5,11 +5,11 @@ use std::path::Path;
 
 use multiversion::multiversion;
 
-use super::field::Field;
+use super::field::{BlurScratch, Field};
 use super::filter::gaussian_kernel;
 use super::int_pow;
 use super::npy::{self, NpyError};
-use super::rows::{RowRing, neighbours};
+use super::rows::{RowRing, in_bands_with, neighbours};
 
 /// A light of the GelTip model.
 #[derive(Debug, Clone, PartialEq)]
@@ -73,10 +73,10 @@ pub struct GelTipModel {
     kernel: Vec<f32>,
     protrusion: Field,
     blurred: Field,
-    rows: Vec<f32>,
-    padded: Vec<f32>,
+    blur: BlurScratch,
     surface: Vec<f32>,
-    buffers: RowBuffers,
+    bands: Vec<RowBuffers>,
+    parallel: bool,
 }
 
 impl GelTipModel {
@@ -118,11 +118,18 @@ impl GelTipModel {
                 .collect(),
             protrusion: Field::empty(),
             blurred: Field::empty(),
-            rows: Vec::new(),
-            padded: Vec::new(),
+            blur: BlurScratch::default(),
             surface: Vec::new(),
-            buffers: RowBuffers::default(),
+            bands: Vec::new(),
+            parallel: false,
         }
+    }
+
+    /// Splits each frame's work into bands of rows on rayon's thread pool (`true`) or runs it on
+    /// the calling thread (`false`, the default). The images are the same byte for byte.
+    #[cfg(feature = "parallel")]
+    pub fn set_parallel(&mut self, parallel: bool) {
+        self.parallel = parallel;
     }
 
     /// A model whose geometry is stored in `dir` as the reference stores it:
@@ -214,7 +221,15 @@ impl GelTipModel {
             towards_lights: &self.towards_lights,
             background,
         };
-        shade_rows(&self.params, &frame, 0..height, &mut self.buffers, out);
+        let params = &self.params;
+        in_bands_with(
+            0..height,
+            3 * width,
+            out,
+            &mut self.bands,
+            self.parallel,
+            |rows, buffers, out| shade_rows(params, &frame, rows, buffers, out),
+        );
     }
 
     /// `surface = min(depth, bkg − blur(bkg − depth))` in f32 like the reference, the blur on
@@ -226,9 +241,9 @@ impl GelTipModel {
         );
         self.protrusion.blur_into(
             &self.kernel,
-            &mut self.rows,
-            &mut self.padded,
+            &mut self.blur,
             &mut self.blurred,
+            self.parallel,
         );
         self.surface.clear();
         self.surface.extend(

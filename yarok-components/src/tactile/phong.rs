@@ -3,10 +3,10 @@
 
 use multiversion::multiversion;
 
-use super::field::Field;
+use super::field::{BlurScratch, Field};
 use super::filter::gaussian_kernel;
 use super::int_pow;
-use super::rows::{RowRing, neighbours};
+use super::rows::{RowRing, in_bands_with, neighbours};
 
 /// A coloured light of the Phong model.
 #[derive(Debug, Clone, PartialEq)]
@@ -124,6 +124,7 @@ pub struct PhongModel {
     narrow: Vec<f32>,
     wide: Vec<f32>,
     blur: [f64; 3],
+    parallel: bool,
     scratch: Scratch,
 }
 
@@ -134,10 +135,9 @@ struct Scratch {
     narrow: Field,
     wide: Field,
     blurred: Field,
-    rows: Vec<f32>,
-    padded: Vec<f32>,
+    blur: BlurScratch,
     noise: Vec<f64>,
-    band: RowBuffers,
+    bands: Vec<RowBuffers>,
 }
 
 impl PhongModel {
@@ -150,17 +150,31 @@ impl PhongModel {
             narrow: single(gaussian_kernel(21, 7.0)),
             wide: single(gaussian_kernel(52, 9.0)),
             blur: [blur[0], blur[1], blur[2]],
+            parallel: false,
             scratch: Scratch {
                 indentation: Field::empty(),
                 narrow: Field::empty(),
                 wide: Field::empty(),
                 blurred: Field::empty(),
-                rows: Vec::new(),
-                padded: Vec::new(),
+                blur: BlurScratch::default(),
                 noise: Vec::new(),
-                band: RowBuffers::default(),
+                bands: Vec::new(),
             },
         }
+    }
+
+    /// Splits each frame's work into bands of rows on rayon's thread pool (`true`) or runs it on
+    /// the calling thread (`false`, the default). The images are the same byte for byte.
+    ///
+    /// ```
+    /// use yarok_components::tactile::phong::{PhongModel, PhongParams};
+    ///
+    /// let mut model = PhongModel::new(PhongParams::digit());
+    /// model.set_parallel(true);
+    /// ```
+    #[cfg(feature = "parallel")]
+    pub fn set_parallel(&mut self, parallel: bool) {
+        self.parallel = parallel;
     }
 
     /// Renders the sensor image for `depth` (`height × width`, row-major, in the parameters'
@@ -211,7 +225,14 @@ impl PhongModel {
             noise: &s.noise,
         };
         let shading = Shading::new(&self.params, self.blur);
-        shade_rows(&shading, &frame, 0..frame.height, &mut s.band, out);
+        in_bands_with(
+            0..frame.height,
+            3 * width,
+            out,
+            &mut s.bands,
+            self.parallel,
+            |rows, buffers, out| shade_rows(&shading, &frame, rows, buffers, out),
+        );
     }
 
     /// Elastic deformation: the indentation smoothed by two Gaussians (difference of Gaussians),
@@ -221,17 +242,18 @@ impl PhongModel {
     fn deform(&mut self) {
         let s = &mut self.scratch;
         let p = &self.params;
+        let parallel = self.parallel;
         let peak = s.indentation.max();
         let mut passes = |kernel: &[f32], field: &mut Field, times: usize| {
             for _ in 0..times {
-                field.blur_into(kernel, &mut s.rows, &mut s.padded, &mut s.blurred);
+                field.blur_into(kernel, &mut s.blur, &mut s.blurred, parallel);
                 let peak_out = s.blurred.max();
                 let ratio = if peak_out <= 0.0 {
                     1.0
                 } else {
                     peak / peak_out
                 };
-                s.blurred.scale_at_least(ratio, &s.indentation);
+                s.blurred.scale_at_least(ratio, &s.indentation, parallel);
                 std::mem::swap(field, &mut s.blurred);
             }
         };

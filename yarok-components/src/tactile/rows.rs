@@ -1,6 +1,8 @@
 //! Row-by-row image passes: three rows of an intermediate result kept while a pass walks down
 //! the image, so that each row is computed once and every buffer stays in cache.
 
+use std::ops::Range;
+
 use super::filter::reflect_101;
 
 /// Three rows of a per-row result, each stored with its row index (slot `row % 3`, so that any
@@ -58,4 +60,58 @@ pub(crate) fn neighbours(row: usize, height: usize) -> [usize; 3] {
         row,
         reflect_101(row as i64 + 1, height),
     ]
+}
+
+/// Runs `work` over `rows` of an image whose rows, `row_len` elements each, are exactly `out`:
+/// in one call, or, when `parallel` (and the `parallel` feature is on), in one band of rows per
+/// thread of rayon's pool, each band with its own scratch from `scratch` (grown as needed). Every
+/// row is computed from the same inputs whichever band it falls in, so the output does not depend
+/// on the split.
+pub(crate) fn in_bands_with<T: Send, S: Default + Send>(
+    rows: Range<usize>,
+    row_len: usize,
+    out: &mut [T],
+    scratch: &mut Vec<S>,
+    parallel: bool,
+    work: impl Fn(Range<usize>, &mut S, &mut [T]) + Sync,
+) {
+    if scratch.is_empty() {
+        scratch.push(S::default());
+    }
+    #[cfg(feature = "parallel")]
+    if parallel && rows.len() > 1 && row_len > 0 {
+        use rayon::prelude::*;
+        let bands = rayon::current_num_threads().min(rows.len());
+        let band_rows = rows.len().div_ceil(bands);
+        if scratch.len() < bands {
+            scratch.resize_with(bands, S::default);
+        }
+        let start = rows.start;
+        out.par_chunks_mut(band_rows * row_len)
+            .zip(scratch.par_iter_mut())
+            .enumerate()
+            .for_each(|(band, (out, scratch))| {
+                let first = start + band * band_rows;
+                work(first..(first + band_rows).min(rows.end), scratch, out);
+            });
+        return;
+    }
+    #[cfg(not(feature = "parallel"))]
+    let _ = (parallel, row_len);
+    work(rows, &mut scratch[0], out);
+}
+
+/// [`in_bands_with`] for work that needs no scratch.
+pub(crate) fn in_bands<T: Send>(
+    rows: Range<usize>,
+    row_len: usize,
+    out: &mut [T],
+    parallel: bool,
+    work: impl Fn(Range<usize>, &mut [T]) + Sync,
+) {
+    // A vector of `()` never allocates.
+    let mut none: Vec<()> = Vec::new();
+    in_bands_with(rows, row_len, out, &mut none, parallel, |rows, (), out| {
+        work(rows, out)
+    });
 }
