@@ -254,27 +254,58 @@ fn is_symmetric(kernel: &[f32]) -> bool {
     kernel.iter().eq(kernel.iter().rev())
 }
 
-/// `out = Σₖ kernel[k] · taps(k)`, element by element; a symmetric kernel pairs tap k with tap
-/// n − 1 − k, halving the multiplications.
+/// Columns accumulated at once in registers (four AVX-512 or eight AVX2 registers of f32).
+const BLOCK: usize = 64;
+
+/// `out = Σₖ kernel[k] · taps(k)`, element by element, each `taps(k)` as long as `out`; a
+/// symmetric kernel pairs tap k with tap n − 1 − k, halving the multiplications. Blocks of
+/// [`BLOCK`] columns are summed in registers over every tap before they are stored; each element
+/// is summed in the same order either way.
 #[inline(always)]
 fn accumulate<'a>(out: &mut [f32], kernel: &[f32], taps: impl Fn(usize) -> &'a [f32]) {
-    out.fill(0.0);
+    let symmetric = is_symmetric(kernel);
+    let full = out.len() / BLOCK * BLOCK;
+    for start in (0..full).step_by(BLOCK) {
+        let block = |k: usize| -> &'a [f32; BLOCK] {
+            let tap: &'a [f32] = taps(k);
+            tap[start..start + BLOCK]
+                .try_into()
+                .expect("a block is BLOCK long")
+        };
+        let mut sums = [0.0f32; BLOCK];
+        accumulate_into(&mut sums, kernel, symmetric, block);
+        out[start..start + BLOCK].copy_from_slice(&sums);
+    }
+    let tail = &mut out[full..];
+    tail.fill(0.0);
+    accumulate_into(tail, kernel, symmetric, |k| &taps(k)[full..]);
+}
+
+/// `out += Σₖ kernel[k] · taps(k)`, tap by tap.
+#[inline(always)]
+fn accumulate_into<'a, T: AsRef<[f32]> + ?Sized + 'a>(
+    out: &mut [f32],
+    kernel: &[f32],
+    symmetric: bool,
+    taps: impl Fn(usize) -> &'a T,
+) {
     let n = kernel.len();
-    if !is_symmetric(kernel) {
+    if !symmetric {
         for (k, weight) in kernel.iter().enumerate() {
-            for (value, sample) in out.iter_mut().zip(taps(k)) {
+            for (value, sample) in out.iter_mut().zip(taps(k).as_ref()) {
                 *value += weight * sample;
             }
         }
         return;
     }
     for (k, weight) in kernel[..n / 2].iter().enumerate() {
-        for ((value, a), b) in out.iter_mut().zip(taps(k)).zip(taps(n - 1 - k)) {
+        let pairs = taps(k).as_ref().iter().zip(taps(n - 1 - k).as_ref());
+        for (value, (a, b)) in out.iter_mut().zip(pairs) {
             *value += weight * (a + b);
         }
     }
     if n % 2 == 1 {
-        for (value, sample) in out.iter_mut().zip(taps(n / 2)) {
+        for (value, sample) in out.iter_mut().zip(taps(n / 2).as_ref()) {
             *value += kernel[n / 2] * sample;
         }
     }
@@ -314,8 +345,13 @@ fn column_pass(
     let height = source.len() / width;
     let anchor = kernel.len() / 2;
     for (y, out) in rows.zip(out.chunks_exact_mut(width)) {
+        let interior = y >= anchor && y + kernel.len() - anchor <= height;
         let taps = |k: usize| {
-            let row = reflect_101(y as i64 + k as i64 - anchor as i64, height as i64);
+            let row = if interior {
+                y + k - anchor
+            } else {
+                reflect_101(y as i64 + k as i64 - anchor as i64, height as i64)
+            };
             &source[row * width + x0..row * width + x1]
         };
         accumulate(&mut out[x0..x1], kernel, taps);

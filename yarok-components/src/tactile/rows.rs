@@ -80,20 +80,26 @@ pub(crate) fn in_bands_with<T: Send, S: Default + Send>(
     }
     #[cfg(feature = "parallel")]
     if parallel && rows.len() > 1 && row_len > 0 {
-        use rayon::prelude::*;
         let bands = rayon::current_num_threads().min(rows.len());
         let band_rows = rows.len().div_ceil(bands);
         if scratch.len() < bands {
             scratch.resize_with(bands, S::default);
         }
         let start = rows.start;
-        out.par_chunks_mut(band_rows * row_len)
-            .zip(scratch.par_iter_mut())
-            .enumerate()
-            .for_each(|(band, (out, scratch))| {
-                let first = start + band * band_rows;
-                work(first..(first + band_rows).min(rows.end), scratch, out);
-            });
+        let band_range = |band: usize| {
+            let first = start + band * band_rows;
+            first..(first + band_rows).min(rows.end)
+        };
+        let mut bands = out.chunks_mut(band_rows * row_len).zip(scratch.iter_mut());
+        let (first_out, first_scratch) = bands.next().expect("at least one band");
+        let work = &work;
+        // The calling thread takes the first band itself: only as many threads as bands run.
+        rayon::in_place_scope(|scope| {
+            for (band, (out, scratch)) in bands.enumerate() {
+                scope.spawn(move |_| work(band_range(band + 1), scratch, out));
+            }
+            work(band_range(0), first_scratch, first_out);
+        });
         return;
     }
     #[cfg(not(feature = "parallel"))]
