@@ -4,6 +4,7 @@
 use std::path::PathBuf;
 
 use yarok_components::tactile::geltip::{GelTipModel, GelTipParams};
+use yarok_components::tactile::light_fields::{LightFieldMethod, light_field};
 use yarok_components::tactile::npy;
 use yarok_components::tactile::phong::{PhongModel, PhongParams};
 
@@ -122,6 +123,34 @@ fn geltip_imprints_grow_with_depth_and_follow_the_object() {
         "flat",
         (190.0, 95.0),
     );
+}
+
+/// GelTip with light fields the project computes from the membrane's geometry (three LEDs on the
+/// base ring, 12.6 mm from the axis at 120°, as the reference's set-up places them) instead of
+/// the reference's files: presses show where they are and grow with depth, for each method.
+#[test]
+fn geltip_imprints_with_computed_light_fields() {
+    let membrane = npy::read(golden("geltip/params/bkg_depth_m.npy.gz")).unwrap();
+    let width = membrane.shape[1];
+    let params = GelTipParams::default();
+    for method in [LightFieldMethod::Linear, LightFieldMethod::Plane] {
+        let fields: Vec<_> = [0.0f64, 120.0, 240.0]
+            .iter()
+            .map(|angle| {
+                let (sin, cos) = angle.to_radians().sin_cos();
+                let led = [0.0126 * cos, 0.0126 * sin, 0.010];
+                light_field(&membrane.data, width, params.fov_deg, led, method)
+            })
+            .collect();
+        let mut model = GelTipModel::new(params.clone(), &membrane.data, width, &fields);
+        let bg = background("geltip");
+        check(
+            "geltip",
+            |d| model.render(&d.data, &bg),
+            "flat",
+            (190.0, 95.0),
+        );
+    }
 }
 
 #[test]
