@@ -94,22 +94,8 @@ impl Field {
         self.values.clear();
         self.values.extend(values);
         self.width = width;
-        self.background = self.values.iter().copied().fold(f32::INFINITY, f32::min);
-        let mut region = Region::EMPTY;
-        for (y, row) in self.values.chunks_exact(width).enumerate() {
-            let background = self.background;
-            let first = row.iter().position(|v| *v != background);
-            let last = row.iter().rposition(|v| *v != background);
-            if let (Some(first), Some(last)) = (first, last) {
-                region = region.union(Region {
-                    x0: first,
-                    x1: last + 1,
-                    y0: y,
-                    y1: y + 1,
-                });
-            }
-        }
-        self.region = region;
+        self.background = min_of(&self.values);
+        self.region = region_of(&self.values, width, self.background);
     }
 
     /// Makes this field a copy of `other`, reusing its memory.
@@ -233,19 +219,64 @@ fn scale_row_at_least(row: &mut [f32], scale: f32, floor: &[f32]) {
 /// multiversioned); the order of comparisons does not change a maximum.
 #[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
 fn max_of(values: &[f32]) -> f32 {
-    let mut lanes = [f32::NEG_INFINITY; 16];
+    extreme_of(values, f32::NEG_INFINITY, |value, best| value > best)
+}
+
+/// The smallest of `values` (+∞ for none), like [`max_of`].
+#[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
+fn min_of(values: &[f32]) -> f32 {
+    extreme_of(values, f32::INFINITY, |value, best| value < best)
+}
+
+/// The value of `values` that `better` prefers to all others, `none` if there are none.
+#[inline(always)]
+fn extreme_of(values: &[f32], none: f32, better: impl Fn(f32, f32) -> bool) -> f32 {
+    let pick = |best: f32, value: f32| if better(value, best) { value } else { best };
+    let mut lanes = [none; 16];
     let mut chunks = values.chunks_exact(16);
     for chunk in &mut chunks {
         for (lane, value) in lanes.iter_mut().zip(chunk) {
-            *lane = if *value > *lane { *value } else { *lane };
+            *lane = pick(*lane, *value);
         }
     }
-    let tail = chunks
-        .remainder()
-        .iter()
-        .copied()
-        .fold(f32::NEG_INFINITY, f32::max);
-    lanes.iter().copied().fold(tail, f32::max)
+    let tail = chunks.remainder().iter().copied().fold(none, pick);
+    lanes.iter().copied().fold(tail, pick)
+}
+
+/// The smallest rectangle holding every pixel of a `width`-wide image that differs from
+/// `background` (SIMD-multiversioned: rows are scanned in blocks without early exits, so that
+/// the comparisons vectorise).
+#[multiversion(targets("x86_64+avx512f+avx512vl", "x86_64+avx2"))]
+fn region_of(values: &[f32], width: usize, background: f32) -> Region {
+    const SCAN: usize = 64;
+    let differs = |block: &[f32]| block.iter().fold(false, |any, v| any | (*v != background));
+    let mut region = Region::EMPTY;
+    for (y, row) in values.chunks_exact(width).enumerate() {
+        let blocks = row.len().div_ceil(SCAN);
+        let block = |b: usize| &row[b * SCAN..((b + 1) * SCAN).min(row.len())];
+        let Some(first_block) = (0..blocks).find(|b| differs(block(*b))) else {
+            continue;
+        };
+        let last_block = (first_block..blocks)
+            .rev()
+            .find(|b| differs(block(*b)))
+            .unwrap_or(first_block);
+        let first = block(first_block)
+            .iter()
+            .position(|v| *v != background)
+            .unwrap_or(0);
+        let last = block(last_block)
+            .iter()
+            .rposition(|v| *v != background)
+            .unwrap_or(0);
+        region = region.union(Region {
+            x0: first_block * SCAN + first,
+            x1: last_block * SCAN + last + 1,
+            y0: y,
+            y1: y + 1,
+        });
+    }
+    region
 }
 
 /// Whether `kernel` reads the same backwards (the reference's even-sized kernels do not: their
@@ -360,7 +391,7 @@ fn column_pass(
 
 #[cfg(test)]
 mod tests {
-    use super::{BlurScratch, Field};
+    use super::{BlurScratch, Field, Region};
     use crate::tactile::filter::{gaussian_kernel, reflect_101};
 
     /// The correlation with `kernel ⊗ kernel` computed directly, tap by tap over the 2-D window,
@@ -379,6 +410,35 @@ mod tests {
             }
         }
         out
+    }
+
+    #[test]
+    fn the_region_holds_exactly_the_pixels_off_the_background() {
+        let (width, height) = (150, 5);
+        for (xs, y) in [
+            (vec![63], 0),
+            (vec![64], 4),
+            (vec![0, 149], 2),
+            (vec![65, 127, 128], 1),
+        ] {
+            let mut values = vec![0.5f32; width * height];
+            for &x in &xs {
+                values[y * width + x] = 0.75;
+            }
+            let mut field = Field::empty();
+            field.assign(width, values.into_iter());
+            let expected = Region {
+                x0: xs[0],
+                x1: xs[xs.len() - 1] + 1,
+                y0: y,
+                y1: y + 1,
+            };
+            assert_eq!((field.region, field.background), (expected, 0.5), "{xs:?}");
+        }
+        let mut flat = Field::empty();
+        flat.assign(width, std::iter::repeat_n(0.25, width * height));
+        assert!(flat.region.is_empty());
+        assert_eq!(flat.max(), 0.25);
     }
 
     #[test]

@@ -6,7 +6,7 @@ use multiversion::multiversion;
 use super::field::{BlurScratch, Field};
 use super::filter::gaussian_kernel;
 use super::int_pow;
-use super::rows::{RowRing, in_bands_with, neighbours};
+use super::rows::{RowRing, in_bands_with, join, neighbours};
 
 /// A coloured light of the Phong model.
 #[derive(Debug, Clone, PartialEq)]
@@ -132,10 +132,8 @@ pub struct PhongModel {
 #[derive(Debug, Clone)]
 struct Scratch {
     indentation: Field,
-    narrow: Field,
-    wide: Field,
-    blurred: Field,
-    blur: BlurScratch,
+    narrow: Smoothing,
+    wide: Smoothing,
     noise: Vec<f64>,
     bands: Vec<RowBuffers>,
 }
@@ -153,10 +151,8 @@ impl PhongModel {
             parallel: false,
             scratch: Scratch {
                 indentation: Field::empty(),
-                narrow: Field::empty(),
-                wide: Field::empty(),
-                blurred: Field::empty(),
-                blur: BlurScratch::default(),
+                narrow: Smoothing::new(),
+                wide: Smoothing::new(),
                 noise: Vec::new(),
                 bands: Vec::new(),
             },
@@ -220,8 +216,8 @@ impl PhongModel {
             height: depth.len() / width,
             depth,
             background,
-            narrow: &s.narrow.values,
-            wide: &s.wide.values,
+            narrow: &s.narrow.field.values,
+            wide: &s.wide.field.values,
             noise: &s.noise,
         };
         let shading = Shading::new(&self.params, self.blur);
@@ -238,37 +234,80 @@ impl PhongModel {
     /// Elastic deformation: the indentation smoothed by two Gaussians (difference of Gaussians),
     /// each iteration renormalised to keep the indentation's peak. Runs in f32 like the reference,
     /// on the part of the image a press changes. Leaves the two smoothed fields in `narrow` and
-    /// `wide`, and the texture noise for this image size in `noise`.
+    /// `wide` (computed side by side when parallel), and the texture noise for this image size in
+    /// `noise`.
     fn deform(&mut self) {
         let s = &mut self.scratch;
         let p = &self.params;
-        let parallel = self.parallel;
         let peak = s.indentation.max();
-        let mut passes = |kernel: &[f32], field: &mut Field, times: usize| {
+        let narrow = [(&self.narrow[..], p.iterations)];
+        let wide = [
+            (&self.wide[..], p.iterations),
+            (&self.narrow[..], p.iterations),
+        ];
+        let wide = if p.extra_passes {
+            &wide[..]
+        } else {
+            &wide[..1]
+        };
+        let indentation = &s.indentation;
+        // The two chains are independent: on two threads when parallel, a coarser split than
+        // bands of rows for these short passes.
+        join(
+            self.parallel,
+            || s.narrow.smooth(indentation, peak, &narrow, self.parallel),
+            || s.wide.smooth(indentation, peak, wide, self.parallel),
+        );
+        let pixels = indentation.values.len();
+        if p.texture_sigma <= 0.0 {
+            s.noise.clear();
+        } else if s.noise.len() != pixels {
+            s.noise = super::noise::SplitMix64::new(p.seed).normal(pixels, p.texture_sigma);
+        }
+    }
+}
+
+/// One chain of the elastic deformation: the indentation smoothed again and again, each time
+/// renormalised to the indentation's peak and kept at least as deep as it.
+#[derive(Debug, Clone)]
+struct Smoothing {
+    field: Field,
+    blurred: Field,
+    blur: BlurScratch,
+}
+
+impl Smoothing {
+    fn new() -> Self {
+        Self {
+            field: Field::empty(),
+            blurred: Field::empty(),
+            blur: BlurScratch::default(),
+        }
+    }
+
+    /// Smooths `indentation` (whose maximum is `peak`) with each kernel the given number of
+    /// times, in order; the result is in `self.field`.
+    fn smooth(
+        &mut self,
+        indentation: &Field,
+        peak: f32,
+        kernels: &[(&[f32], usize)],
+        parallel: bool,
+    ) {
+        self.field.copy_from(indentation);
+        for &(kernel, times) in kernels {
             for _ in 0..times {
-                field.blur_into(kernel, &mut s.blur, &mut s.blurred, parallel);
-                let peak_out = s.blurred.max();
+                self.field
+                    .blur_into(kernel, &mut self.blur, &mut self.blurred, parallel);
+                let peak_out = self.blurred.max();
                 let ratio = if peak_out <= 0.0 {
                     1.0
                 } else {
                     peak / peak_out
                 };
-                s.blurred.scale_at_least(ratio, &s.indentation, parallel);
-                std::mem::swap(field, &mut s.blurred);
+                self.blurred.scale_at_least(ratio, indentation, parallel);
+                std::mem::swap(&mut self.field, &mut self.blurred);
             }
-        };
-        s.narrow.copy_from(&s.indentation);
-        passes(&self.narrow, &mut s.narrow, p.iterations);
-        s.wide.copy_from(&s.indentation);
-        passes(&self.wide, &mut s.wide, p.iterations);
-        if p.extra_passes {
-            passes(&self.narrow, &mut s.wide, p.iterations);
-        }
-        let pixels = s.narrow.values.len();
-        if p.texture_sigma <= 0.0 {
-            s.noise.clear();
-        } else if s.noise.len() != pixels {
-            s.noise = super::noise::SplitMix64::new(p.seed).normal(pixels, p.texture_sigma);
         }
     }
 }

@@ -121,3 +121,19 @@ pub(crate) fn in_bands<T: Send>(
         work(rows, out)
     });
 }
+
+/// Runs `a` and `b`, on two threads of rayon's pool when `parallel` (and the `parallel` feature
+/// is on), one after the other otherwise.
+pub(crate) fn join<A: Send, B: Send>(
+    parallel: bool,
+    a: impl FnOnce() -> A + Send,
+    b: impl FnOnce() -> B + Send,
+) -> (A, B) {
+    #[cfg(feature = "parallel")]
+    if parallel {
+        return rayon::join(a, b);
+    }
+    #[cfg(not(feature = "parallel"))]
+    let _ = parallel;
+    (a(), b())
+}
