@@ -153,6 +153,33 @@ fn geltip_imprints_with_computed_light_fields() {
     }
 }
 
+/// GelTip pixels where nothing was measured render as the undeformed membrane by default, so a
+/// few of them leave no mark; the reference's behaviour (no fill) leaves one.
+#[test]
+fn geltip_fills_missing_depth() {
+    let membrane = npy::read(golden("geltip/params/bkg_depth_m.npy.gz")).unwrap();
+    let bg = background("geltip");
+    let pressed = depth("geltip", "sphere_offcenter");
+    let mut holes = pressed.data.clone();
+    let width = pressed.shape[1];
+    let mut filled = pressed.data.clone();
+    for (x, y, value) in [(20, 30, 0.0), (160, 120, f32::NAN), (300, 200, -1.0)] {
+        holes[y * width + x] = value;
+        filled[y * width + x] = membrane.data[y * width + x];
+    }
+    let mut model = GelTipModel::load(GelTipParams::default(), golden("geltip/params")).unwrap();
+    assert_eq!(model.render(&holes, &bg), model.render(&filled, &bg));
+    let mut unfilled = GelTipModel::load(
+        GelTipParams {
+            fill_missing_depth: false,
+            ..GelTipParams::default()
+        },
+        golden("geltip/params"),
+    )
+    .unwrap();
+    assert_ne!(unfilled.render(&holes, &bg), unfilled.render(&filled, &bg));
+}
+
 #[test]
 fn texture_noise_is_seeded() {
     let bg = background("digit");

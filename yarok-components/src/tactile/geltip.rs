@@ -37,6 +37,11 @@ pub struct GelTipParams {
     /// away from a light below the ambient level (dark crescents around contacts); `false` keeps
     /// its output, `true` is the physically sensible correction.
     pub clamp_diffuse: bool,
+    /// Pixels where nothing was measured (depth zero, negative or not finite) take the
+    /// undeformed membrane's depth. The reference drops such pixels from its point cloud and then
+    /// fails to shape it back into an image, so there is no output of its to keep; `false`
+    /// back-projects them as given (to the camera's centre, with meaningless normals around).
+    pub fill_missing_depth: bool,
 }
 
 impl Default for GelTipParams {
@@ -56,12 +61,39 @@ impl Default for GelTipParams {
             ia: 0.8,
             fov_deg: 70.0,
             clamp_diffuse: false,
+            fill_missing_depth: true,
         }
     }
 }
 
 /// The GelTip model for one sensor geometry: its undeformed membrane depth and light fields.
 /// Buffers are reused from frame to frame.
+///
+/// ```
+/// use yarok_components::tactile::geltip::{GelTipModel, GelTipParams};
+/// use yarok_components::tactile::light_fields::{LightFieldMethod, light_field};
+///
+/// // A (flat, for brevity) membrane 20 mm in front of a 64 × 48 camera, lit by three LEDs on a
+/// // ring of 12 mm around the camera, with light fields computed from that geometry.
+/// let (width, height) = (64, 48);
+/// let membrane = vec![0.020f32; width * height];
+/// let params = GelTipParams::default();
+/// let fields: Vec<_> = [0.0f64, 120.0, 240.0]
+///     .iter()
+///     .map(|degrees| {
+///         let (sin, cos) = degrees.to_radians().sin_cos();
+///         let led = [0.012 * cos, 0.012 * sin, 0.0];
+///         light_field(&membrane, width, params.fov_deg, led, LightFieldMethod::Linear)
+///     })
+///     .collect();
+/// let mut geltip = GelTipModel::new(params, &membrane, width, &fields);
+/// let mut pressed = membrane.clone();
+/// pressed[24 * width + 32] = 0.019; // a pin pushes the membrane 1 mm in
+/// let background = vec![0u8; width * height * 3];
+/// let image = geltip.render(&pressed, &background);
+/// assert_eq!(image.len(), width * height * 3); // RGB, top row first
+/// assert_ne!(image, geltip.render(&membrane, &background));
+/// ```
 #[derive(Debug, Clone)]
 pub struct GelTipModel {
     params: GelTipParams,
@@ -233,11 +265,21 @@ impl GelTipModel {
     }
 
     /// `surface = min(depth, bkg − blur(bkg − depth))` in f32 like the reference, the blur on
-    /// the part of the image a press changes.
+    /// the part of the image a press changes; missing depths filled first if the parameters say
+    /// so.
     fn deform(&mut self, depth: &[f32]) {
+        let fill = self.params.fill_missing_depth;
+        let measured = move |(d, b): (&f32, &f32)| {
+            let missing = fill && !(*d > 0.0 && d.is_finite());
+            (if missing { *b } else { *d }, *b)
+        };
         self.protrusion.assign(
             self.width,
-            depth.iter().zip(&self.background_depth).map(|(d, b)| b - d),
+            depth
+                .iter()
+                .zip(&self.background_depth)
+                .map(measured)
+                .map(|(d, b)| b - d),
         );
         self.protrusion.blur_into(
             &self.kernel,
@@ -250,6 +292,7 @@ impl GelTipModel {
             depth
                 .iter()
                 .zip(&self.background_depth)
+                .map(measured)
                 .zip(&self.blurred.values)
                 .map(|((d, b), e)| d.min(b - e)),
         );

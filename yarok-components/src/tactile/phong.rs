@@ -118,6 +118,31 @@ impl PhongParams {
 
 /// The Phong optical model, with its kernels built once and its buffers reused from frame to
 /// frame (no allocation per frame once the image size is known).
+///
+/// ```
+/// use yarok_components::tactile::default_background;
+/// use yarok_components::tactile::phong::{PhongModel, PhongParams};
+///
+/// // A DIGIT frame (240 columns × 320 rows) in metres: the gel's surface 30 mm from the camera,
+/// // a flat-ended pin pressed 0.5 mm into it in the middle.
+/// let (width, height) = (240, 320);
+/// let depth: Vec<f32> = (0..width * height)
+///     .map(|i| {
+///         let (x, y) = ((i % width) as f32 - 120.0, (i / width) as f32 - 160.0);
+///         if x * x + y * y < 400.0 { 0.0295 } else { 0.030 }
+///     })
+///     .collect();
+/// let background = default_background(width, height);
+/// let mut digit = PhongModel::new(PhongParams::digit_metric());
+/// let pressed = digit.render(&depth, width, &background);
+/// let untouched = digit.render(&vec![0.030; width * height], width, &background);
+/// assert_eq!(pressed.len(), height * width * 3); // RGB, top row first
+/// assert_ne!(pressed, untouched);
+/// ```
+///
+/// A model is `Send`: several sensors render side by side on threads of their own, and
+/// `set_parallel` (feature `parallel`) splits one frame's work when a single large image is the
+/// bottleneck.
 #[derive(Debug, Clone)]
 pub struct PhongModel {
     params: PhongParams,
