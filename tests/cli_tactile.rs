@@ -89,6 +89,54 @@ fn millimetre_pngs_and_geltip_geometry_are_read() {
     );
 }
 
+/// GelTip needs only the membrane's depth when the light fields are computed.
+#[test]
+fn geltip_light_fields_are_computed_from_the_membrane() {
+    let dir = tempfile::tempdir().unwrap();
+    let geometry = dir.path().join("geometry");
+    std::fs::create_dir(&geometry).unwrap();
+    std::fs::copy(
+        golden("geltip/params/bkg_depth_m.npy.gz"),
+        geometry.join("bkg_depth_m.npy.gz"),
+    )
+    .unwrap();
+    let render = |case: &str, method: &str| {
+        let out = dir.path().join(format!("{case}_{method}.png"));
+        let depth = golden(&format!("geltip/{case}/input_depth.npy.gz"));
+        let (code, stderr) = yarok(&[
+            "tactile",
+            "geltip",
+            depth.to_str().unwrap(),
+            out.to_str().unwrap(),
+            "--geltip-params",
+            geometry.to_str().unwrap(),
+            "--light-fields",
+            method,
+        ]);
+        assert_eq!(code, 0, "{stderr}");
+        image::open(&out).unwrap().to_rgb8()
+    };
+    for method in ["linear", "plane"] {
+        let (flat, pressed) = (render("flat", method), render("sphere_center", method));
+        assert_eq!(flat.dimensions(), (320, 240));
+        assert_ne!(flat, pressed, "{method}: the press shows");
+    }
+    assert_ne!(render("flat", "linear"), render("flat", "plane"));
+    let depth = golden("geltip/flat/input_depth.npy.gz");
+    let (code, stderr) = yarok(&[
+        "tactile",
+        "geltip",
+        depth.to_str().unwrap(),
+        dir.path().join("x.png").to_str().unwrap(),
+        "--geltip-params",
+        geometry.to_str().unwrap(),
+    ]);
+    assert!(
+        code == 2 && stderr.contains("light_field_0.npy.gz"),
+        "without --light-fields the files are needed: {stderr}"
+    );
+}
+
 #[test]
 fn mistakes_are_explained() {
     let depth = golden("geltip/sphere_center/input_depth.npy.gz");
@@ -97,6 +145,18 @@ fn mistakes_are_explained() {
     assert_eq!(
         (code, stderr.trim()),
         (2, "error: geltip needs --geltip-params DIR")
+    );
+    let (code, stderr) = yarok(&[
+        "tactile",
+        "geltip",
+        depth,
+        "/tmp/x.png",
+        "--light-fields",
+        "curved",
+    ]);
+    assert!(
+        code == 2 && stderr.contains("--light-fields curved: expected files, linear or plane"),
+        "{stderr}"
     );
     let (code, stderr) = yarok(&["tactile", "digits", depth, "/tmp/x.png"]);
     assert!(

@@ -23,9 +23,13 @@ use yarok::components::catalogue;
 use yarok::core::compose::{Declaration, Overrides, Value, compose_declaration, compose_with};
 
 const USAGE: &str = "usage: yarok compose WORLD [--set [/PATH/]KEY=VALUE]... [--out FILE]
-       yarok tactile digit|gelsight|geltip DEPTH OUT.png [--background PNG] [--geltip-params DIR] [--noise SIGMA] [--seed N]
+       yarok tactile digit|gelsight|geltip DEPTH OUT.png [--background PNG] [--noise SIGMA] [--seed N]
+                     [--geltip-params DIR] [--light-fields files|linear|plane]
   WORLD  a bundled component tag, or an MJCF template file
-  DEPTH  a 16-bit PNG in millimetres, or a .npy/.npy.gz float array";
+  DEPTH  a 16-bit PNG in millimetres, or a .npy/.npy.gz float array
+  DIR    GelTip geometry: bkg_depth_m.npy.gz (the membrane's depth) and, for --light-fields files
+         (the default), light_field_{0,1,2}.npy.gz; linear and plane compute the fields for three
+         LEDs on a 12.6 mm ring at the membrane's nearest depth";
 
 struct Args {
     world: String,
@@ -123,6 +127,7 @@ fn run(args: Args) -> Result<(), String> {
 
 mod tactile {
     use yarok::components::tactile::geltip::{GelTipModel, GelTipParams};
+    use yarok::components::tactile::light_fields::{LightFieldMethod, led_ring};
     use yarok::components::tactile::phong::{PhongModel, PhongParams};
     use yarok::components::tactile::{default_background, npy};
 
@@ -132,6 +137,7 @@ mod tactile {
         out: &'a str,
         background: Option<&'a str>,
         geltip_params: Option<&'a str>,
+        light_fields: Option<LightFieldMethod>,
         noise: Option<f64>,
         seed: u64,
     }
@@ -146,6 +152,7 @@ mod tactile {
             out,
             background: None,
             geltip_params: None,
+            light_fields: None,
             noise: None,
             seed: 0,
         };
@@ -155,6 +162,18 @@ mod tactile {
             match flag.as_str() {
                 "--background" => options.background = Some(value),
                 "--geltip-params" => options.geltip_params = Some(value),
+                "--light-fields" => {
+                    options.light_fields = match value.as_str() {
+                        "files" => None,
+                        "linear" => Some(LightFieldMethod::Linear),
+                        "plane" => Some(LightFieldMethod::Plane),
+                        other => {
+                            return Err(format!(
+                                "--light-fields {other}: expected files, linear or plane"
+                            ));
+                        }
+                    }
+                }
                 "--noise" => {
                     options.noise = Some(
                         value
@@ -196,6 +215,32 @@ mod tactile {
         }
     }
 
+    /// The GelTip model of the geometry in `dir`, its light fields read from there or computed.
+    fn geltip(dir: &str, method: Option<LightFieldMethod>) -> Result<GelTipModel, String> {
+        let params = GelTipParams::default();
+        let Some(method) = method else {
+            return GelTipModel::load(params, dir).map_err(|e| e.to_string());
+        };
+        let path = std::path::Path::new(dir).join("bkg_depth_m.npy.gz");
+        let membrane = npy::read(&path).map_err(|e| e.to_string())?;
+        let [_, width] = membrane.shape[..] else {
+            return Err(format!(
+                "{}: expected a 2-D depth map, got shape {:?}",
+                path.display(),
+                membrane.shape
+            ));
+        };
+        let nearest = membrane.data.iter().copied().fold(f32::INFINITY, f32::min);
+        let leds = led_ring(params.lights.len(), 0.0126, f64::from(nearest));
+        Ok(GelTipModel::from_geometry(
+            params,
+            &membrane.data,
+            width,
+            &leds,
+            method,
+        ))
+    }
+
     pub(super) fn run(args: &[String]) -> Result<(), String> {
         let options = options(args)?;
         let (depth, width, metric) = depth(options.depth)?;
@@ -231,8 +276,7 @@ mod tactile {
                 let dir = options
                     .geltip_params
                     .ok_or("geltip needs --geltip-params DIR")?;
-                let mut model =
-                    GelTipModel::load(GelTipParams::default(), dir).map_err(|e| e.to_string())?;
+                let mut model = geltip(dir, options.light_fields)?;
                 if model.size() != (width, height) {
                     let (w, h) = model.size();
                     return Err(format!(

@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 
 use yarok_components::tactile::geltip::{GelTipModel, GelTipParams};
-use yarok_components::tactile::light_fields::{LightFieldMethod, light_field};
+use yarok_components::tactile::light_fields::{LightFieldMethod, led_ring};
 use yarok_components::tactile::npy;
 use yarok_components::tactile::phong::{PhongModel, PhongParams};
 
@@ -133,16 +133,10 @@ fn geltip_imprints_with_computed_light_fields() {
     let membrane = npy::read(golden("geltip/params/bkg_depth_m.npy.gz")).unwrap();
     let width = membrane.shape[1];
     let params = GelTipParams::default();
+    let leds = led_ring(3, 0.0126, 0.010);
     for method in [LightFieldMethod::Linear, LightFieldMethod::Plane] {
-        let fields: Vec<_> = [0.0f64, 120.0, 240.0]
-            .iter()
-            .map(|angle| {
-                let (sin, cos) = angle.to_radians().sin_cos();
-                let led = [0.0126 * cos, 0.0126 * sin, 0.010];
-                light_field(&membrane.data, width, params.fov_deg, led, method)
-            })
-            .collect();
-        let mut model = GelTipModel::new(params.clone(), &membrane.data, width, &fields);
+        let mut model =
+            GelTipModel::from_geometry(params.clone(), &membrane.data, width, &leds, method);
         let bg = background("geltip");
         check(
             "geltip",

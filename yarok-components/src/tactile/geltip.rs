@@ -8,6 +8,7 @@ use multiversion::multiversion;
 use super::field::{BlurScratch, Field};
 use super::filter::gaussian_kernel;
 use super::int_pow;
+use super::light_fields::{LightFieldMethod, light_field};
 use super::npy::{self, NpyError};
 use super::rows::{RowRing, in_bands_with, neighbours};
 
@@ -71,22 +72,20 @@ impl Default for GelTipParams {
 ///
 /// ```
 /// use yarok_components::tactile::geltip::{GelTipModel, GelTipParams};
-/// use yarok_components::tactile::light_fields::{LightFieldMethod, light_field};
+/// use yarok_components::tactile::light_fields::{LightFieldMethod, led_ring};
 ///
 /// // A (flat, for brevity) membrane 20 mm in front of a 64 × 48 camera, lit by three LEDs on a
 /// // ring of 12 mm around the camera, with light fields computed from that geometry.
 /// let (width, height) = (64, 48);
 /// let membrane = vec![0.020f32; width * height];
-/// let params = GelTipParams::default();
-/// let fields: Vec<_> = [0.0f64, 120.0, 240.0]
-///     .iter()
-///     .map(|degrees| {
-///         let (sin, cos) = degrees.to_radians().sin_cos();
-///         let led = [0.012 * cos, 0.012 * sin, 0.0];
-///         light_field(&membrane, width, params.fov_deg, led, LightFieldMethod::Linear)
-///     })
-///     .collect();
-/// let mut geltip = GelTipModel::new(params, &membrane, width, &fields);
+/// let leds = led_ring(3, 0.012, 0.0);
+/// let mut geltip = GelTipModel::from_geometry(
+///     GelTipParams::default(),
+///     &membrane,
+///     width,
+///     &leds,
+///     LightFieldMethod::Linear,
+/// );
 /// let mut pressed = membrane.clone();
 /// pressed[24 * width + 32] = 0.019; // a pin pushes the membrane 1 mm in
 /// let background = vec![0u8; width * height * 3];
@@ -162,6 +161,27 @@ impl GelTipModel {
     #[cfg(feature = "parallel")]
     pub fn set_parallel(&mut self, parallel: bool) {
         self.parallel = parallel;
+    }
+
+    /// A model whose light fields are computed from the membrane's geometry: its undeformed
+    /// `membrane_depth` (metres, row-major, `width` wide) and one LED position per light (camera
+    /// frame, metres), by `method`.
+    ///
+    /// # Panics
+    ///
+    /// When the numbers of lights and LEDs differ.
+    pub fn from_geometry(
+        params: GelTipParams,
+        membrane_depth: &[f32],
+        width: usize,
+        leds: &[[f64; 3]],
+        method: LightFieldMethod,
+    ) -> Self {
+        let fields: Vec<_> = leds
+            .iter()
+            .map(|led| light_field(membrane_depth, width, params.fov_deg, *led, method))
+            .collect();
+        Self::new(params, membrane_depth, width, &fields)
     }
 
     /// A model whose geometry is stored in `dir` as the reference stores it:
