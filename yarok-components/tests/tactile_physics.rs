@@ -113,31 +113,23 @@ fn gelsight_imprints_grow_with_depth_and_follow_the_object() {
     );
 }
 
+/// GelTip with the reference's light fields, and with fields the project computes from the
+/// membrane's geometry (three LEDs on the base ring, 12.6 mm from the axis at 120°, as the
+/// reference's set-up places them) by each method.
 #[test]
 fn geltip_imprints_grow_with_depth_and_follow_the_object() {
-    let mut model = GelTipModel::load(GelTipParams::default(), golden("geltip/params")).unwrap();
-    let bg = background("geltip");
-    check(
-        "geltip",
-        |d| model.render(&d.data, &bg),
-        "flat",
-        (190.0, 95.0),
-    );
-}
-
-/// GelTip with light fields the project computes from the membrane's geometry (three LEDs on the
-/// base ring, 12.6 mm from the axis at 120°, as the reference's set-up places them) instead of
-/// the reference's files: presses show where they are and grow with depth, for each method.
-#[test]
-fn geltip_imprints_with_computed_light_fields() {
     let membrane = npy::read(golden("geltip/params/bkg_depth_m.npy.gz")).unwrap();
-    let width = membrane.shape[1];
-    let params = GelTipParams::default();
+    let (width, params) = (membrane.shape[1], GelTipParams::default());
     let leds = led_ring(3, 0.0126, 0.010);
-    for method in [LightFieldMethod::Linear, LightFieldMethod::Plane] {
-        let mut model =
-            GelTipModel::from_geometry(params.clone(), &membrane.data, width, &leds, method);
-        let bg = background("geltip");
+    let computed =
+        |method| GelTipModel::from_geometry(params.clone(), &membrane.data, width, &leds, method);
+    let models = [
+        GelTipModel::load(params.clone(), golden("geltip/params")).unwrap(),
+        computed(LightFieldMethod::Linear),
+        computed(LightFieldMethod::Plane),
+    ];
+    let bg = background("geltip");
+    for mut model in models {
         check(
             "geltip",
             |d| model.render(&d.data, &bg),

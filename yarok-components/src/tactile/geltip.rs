@@ -581,7 +581,7 @@ fn view_row([px, py, pz]: &[Vec<f64>; 3], [vx, vy, vz]: &mut [Vec<f64>; 3]) {
 
 /// The surface normal from a pair of tangents, `−(t̂x × t̂y)` as the reference computes it.
 #[inline(always)]
-pub(crate) fn surface_normal(tx: [f64; 3], ty: [f64; 3]) -> [f64; 3] {
+fn surface_normal(tx: [f64; 3], ty: [f64; 3]) -> [f64; 3] {
     let (a, b) = (normalised(tx), normalised(ty));
     [
         -(a[1] * b[2] - a[2] * b[1]),
