@@ -51,7 +51,9 @@ impl Model for Phong {
     }
     fn render(&mut self) -> Vec<u8> {
         let width = self.depth.shape[1];
-        self.model.render(&self.depth.data, width, &self.background)
+        self.model
+            .render(&self.depth.data, width, &self.background)
+            .expect("golden sizes")
     }
 }
 
@@ -66,7 +68,9 @@ impl Model for GelTip {
         self.model.set_parallel(parallel);
     }
     fn render(&mut self) -> Vec<u8> {
-        self.model.render(&self.depth.data, &self.background)
+        self.model
+            .render(&self.depth.data, &self.background)
+            .expect("golden sizes")
     }
 }
 

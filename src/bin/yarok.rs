@@ -232,13 +232,8 @@ mod tactile {
         };
         let nearest = membrane.data.iter().copied().fold(f32::INFINITY, f32::min);
         let leds = led_ring(params.lights.len(), 0.0126, f64::from(nearest));
-        Ok(GelTipModel::from_geometry(
-            params,
-            &membrane.data,
-            width,
-            &leds,
-            method,
-        ))
+        GelTipModel::from_geometry(params, &membrane.data, width, &leds, method)
+            .map_err(|e| format!("{}: {e}", path.display()))
     }
 
     pub(super) fn run(args: &[String]) -> Result<(), String> {
@@ -270,7 +265,9 @@ mod tactile {
                 };
                 params.texture_sigma = options.noise.unwrap_or(params.texture_sigma);
                 params.seed = options.seed;
-                PhongModel::new(params).render(&depth, width, &background)
+                PhongModel::new(params)
+                    .render(&depth, width, &background)
+                    .map_err(|e| format!("{}: {e}", options.depth))?
             }
             "geltip" => {
                 let dir = options
@@ -283,7 +280,9 @@ mod tactile {
                         "the GelTip geometry is {h}×{w}, the depth map {height}×{width}"
                     ));
                 }
-                model.render(&depth, &background)
+                model
+                    .render(&depth, &background)
+                    .map_err(|e| format!("{}: {e}", options.depth))?
             }
             other => {
                 return Err(format!(

@@ -79,7 +79,9 @@ fn check(model: &str, params: PhongParams, light_key: &str) {
         }
         let depth = npy::read(dir.join("input_depth.npy.gz")).unwrap();
         assert_eq!(depth.shape, [height as usize, width as usize]);
-        let ours = phong.render(&depth.data, width as usize, &background);
+        let ours = phong
+            .render(&depth.data, width as usize, &background)
+            .unwrap();
         let (_, _, reference) = png_rgb(dir.join("output.png"));
         let stats = compare(&ours, &reference);
         eprintln!("{model}/{case}: {stats:?}");
@@ -143,7 +145,7 @@ fn geltip_matches_the_reference() {
             assert_eq!(light.colour, [bgr[2], bgr[1], bgr[0]]);
         }
         let depth = npy::read(dir.join("input_depth.npy.gz")).unwrap();
-        let ours = model.render(&depth.data, &background);
+        let ours = model.render(&depth.data, &background).unwrap();
         let (_, _, reference) = png_rgb(dir.join("output.png"));
         let stats = compare(&ours, &reference);
         eprintln!("geltip/{case}: {stats:?}");

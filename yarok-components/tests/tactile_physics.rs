@@ -84,7 +84,9 @@ fn digit_imprints_grow_with_depth_and_follow_the_object() {
         ..PhongParams::digit()
     });
     let bg = background("digit");
-    let image = model.render(&depth("digit", "flat_surface").data, 240, &bg);
+    let image = model
+        .render(&depth("digit", "flat_surface").data, 240, &bg)
+        .unwrap();
     assert_eq!(
         image.len(),
         320 * 240 * 3,
@@ -92,7 +94,7 @@ fn digit_imprints_grow_with_depth_and_follow_the_object() {
     );
     check(
         "digit",
-        |d| model.render(&d.data, d.shape[1], &bg),
+        |d| model.render(&d.data, d.shape[1], &bg).unwrap(),
         "flat_surface",
         (170.0, 95.0),
     );
@@ -107,7 +109,7 @@ fn gelsight_imprints_grow_with_depth_and_follow_the_object() {
     let bg = background("gelsight");
     check(
         "gelsight",
-        |d| model.render(&d.data, d.shape[1], &bg),
+        |d| model.render(&d.data, d.shape[1], &bg).unwrap(),
         "flat",
         (450.0, 160.0),
     );
@@ -121,8 +123,9 @@ fn geltip_imprints_grow_with_depth_and_follow_the_object() {
     let membrane = npy::read(golden("geltip/params/bkg_depth_m.npy.gz")).unwrap();
     let (width, params) = (membrane.shape[1], GelTipParams::default());
     let leds = led_ring(3, 0.0126, 0.010);
-    let computed =
-        |method| GelTipModel::from_geometry(params.clone(), &membrane.data, width, &leds, method);
+    let computed = |method| {
+        GelTipModel::from_geometry(params.clone(), &membrane.data, width, &leds, method).unwrap()
+    };
     let models = [
         GelTipModel::load(params.clone(), golden("geltip/params")).unwrap(),
         computed(LightFieldMethod::Linear),
@@ -132,7 +135,7 @@ fn geltip_imprints_grow_with_depth_and_follow_the_object() {
     for mut model in models {
         check(
             "geltip",
-            |d| model.render(&d.data, &bg),
+            |d| model.render(&d.data, &bg).unwrap(),
             "flat",
             (190.0, 95.0),
         );
@@ -154,7 +157,10 @@ fn geltip_fills_missing_depth() {
         filled[y * width + x] = membrane.data[y * width + x];
     }
     let mut model = GelTipModel::load(GelTipParams::default(), golden("geltip/params")).unwrap();
-    assert_eq!(model.render(&holes, &bg), model.render(&filled, &bg));
+    assert_eq!(
+        model.render(&holes, &bg).unwrap(),
+        model.render(&filled, &bg).unwrap()
+    );
     let mut unfilled = GelTipModel::load(
         GelTipParams {
             fill_missing_depth: false,
@@ -163,7 +169,10 @@ fn geltip_fills_missing_depth() {
         golden("geltip/params"),
     )
     .unwrap();
-    assert_ne!(unfilled.render(&holes, &bg), unfilled.render(&filled, &bg));
+    assert_ne!(
+        unfilled.render(&holes, &bg).unwrap(),
+        unfilled.render(&filled, &bg).unwrap()
+    );
 }
 
 #[test]
@@ -177,6 +186,7 @@ fn texture_noise_is_seeded() {
             ..PhongParams::digit()
         })
         .render(&input.data, 240, &bg)
+        .unwrap()
     };
     let first = render(1, 1e-5);
     assert_eq!(first, render(1, 1e-5), "same seed, same bytes");
@@ -194,9 +204,13 @@ fn digit_metric_mode_sees_only_what_presses_into_the_gel() {
     assert_eq!(bg.len(), 320 * 240 * 3);
     let metric =
         |case: &str| npy::read(golden(&format!("digit/{case}/depth_metric_m.npy.gz"))).unwrap();
-    let untouched = model.render(&metric("flat_surface").data, 240, &bg);
+    let untouched = model
+        .render(&metric("flat_surface").data, 240, &bg)
+        .unwrap();
     let (pixels, centre) = imprint(
-        &model.render(&metric("sphere_center").data, 240, &bg),
+        &model
+            .render(&metric("sphere_center").data, 240, &bg)
+            .unwrap(),
         &untouched,
         240,
     );
@@ -205,7 +219,9 @@ fn digit_metric_mode_sees_only_what_presses_into_the_gel() {
         "{pixels} at {centre:?}"
     );
     let (deeper, _) = imprint(
-        &model.render(&metric("sphere_center_deep").data, 240, &bg),
+        &model
+            .render(&metric("sphere_center_deep").data, 240, &bg)
+            .unwrap(),
         &untouched,
         240,
     );
@@ -234,8 +250,8 @@ fn threads_do_not_change_images() {
         for case in cases {
             let d = depth(model, case);
             assert_eq!(
-                single.render(&d.data, d.shape[1], &bg),
-                parallel.render(&d.data, d.shape[1], &bg),
+                single.render(&d.data, d.shape[1], &bg).unwrap(),
+                parallel.render(&d.data, d.shape[1], &bg).unwrap(),
                 "{model}/{case}"
             );
         }
@@ -247,9 +263,64 @@ fn threads_do_not_change_images() {
     for case in cases {
         let d = depth("geltip", case);
         assert_eq!(
-            single.render(&d.data, &bg),
-            parallel.render(&d.data, &bg),
+            single.render(&d.data, &bg).unwrap(),
+            parallel.render(&d.data, &bg).unwrap(),
             "geltip/{case}"
         );
     }
+}
+
+/// Inputs of the wrong size are errors that name them, and leave the output untouched.
+#[test]
+fn wrong_sizes_are_errors() {
+    use yarok_components::tactile::SizeError;
+    let mut phong = PhongModel::new(PhongParams::digit());
+    let (depth, background) = (vec![1.0f32; 12], vec![0u8; 36]);
+    assert_eq!(
+        phong.render(&depth, 5, &background),
+        Err(SizeError::NotWholeRows { len: 12, width: 5 })
+    );
+    assert_eq!(
+        phong.render(&depth, 0, &background),
+        Err(SizeError::NotWholeRows { len: 12, width: 0 })
+    );
+    let mut out = vec![7u8; 35];
+    let error = phong
+        .render_into(&depth, 4, &background, &mut out)
+        .unwrap_err();
+    assert_eq!(
+        error.to_string(),
+        "the output holds 35 values; a 4 × 3 image needs 36"
+    );
+    assert!(out.iter().all(|v| *v == 7), "nothing written");
+    assert_eq!(phong.render(&[], 4, &[]), Ok(Vec::new()));
+
+    let membrane = vec![0.02f32; 12];
+    let params = GelTipParams::default();
+    let fields = vec![vec![[0.0, 0.0, 1.0]; 12]; 2];
+    assert_eq!(
+        GelTipModel::new(params.clone(), &membrane, 4, &fields).unwrap_err(),
+        SizeError::LightCount {
+            lights: 3,
+            fields: 2
+        }
+    );
+    let mut fields = vec![vec![[0.0, 0.0, 1.0]; 12]; 3];
+    fields[1].pop();
+    assert!(matches!(
+        GelTipModel::new(params.clone(), &membrane, 4, &fields),
+        Err(SizeError::Mismatch {
+            what: "light field",
+            actual: 11,
+            ..
+        })
+    ));
+    let mut geltip = GelTipModel::new(params, &membrane, 4, &vec![fields[0].clone(); 3]).unwrap();
+    assert!(matches!(
+        geltip.render(&membrane[..8], &[0; 24]),
+        Err(SizeError::Mismatch {
+            what: "depth map",
+            ..
+        })
+    ));
 }

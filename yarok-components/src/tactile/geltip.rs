@@ -7,10 +7,10 @@ use multiversion::multiversion;
 
 use super::field::{BlurScratch, Field};
 use super::filter::gaussian_kernel;
-use super::int_pow;
 use super::light_fields::{LightFieldMethod, light_field};
 use super::npy::{self, NpyError};
 use super::rows::{RowRing, in_bands_with, neighbours};
+use super::{SizeError, expect_len, image_height, int_pow};
 
 /// A light of the GelTip model.
 #[derive(Debug, Clone, PartialEq)]
@@ -85,13 +85,14 @@ impl Default for GelTipParams {
 ///     width,
 ///     &leds,
 ///     LightFieldMethod::Linear,
-/// );
+/// )?;
 /// let mut pressed = membrane.clone();
 /// pressed[24 * width + 32] = 0.019; // a pin pushes the membrane 1 mm in
 /// let background = vec![0u8; width * height * 3];
-/// let image = geltip.render(&pressed, &background);
+/// let image = geltip.render(&pressed, &background)?;
 /// assert_eq!(image.len(), width * height * 3); // RGB, top row first
-/// assert_ne!(image, geltip.render(&membrane, &background));
+/// assert_ne!(image, geltip.render(&membrane, &background)?);
+/// # Ok::<(), yarok_components::tactile::SizeError>(())
 /// ```
 #[derive(Debug, Clone)]
 pub struct GelTipModel {
@@ -114,31 +115,31 @@ impl GelTipModel {
     /// A model for membranes whose undeformed depth is `background_depth` (metres, row-major,
     /// `width` wide) with one light field (unit vectors from the light, per pixel) per light.
     ///
-    /// # Panics
+    /// # Errors
     ///
-    /// When the numbers of lights and fields differ or their sizes do not match the depth.
+    /// [`SizeError`] when the depth is not whole rows, the numbers of lights and fields differ,
+    /// or a field's size is not the depth's.
     pub fn new(
         params: GelTipParams,
         background_depth: &[f32],
         width: usize,
         light_fields: &[Vec<[f32; 3]>],
-    ) -> Self {
-        assert_eq!(
-            params.lights.len(),
-            light_fields.len(),
-            "one light field per light"
-        );
-        assert!(
-            light_fields
-                .iter()
-                .all(|f| f.len() == background_depth.len()),
-            "light fields must match the depth's size"
-        );
+    ) -> Result<Self, SizeError> {
+        let size = (width, image_height(background_depth.len(), width)?);
+        if params.lights.len() != light_fields.len() {
+            return Err(SizeError::LightCount {
+                lights: params.lights.len(),
+                fields: light_fields.len(),
+            });
+        }
+        for field in light_fields {
+            expect_len("light field", field.len(), 1, size)?;
+        }
         let towards_lights = light_fields
             .iter()
             .map(|field| [0, 1, 2].map(|c| field.iter().map(|v| -v[c]).collect()))
             .collect();
-        Self {
+        Ok(Self {
             params,
             width,
             background_depth: background_depth.to_vec(),
@@ -153,7 +154,7 @@ impl GelTipModel {
             surface: Vec::new(),
             bands: Vec::new(),
             parallel: false,
-        }
+        })
     }
 
     /// Splits each frame's work into bands of rows on rayon's thread pool (`true`) or runs it on
@@ -167,20 +168,26 @@ impl GelTipModel {
     /// `membrane_depth` (metres, row-major, `width` wide) and one LED position per light (camera
     /// frame, metres), by `method`.
     ///
-    /// # Panics
+    /// # Errors
     ///
-    /// When the numbers of lights and LEDs differ.
+    /// [`SizeError`] when the depth is not whole rows or the numbers of lights and LEDs differ.
     pub fn from_geometry(
         params: GelTipParams,
         membrane_depth: &[f32],
         width: usize,
         leds: &[[f64; 3]],
         method: LightFieldMethod,
-    ) -> Self {
-        let fields: Vec<_> = leds
+    ) -> Result<Self, SizeError> {
+        if params.lights.len() != leds.len() {
+            return Err(SizeError::LightCount {
+                lights: params.lights.len(),
+                fields: leds.len(),
+            });
+        }
+        let fields = leds
             .iter()
             .map(|led| light_field(membrane_depth, width, params.fov_deg, *led, method))
-            .collect();
+            .collect::<Result<Vec<_>, _>>()?;
         Self::new(params, membrane_depth, width, &fields)
     }
 
@@ -222,7 +229,10 @@ impl GelTipModel {
                     .collect())
             })
             .collect::<Result<Vec<_>, NpyError>>()?;
-        Ok(Self::new(params, &background.data, width, &fields))
+        Self::new(params, &background.data, width, &fields).map_err(|e| NpyError::Format {
+            path: dir.display().to_string(),
+            message: e.to_string(),
+        })
     }
 
     /// The size of the images the model renders: `(width, height)`.
@@ -233,36 +243,30 @@ impl GelTipModel {
     /// Renders the sensor image for `depth` (metres; the membrane where nothing presses, less
     /// where something does) over `background` (RGB u8). Returns RGB, same size.
     ///
-    /// # Panics
+    /// # Errors
     ///
-    /// When sizes do not match the model's.
-    pub fn render(&mut self, depth: &[f32], background: &[u8]) -> Vec<u8> {
+    /// [`SizeError`] when the sizes do not match the model's.
+    pub fn render(&mut self, depth: &[f32], background: &[u8]) -> Result<Vec<u8>, SizeError> {
         let mut out = vec![0; background.len()];
-        self.render_into(depth, background, &mut out);
-        out
+        self.render_into(depth, background, &mut out)?;
+        Ok(out)
     }
 
     /// [`GelTipModel::render`] into a caller's buffer.
     ///
-    /// # Panics
+    /// # Errors
     ///
-    /// When sizes do not match the model's.
-    pub fn render_into(&mut self, depth: &[f32], background: &[u8], out: &mut [u8]) {
-        assert_eq!(
-            depth.len(),
-            self.background_depth.len(),
-            "depth size differs from the model's"
-        );
-        assert_eq!(
-            background.len(),
-            3 * depth.len(),
-            "background must be width × height × 3"
-        );
-        assert_eq!(
-            out.len(),
-            background.len(),
-            "output must be width × height × 3"
-        );
+    /// [`SizeError`] when the sizes do not match the model's; nothing is written then.
+    pub fn render_into(
+        &mut self,
+        depth: &[f32],
+        background: &[u8],
+        out: &mut [u8],
+    ) -> Result<(), SizeError> {
+        let size = self.size();
+        expect_len("depth map", depth.len(), 1, size)?;
+        expect_len("background", background.len(), 3, size)?;
+        expect_len("output", out.len(), 3, size)?;
         self.deform(depth);
         let (width, height) = self.size();
         let frame = Frame {
@@ -282,6 +286,7 @@ impl GelTipModel {
             self.parallel,
             |rows, buffers, out| shade_rows(params, &frame, rows, buffers, out),
         );
+        Ok(())
     }
 
     /// `surface = min(depth, bkg − blur(bkg − depth))` in f32 like the reference, the blur on

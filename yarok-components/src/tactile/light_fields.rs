@@ -4,6 +4,7 @@
 
 use super::geltip::{Camera, back_project_row, dot, normalised, normals_row};
 use super::rows::{RowRing, neighbours};
+use super::{SizeError, image_height};
 
 /// How light is taken to travel from an LED to a membrane point.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -21,14 +22,18 @@ pub enum LightFieldMethod {
 /// membrane whose depth, as the sensor's camera sees it, is `membrane_depth` (metres, row-major,
 /// `width` wide, vertical field of view `fov_deg`). One unit vector per pixel, pointing away from
 /// the light, as [`GelTipModel::new`](super::geltip::GelTipModel::new) takes them.
+///
+/// # Errors
+///
+/// [`SizeError`] when the depth is not whole rows of `width`.
 pub fn light_field(
     membrane_depth: &[f32],
     width: usize,
     fov_deg: f64,
     led: [f64; 3],
     method: LightFieldMethod,
-) -> Vec<[f32; 3]> {
-    let height = membrane_depth.len() / width;
+) -> Result<Vec<[f32; 3]>, SizeError> {
+    let height = image_height(membrane_depth.len(), width)?;
     let camera = Camera::new(width, height, fov_deg);
     let mut points = RowRing::<[Vec<f64>; 3]>::default();
     points.reset(|row| row.iter_mut().for_each(|c| c.resize(width, 0.0)));
@@ -60,7 +65,7 @@ pub fn light_field(
             field.push(direction.map(|v| v as f32));
         }
     }
-    field
+    Ok(field)
 }
 
 /// `count` LEDs evenly spaced on a circle of `radius` (metres) around the camera's axis, `z`
@@ -139,7 +144,7 @@ mod tests {
         let depth = dome(width, height);
         let led = [0.012, 0.0, 0.030];
         let camera = Camera::new(width, height, 70.0);
-        let field = light_field(&depth, width, 70.0, led, LightFieldMethod::Linear);
+        let field = light_field(&depth, width, 70.0, led, LightFieldMethod::Linear).unwrap();
         for (i, v) in field.iter().enumerate() {
             let v = v.map(f64::from);
             let z = f64::from(depth[i]);
@@ -197,7 +202,7 @@ mod tests {
             ("dome", (dome_depth, dome_normals), [0.012, 0.0, 0.030]),
         ];
         for (shape, (depth, normals), led) in shapes {
-            let field = light_field(&depth, width, 70.0, led, LightFieldMethod::Plane);
+            let field = light_field(&depth, width, 70.0, led, LightFieldMethod::Plane).unwrap();
             let at = |x: usize, y: usize| field[y * width + x].map(f64::from);
             // Inside the image border (where derivatives vanish), neighbours included.
             for y in 1..height - 2 {
@@ -239,14 +244,16 @@ mod tests {
             70.0,
             [0.012, 0.0, 0.030],
             LightFieldMethod::Plane,
-        );
+        )
+        .unwrap();
         let linear = light_field(
             &depth,
             width,
             70.0,
             [0.012, 0.0, 0.030],
             LightFieldMethod::Linear,
-        );
+        )
+        .unwrap();
         // At the dome's tip (centre pixel) the surface faces the camera: the plane field is
         // horizontal, while the straight line from the LED dips towards the camera.
         let centre = (height / 2) * width + width / 2;

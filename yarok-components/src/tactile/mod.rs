@@ -18,6 +18,70 @@ pub mod npy;
 pub mod phong;
 mod rows;
 
+/// An input whose size does not fit the image being rendered.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SizeError {
+    /// The depth map is not a whole number of rows of the given width.
+    #[error("a depth map of {len} values is not a whole number of rows of {width}")]
+    NotWholeRows {
+        /// Values in the depth map.
+        len: usize,
+        /// The width given.
+        width: usize,
+    },
+    /// An input or output holds the wrong number of values.
+    #[error("the {what} holds {actual} values; a {width} × {height} image needs {expected}")]
+    Mismatch {
+        /// Which input or output.
+        what: &'static str,
+        /// Values it holds.
+        actual: usize,
+        /// Values it should hold.
+        expected: usize,
+        /// The image's width.
+        width: usize,
+        /// The image's height.
+        height: usize,
+    },
+    /// The model's lights and the light fields (or LEDs) given for them differ in number.
+    #[error("{lights} lights but {fields} light fields or LEDs")]
+    LightCount {
+        /// Lights in the parameters.
+        lights: usize,
+        /// Light fields or LEDs given.
+        fields: usize,
+    },
+}
+
+/// The height of a depth map of `len` values, `width` wide.
+fn image_height(len: usize, width: usize) -> Result<usize, SizeError> {
+    if width == 0 || !len.is_multiple_of(width) {
+        return Err(SizeError::NotWholeRows { len, width });
+    }
+    Ok(len / width)
+}
+
+/// Checks that `what` holds `channels` values per pixel of a `width × height` image.
+fn expect_len(
+    what: &'static str,
+    actual: usize,
+    channels: usize,
+    (width, height): (usize, usize),
+) -> Result<(), SizeError> {
+    let expected = channels * width * height;
+    if actual != expected {
+        return Err(SizeError::Mismatch {
+            what,
+            actual,
+            expected,
+            width,
+            height,
+        });
+    }
+    Ok(())
+}
+
 /// `base` to an integer power by repeated squaring (odd powers keep the sign), without the
 /// library call `powi` becomes for a run-time exponent.
 fn int_pow(base: f64, exponent: i32) -> f64 {

@@ -5,8 +5,8 @@ use multiversion::multiversion;
 
 use super::field::{BlurScratch, Field};
 use super::filter::gaussian_kernel;
-use super::int_pow;
 use super::rows::{RowRing, in_bands_with, join, neighbours};
+use super::{SizeError, expect_len, image_height, int_pow};
 
 /// A coloured light of the Phong model.
 #[derive(Debug, Clone, PartialEq)]
@@ -134,10 +134,12 @@ impl PhongParams {
 ///     .collect();
 /// let background = default_background(width, height);
 /// let mut digit = PhongModel::new(PhongParams::digit_metric());
-/// let pressed = digit.render(&depth, width, &background);
-/// let untouched = digit.render(&vec![0.030; width * height], width, &background);
+/// let pressed = digit.render(&depth, width, &background)?;
+/// let untouched = digit.render(&vec![0.030; width * height], width, &background)?;
 /// assert_eq!(pressed.len(), height * width * 3); // RGB, top row first
 /// assert_ne!(pressed, untouched);
+/// assert!(digit.render(&depth, 250, &background).is_err()); // not whole rows of 250
+/// # Ok::<(), yarok_components::tactile::SizeError>(())
 /// ```
 ///
 /// A model is `Send`: several sensors render side by side on threads of their own, and
@@ -201,32 +203,35 @@ impl PhongModel {
     /// Renders the sensor image for `depth` (`height × width`, row-major, in the parameters'
     /// unit) over `background` (RGB, `height × width × 3`). Returns RGB, `height × width × 3`.
     ///
-    /// # Panics
+    /// # Errors
     ///
-    /// When `depth` and `background` sizes do not match `width`.
-    pub fn render(&mut self, depth: &[f32], width: usize, background: &[u8]) -> Vec<u8> {
+    /// [`SizeError`] when `depth` is not whole rows of `width` or `background` is not its size.
+    pub fn render(
+        &mut self,
+        depth: &[f32],
+        width: usize,
+        background: &[u8],
+    ) -> Result<Vec<u8>, SizeError> {
         let mut out = vec![0; background.len()];
-        self.render_into(depth, width, background, &mut out);
-        out
+        self.render_into(depth, width, background, &mut out)?;
+        Ok(out)
     }
 
     /// [`PhongModel::render`] into a caller's buffer (`height × width × 3`).
     ///
-    /// # Panics
+    /// # Errors
     ///
-    /// When the sizes do not match.
-    pub fn render_into(&mut self, depth: &[f32], width: usize, background: &[u8], out: &mut [u8]) {
-        assert_eq!(
-            depth.len() * 3,
-            background.len(),
-            "background must be width × height × 3"
-        );
-        assert_eq!(
-            out.len(),
-            background.len(),
-            "output must be width × height × 3"
-        );
-        assert_eq!(depth.len() % width, 0, "depth must be width × height");
+    /// [`SizeError`] when the sizes do not match; nothing is written then.
+    pub fn render_into(
+        &mut self,
+        depth: &[f32],
+        width: usize,
+        background: &[u8],
+        out: &mut [u8],
+    ) -> Result<(), SizeError> {
+        let size = (width, image_height(depth.len(), width)?);
+        expect_len("background", background.len(), 3, size)?;
+        expect_len("output", out.len(), 3, size)?;
         let max_depth = self.params.max_depth();
         self.scratch.indentation.assign(
             width,
@@ -254,6 +259,7 @@ impl PhongModel {
             self.parallel,
             |rows, buffers, out| shade_rows(&shading, &frame, rows, buffers, out),
         );
+        Ok(())
     }
 
     /// Elastic deformation: the indentation smoothed by two Gaussians (difference of Gaussians),
