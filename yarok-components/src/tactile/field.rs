@@ -73,7 +73,7 @@ impl Region {
 #[derive(Debug, Clone)]
 pub(crate) struct Field {
     pub(crate) values: Vec<f32>,
-    pub(crate) width: usize,
+    width: usize,
     background: f32,
     region: Region,
 }

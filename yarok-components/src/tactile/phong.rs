@@ -148,8 +148,8 @@ impl PhongParams {
 #[derive(Debug, Clone)]
 pub struct PhongModel {
     params: PhongParams,
-    narrow: Vec<f32>,
-    wide: Vec<f32>,
+    narrow_kernel: Vec<f32>,
+    wide_kernel: Vec<f32>,
     blur: [f64; 3],
     parallel: bool,
     scratch: Scratch,
@@ -172,8 +172,8 @@ impl PhongModel {
         let blur = gaussian_kernel(3, 1.0);
         Self {
             params,
-            narrow: single(gaussian_kernel(21, 7.0)),
-            wide: single(gaussian_kernel(52, 9.0)),
+            narrow_kernel: single(gaussian_kernel(21, 7.0)),
+            wide_kernel: single(gaussian_kernel(52, 9.0)),
             blur: [blur[0], blur[1], blur[2]],
             parallel: false,
             scratch: Scratch {
@@ -229,9 +229,9 @@ impl PhongModel {
         background: &[u8],
         out: &mut [u8],
     ) -> Result<(), SizeError> {
-        let size = (width, image_height(depth.len(), width)?);
-        expect_len("background", background.len(), 3, size)?;
-        expect_len("output", out.len(), 3, size)?;
+        let height = image_height(depth.len(), width)?;
+        expect_len("background", background.len(), 3, (width, height))?;
+        expect_len("output", out.len(), 3, (width, height))?;
         let max_depth = self.params.max_depth();
         self.scratch.indentation.assign(
             width,
@@ -243,7 +243,7 @@ impl PhongModel {
         let s = &mut self.scratch;
         let frame = Frame {
             width,
-            height: depth.len() / width,
+            height,
             depth,
             background,
             narrow: &s.narrow.field.values,
@@ -271,10 +271,10 @@ impl PhongModel {
         let s = &mut self.scratch;
         let p = &self.params;
         let peak = s.indentation.max();
-        let narrow = [(&self.narrow[..], p.iterations)];
+        let narrow = [(&self.narrow_kernel[..], p.iterations)];
         let wide = [
-            (&self.wide[..], p.iterations),
-            (&self.narrow[..], p.iterations),
+            (&self.wide_kernel[..], p.iterations),
+            (&self.narrow_kernel[..], p.iterations),
         ];
         let wide = if p.extra_passes {
             &wide[..]
