@@ -126,7 +126,7 @@ fn run(args: Args) -> Result<(), String> {
 }
 
 mod tactile {
-    use yarok::components::tactile::geltip::{GelTipModel, GelTipParams};
+    use yarok::components::tactile::geltip::{GelTipModel, GelTipParams, read_membrane};
     use yarok::components::tactile::light_fields::{LightFieldMethod, led_ring};
     use yarok::components::tactile::phong::{PhongModel, PhongParams};
     use yarok::components::tactile::{default_background, npy};
@@ -221,19 +221,11 @@ mod tactile {
         let Some(method) = method else {
             return GelTipModel::load(params, dir).map_err(|e| e.to_string());
         };
-        let path = std::path::Path::new(dir).join("bkg_depth_m.npy.gz");
-        let membrane = npy::read(&path).map_err(|e| e.to_string())?;
-        let [_, width] = membrane.shape[..] else {
-            return Err(format!(
-                "{}: expected a 2-D depth map, got shape {:?}",
-                path.display(),
-                membrane.shape
-            ));
-        };
-        let nearest = membrane.data.iter().copied().fold(f32::INFINITY, f32::min);
+        let (membrane, width) = read_membrane(dir).map_err(|e| e.to_string())?;
+        let nearest = membrane.iter().copied().fold(f32::INFINITY, f32::min);
         let leds = led_ring(params.lights.len(), 0.0126, f64::from(nearest));
-        GelTipModel::from_geometry(params, &membrane.data, width, &leds, method)
-            .map_err(|e| format!("{}: {e}", path.display()))
+        GelTipModel::from_geometry(params, &membrane, width, &leds, method)
+            .map_err(|e| format!("{dir}: {e}"))
     }
 
     pub(super) fn run(args: &[String]) -> Result<(), String> {

@@ -200,14 +200,8 @@ impl GelTipModel {
     /// [`NpyError`] naming the file that is missing or has the wrong shape.
     pub fn load(params: GelTipParams, dir: impl AsRef<Path>) -> Result<Self, NpyError> {
         let dir = dir.as_ref();
-        let background = npy::read(dir.join("bkg_depth_m.npy.gz"))?;
-        let [height, width] = background.shape[..] else {
-            let message = format!("expected a 2-D depth map, got shape {:?}", background.shape);
-            return Err(NpyError::Format {
-                path: dir.join("bkg_depth_m.npy.gz").display().to_string(),
-                message,
-            });
-        };
+        let (membrane, width) = read_membrane(dir)?;
+        let height = membrane.len() / width;
         let fields = (0..params.lights.len())
             .map(|i| {
                 let path = dir.join(format!("light_field_{i}.npy.gz"));
@@ -229,7 +223,7 @@ impl GelTipModel {
                     .collect())
             })
             .collect::<Result<Vec<_>, NpyError>>()?;
-        Self::new(params, &background.data, width, &fields).map_err(|e| NpyError::Format {
+        Self::new(params, &membrane, width, &fields).map_err(|e| NpyError::Format {
             path: dir.display().to_string(),
             message: e.to_string(),
         })
@@ -321,6 +315,24 @@ impl GelTipModel {
                 .zip(&self.blurred.values)
                 .map(|((d, b), e)| d.min(b - e)),
         );
+    }
+}
+
+/// The undeformed membrane depth stored in `dir` as the reference stores it,
+/// `bkg_depth_m.npy.gz` (metres, `height × width`), and its width.
+///
+/// # Errors
+///
+/// [`NpyError`] naming the file when it is missing or not a 2-D array.
+pub fn read_membrane(dir: impl AsRef<Path>) -> Result<(Vec<f32>, usize), NpyError> {
+    let path = dir.as_ref().join("bkg_depth_m.npy.gz");
+    let membrane = npy::read(&path)?;
+    match membrane.shape[..] {
+        [height, width] if height > 0 && width > 0 => Ok((membrane.data, width)),
+        _ => Err(NpyError::Format {
+            path: path.display().to_string(),
+            message: format!("expected a 2-D depth map, got shape {:?}", membrane.shape),
+        }),
     }
 }
 
