@@ -18,7 +18,7 @@ mod measure;
 
 fn golden(path: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/golden/tactile")
+        .join("tests/golden/tactile")
         .join(path)
 }
 

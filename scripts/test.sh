@@ -15,25 +15,31 @@ echo "== clippy"
 cargo clippy --workspace --all-targets --locked -- -D warnings
 echo "== tests"
 if cargo nextest --version >/dev/null 2>&1; then
-  cargo nextest run --workspace --locked --no-fail-fast
+  echo "runner: cargo nextest (one process per test, no retries)"
+  cargo nextest run --workspace --locked --no-fail-fast --retries 0
 else
+  echo "runner: cargo test (cargo-nextest is not installed)"
   cargo test --workspace --locked --no-fail-fast
 fi
+echo "== tests of process-wide state, as threads of one process (as cargo test runs them)"
+cargo test --locked -p yarok-mjc --test render_offscreen
+cargo test --locked -p yarok-core --test runtime_interrupt
 cargo test --workspace --doc --locked
 echo "== docs"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked
 echo "== example binary, started directly"
 cargo build --examples --locked
+examples="${CARGO_TARGET_DIR:-target}/debug/examples"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-env -u LD_LIBRARY_PATH target/debug/examples/falling_boxes "$out"
+env -u LD_LIBRARY_PATH "$examples/falling_boxes" "$out"
 for image in falling_boxes_rgb.png falling_boxes_depth_mm.png; do
   test -s "$out/$image" || { echo "error: the example did not write $image" >&2; exit 1; }
 done
 echo "== embedding and behaviour examples"
 for example in threaded local_set pendulum_clock; do
-  env -u LD_LIBRARY_PATH "target/debug/examples/$example"
+  env -u LD_LIBRARY_PATH "$examples/$example"
 done
-env -u LD_LIBRARY_PATH target/debug/examples/printer_camera --set "behaviour/out=\"$out\""
+env -u LD_LIBRARY_PATH "$examples/printer_camera" --set "behaviour/out=\"$out\""
 test -s "$out/printer_camera_3.png" || { echo "error: printer_camera wrote no images" >&2; exit 1; }
 echo "== all checks passed"

@@ -5,7 +5,7 @@ use std::process::Command;
 
 fn golden(path: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/golden/tactile")
+        .join("tests/golden/tactile")
         .join(path)
 }
 

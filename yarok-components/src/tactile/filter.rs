@@ -64,7 +64,7 @@ mod tests {
     fn kernels_match_the_reference_vectors() {
         let path = concat!(
             env!("CARGO_MANIFEST_DIR"),
-            "/../../shared/reference/gaussian_kernels.json"
+            "/../tests/golden/tactile/gaussian_kernels.json"
         );
         let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
         let reference: serde_json::Value = serde_json::from_str(&text).unwrap();

@@ -197,14 +197,19 @@ pub(super) fn call(identifier: &str, argument: &Value) -> EvalexprResult<Value> 
             )),
         },
         "not" => Ok(Value::Boolean(!truthy(&arity::<1>(name, args)?[0]))),
-        "and" => {
-            let [a, b] = arity::<2>(name, args)?;
-            Ok(if truthy(a) { b.clone() } else { a.clone() })
-        }
-        "or" => {
-            let [a, b] = arity::<2>(name, args)?;
-            Ok(if truthy(a) { a.clone() } else { b.clone() })
-        }
+        "and" => Ok(args
+            .iter()
+            .find(|a| !truthy(a))
+            .or(args.last())
+            .cloned()
+            .unwrap_or(Value::Empty)),
+        "or" => Ok(args
+            .iter()
+            .find(|a| truthy(a))
+            .or(args.last())
+            .cloned()
+            .unwrap_or(Value::Empty)),
+        "chain" => chain(args),
         "add" => add(arity::<2>(name, args)?),
         "sub" => {
             let [a, b] = arity::<2>(name, args)?;
@@ -283,6 +288,21 @@ pub(super) fn call(identifier: &str, argument: &Value) -> EvalexprResult<Value> 
         "slice" => slice(arity::<3>(name, args)?),
         _ => builtin(name, args),
     }
+}
+
+/// `a op b op c …`, folded from the left: `[a, "add", b, "sub", c]`.
+fn chain(args: &[Value]) -> EvalexprResult<Value> {
+    let Some((first, rest)) = args.split_first() else {
+        return fail("internal: empty chain");
+    };
+    rest.chunks(2)
+        .try_fold(first.clone(), |left, pair| match pair {
+            [Value::String(op), right] => call(
+                &format!("py::{op}"),
+                &Value::Tuple(vec![Value::Int(2), left, right.clone()]),
+            ),
+            _ => fail("internal: malformed chain"),
+        })
 }
 
 fn builtin(name: &str, args: &[Value]) -> EvalexprResult<Value> {

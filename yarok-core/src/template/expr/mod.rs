@@ -211,8 +211,19 @@ impl Emitter<'_> {
                 }
                 self.code.push(')');
             }
-            Ast::And(left, right) => self.call("and", &[left, right])?,
-            Ast::Or(left, right) => self.call("or", &[left, right])?,
+            Ast::Chain(first, rest) => {
+                self.code
+                    .push_str(&format!("py::chain({}, ", 1 + 2 * rest.len()));
+                self.emit(first)?;
+                for (op, operand) in rest {
+                    self.code
+                        .push_str(&format!(", \"{}\", ", functions::binary(op)));
+                    self.emit(operand)?;
+                }
+                self.code.push(')');
+            }
+            Ast::And(operands) => self.call("and", &operands.iter().collect::<Vec<_>>())?,
+            Ast::Or(operands) => self.call("or", &operands.iter().collect::<Vec<_>>())?,
             Ast::If {
                 condition,
                 then,

@@ -18,10 +18,15 @@ pub(super) enum Ast {
     Neg(Box<Ast>),
     Not(Box<Ast>),
     Binary(&'static str, Box<Ast>, Box<Ast>),
+    /// `a + b - c` or `a * b / c`: left-associative operations kept flat, so that a long chain
+    /// needs no deep recursion to evaluate or drop.
+    Chain(Box<Ast>, Vec<(&'static str, Ast)>),
     /// `a < b <= c`: operands and the operators between them.
     Compare(Vec<Ast>, Vec<&'static str>),
-    And(Box<Ast>, Box<Ast>),
-    Or(Box<Ast>, Box<Ast>),
+    /// `a and b and c`, flat.
+    And(Vec<Ast>),
+    /// `a or b or c`, flat.
+    Or(Vec<Ast>),
     If {
         condition: Box<Ast>,
         then: Box<Ast>,
@@ -144,19 +149,27 @@ impl Parser<'_> {
     }
 
     fn or(&mut self) -> Result<Ast, ExprError> {
-        let mut left = self.and()?;
+        let mut operands = vec![self.and()?];
         while self.eat_keyword("or") {
-            left = Ast::Or(Box::new(left), Box::new(self.and()?));
+            operands.push(self.and()?);
         }
-        Ok(left)
+        Ok(if operands.len() == 1 {
+            operands.remove(0)
+        } else {
+            Ast::Or(operands)
+        })
     }
 
     fn and(&mut self) -> Result<Ast, ExprError> {
-        let mut left = self.not()?;
+        let mut operands = vec![self.not()?];
         while self.eat_keyword("and") {
-            left = Ast::And(Box::new(left), Box::new(self.not()?));
+            operands.push(self.not()?);
         }
-        Ok(left)
+        Ok(if operands.len() == 1 {
+            operands.remove(0)
+        } else {
+            Ast::And(operands)
+        })
     }
 
     fn not(&mut self) -> Result<Ast, ExprError> {
@@ -199,28 +212,30 @@ impl Parser<'_> {
     }
 
     fn arithmetic(&mut self) -> Result<Ast, ExprError> {
-        let mut left = self.term()?;
-        loop {
-            let op = if self.eat_op("+") {
-                "+"
-            } else if self.eat_op("-") {
-                "-"
-            } else {
-                return Ok(left);
-            };
-            left = Ast::Binary(op, Box::new(left), Box::new(self.term()?));
-        }
+        self.chain(&["+", "-"], Self::term)
     }
 
     fn term(&mut self) -> Result<Ast, ExprError> {
-        let mut left = self.factor()?;
-        loop {
-            let Some(op) = ["*", "//", "/", "%"].into_iter().find(|op| self.is_op(op)) else {
-                return Ok(left);
-            };
+        self.chain(&["*", "//", "/", "%"], Self::factor)
+    }
+
+    /// Operands parsed by `operand`, joined left to right by any of `operators`.
+    fn chain(
+        &mut self,
+        operators: &[&'static str],
+        operand: fn(&mut Self) -> Result<Ast, ExprError>,
+    ) -> Result<Ast, ExprError> {
+        let first = operand(self)?;
+        let mut rest = Vec::new();
+        while let Some(op) = operators.iter().find(|op| self.is_op(op)) {
             self.at += 1;
-            left = Ast::Binary(op, Box::new(left), Box::new(self.factor()?));
+            rest.push((*op, operand(self)?));
         }
+        Ok(if rest.is_empty() {
+            first
+        } else {
+            Ast::Chain(Box::new(first), rest)
+        })
     }
 
     fn factor(&mut self) -> Result<Ast, ExprError> {

@@ -160,3 +160,16 @@ fn conditionals_nested_in_arithmetic_see_variables() {
     assert_eq!(eval("lst[0] + (0.5 if x else 1)"), Value::Float(0.6));
     assert_eq!(eval("x + (1 if x > 5 else lst[1])"), Value::Float(2.2));
 }
+
+#[test]
+fn long_flat_chains_evaluate_without_deep_recursion() {
+    let sum = vec!["1"; 100_000].join(" + ");
+    assert_eq!(eval(&sum), Value::Int(100_000));
+    let mixed = format!("{} - 1", vec!["2 * 3 // 2"; 50_000].join(" + "));
+    assert_eq!(eval(&mixed), Value::Int(149_999));
+    let conjunction = vec!["True"; 100_000].join(" and ");
+    assert_eq!(eval(&conjunction), Value::Boolean(true));
+    assert_eq!(eval(&format!("{conjunction} and 0 and 1")), Value::Int(0));
+    assert_eq!(eval("0 or '' or 7 or 8"), Value::Int(7));
+    assert_eq!(eval("0 or ''"), Value::String(String::new()));
+}
