@@ -8,5 +8,6 @@
 pub mod compose;
 pub mod config;
 pub mod runtime;
+mod stack;
 mod suggest;
 pub mod template;

@@ -1,5 +1,7 @@
-//! Property tests: no expression and no template makes the composer panic; every failure is an
-//! error value.
+//! Property tests: no expression and no template makes the composer panic or overflow its stack
+//! (self-using components, deep nesting and long expressions included); every failure is an error
+//! value. `PROPTEST_CASES=100000 cargo test -p yarok-core --release --test fuzz_templates` runs
+//! many more cases than CI does.
 
 use proptest::prelude::*;
 use yarok_core::compose::{Component, Declaration, Overrides, compose_declaration};
@@ -18,6 +20,16 @@ impl Component for Leaf {
     fn declaration() -> Declaration {
         Declaration::new("leaf").default("k", 1).template(
             r#"<mujoco><worldbody><body name="b"><geom size="{k}"/></body></worldbody></mujoco>"#,
+        )
+    }
+}
+
+/// A component that contains itself (always refused, whatever its config).
+struct Selfish;
+impl Component for Selfish {
+    fn declaration() -> Declaration {
+        Declaration::new("selfish").default("k", 1).uses::<Selfish>().template(
+            r#"<mujoco><worldbody><if the="k > 0"><selfish name="s" k="{k - 1}"/></if></worldbody></mujoco>"#,
         )
     }
 }
@@ -75,6 +87,10 @@ fn template() -> impl Strategy<Value = String> {
         Just(r#"<site parent="b"/>"#.to_owned()),
         Just("<geom size='{'/>".to_owned()),
         Just("<geom size='}'/>".to_owned()),
+        Just(r#"<selfish name="s"/>"#.to_owned()),
+        (1..3000usize).prop_map(|n| format!(r#"<geom size="{{{}}}"/>"#, vec!["k"; n].join(" + "))),
+        (1..3000usize).prop_map(|n| format!(r#"<site if="{}"/>"#, vec!["k"; n].join(" and "))),
+        (1..700usize).prop_map(|n| format!("{}{}", "<body>".repeat(n), "</body>".repeat(n))),
     ];
     leaf.prop_recursive(4, 24, 4, |inner| {
         prop::collection::vec(inner, 0..4).prop_flat_map(|children| {
@@ -96,6 +112,7 @@ fn compose_text(text: String) {
     let world = Declaration::new("world")
         .default("k", 2)
         .uses::<Leaf>()
+        .uses::<Selfish>()
         .template(text);
     if let Ok(composition) = compose_declaration(world, &Overrides::new()) {
         Element::parse(&composition.to_xml()).expect("composed MJCF parses back");

@@ -19,6 +19,11 @@ use crate::template::xml::{Attribute, Element, Position};
 
 /// Loops may not expand a world beyond this many elements, so that no template exhausts memory.
 const MAX_ELEMENTS: usize = 1_000_000;
+/// Components may not nest deeper than this (a world is rarely deeper than 5).
+const MAX_COMPONENT_DEPTH: usize = 32;
+/// Elements of the composed world may not nest deeper than this, so that no chain of templates
+/// can exhaust the stack of the composer, the MJCF writer or MuJoCo's parser.
+pub(super) const MAX_WORLD_DEPTH: usize = 512;
 
 /// A loaded (and, for `extends`, merged) template with what its component declares.
 #[derive(Clone)]
@@ -48,6 +53,8 @@ struct Ctx {
     /// The path new component tags are children of.
     base_path: String,
     in_worldbody: bool,
+    /// How deep in the composed world the elements being expanded are.
+    depth: usize,
 }
 
 /// Config values and loop variables, innermost last.
@@ -79,6 +86,10 @@ pub(super) struct Composer<'o> {
     produced: usize,
     /// The declaration of a world declared at run time, used for the first component loaded.
     runtime_world: Option<super::Declaration>,
+    /// The instances whose templates are being expanded, outermost first.
+    expanding: Vec<usize>,
+    /// The component types whose templates are being loaded (`extends` chains), outermost first.
+    loading: Vec<ComponentType>,
 }
 
 impl<'o> Composer<'o> {
@@ -95,6 +106,8 @@ impl<'o> Composer<'o> {
             world: World::default(),
             assets: BTreeSet::new(),
             keyframes: Vec::new(),
+            expanding: Vec::new(),
+            loading: Vec::new(),
         }
     }
 
@@ -102,7 +115,7 @@ impl<'o> Composer<'o> {
         let loaded = self.load(world, "/")?;
         let config = self.configure(&loaded, "/", Vec::new(), None)?;
         let root_attributes = loaded.tree.attributes.clone();
-        let body = self.instance(world, "/", config)?;
+        let body = self.instance(world, "/", config, 0)?;
         if let Some(unused) = self
             .overrides
             .keys()
@@ -266,8 +279,22 @@ impl<'o> Composer<'o> {
             verbatim: declaration.verbatim,
         };
         if let Some(base) = declaration.extends {
-            let base = self.load(base, path)?;
-            loaded = extend(base, loaded);
+            self.loading.push(component);
+            if self.loading.iter().any(|c| c.type_id == base.type_id) {
+                let chain: Vec<&str> = self.loading.iter().map(|c| c.type_name).collect();
+                return Err(template_error(
+                    None,
+                    format!(
+                        "{} extends itself: {} → {}",
+                        base.type_name,
+                        chain.join(" → "),
+                        base.type_name
+                    ),
+                ));
+            }
+            let base = self.load(base, path);
+            self.loading.pop();
+            loaded = extend(base?, loaded);
         }
         self.loaded.insert(component.type_id, loaded.clone());
         Ok(loaded)
@@ -280,6 +307,20 @@ impl<'o> Composer<'o> {
         component: ComponentType,
         path: &str,
         config: Config,
+        depth: usize,
+    ) -> Result<Vec<Element>, ComposeError> {
+        self.expanding.push(self.instances.len());
+        let body = self.expand_instance(component, path, config, depth);
+        self.expanding.pop();
+        body
+    }
+
+    fn expand_instance(
+        &mut self,
+        component: ComponentType,
+        path: &str,
+        config: Config,
+        depth: usize,
     ) -> Result<Vec<Element>, ComposeError> {
         let loaded = self.load(component, path)?;
         let id = self.instances.len();
@@ -309,6 +350,7 @@ impl<'o> Composer<'o> {
             owner: id,
             base_path: path.to_owned(),
             in_worldbody: false,
+            depth: 1,
         };
         let (worldbodies, sections): (Vec<Element>, Vec<Element>) = tree
             .children
@@ -350,6 +392,7 @@ impl<'o> Composer<'o> {
         }
         let body_ctx = Ctx {
             in_worldbody: true,
+            depth,
             ..ctx
         };
         let mut body = Vec::new();
@@ -444,9 +487,20 @@ impl<'o> Composer<'o> {
                                 format!("the world expands to more than {MAX_ELEMENTS} elements");
                             return Err(self.error(&element, None, None, message));
                         }
+                        if ctx.depth >= MAX_WORLD_DEPTH {
+                            let message = format!(
+                                "the composed world nests elements deeper than {MAX_WORLD_DEPTH}"
+                            );
+                            return Err(self.error(&element, None, None, message));
+                        }
                         self.interpolate(&mut element, scope)?;
                         let children = std::mem::take(&mut element.children);
-                        element.children = self.expand(children, ctx, scope)?;
+                        let inner = Ctx {
+                            depth: ctx.depth + 1,
+                            ..ctx.clone()
+                        };
+                        element.children =
+                            crate::stack::deep(|| self.expand(children, &inner, scope))?;
                         out.push(element);
                     }
                 },
@@ -503,6 +557,7 @@ impl<'o> Composer<'o> {
                 format!("a component named {path} already exists"),
             ));
         }
+        self.check_nesting(component, &tag, &name_attribute, &path)?;
         let loaded = self.load(component, &path)?;
         let mut assigned = Vec::new();
         for attribute in std::mem::take(&mut tag.attributes) {
@@ -511,7 +566,7 @@ impl<'o> Composer<'o> {
         }
         let config = self.configure(&loaded, &path, assigned, Some(&tag))?;
         let sub_id = self.instances.len();
-        let mut body = self.instance(component, &path, config)?;
+        let mut body = self.instance(component, &path, config, ctx.depth)?;
         let nested_ctx = Ctx {
             base_path: path.clone(),
             ..ctx.clone()
@@ -534,6 +589,39 @@ impl<'o> Composer<'o> {
             }
         }
         Ok(body)
+    }
+
+    /// Refuses a component inside itself (directly or through others) and nesting too deep.
+    fn check_nesting(
+        &self,
+        component: ComponentType,
+        tag: &Element,
+        name: &Attribute,
+        path: &str,
+    ) -> Result<(), ComposeError> {
+        let outer = self
+            .expanding
+            .iter()
+            .map(|&id| &self.instances[id])
+            .find(|instance| instance.component.type_id == component.type_id);
+        if let Some(outer) = outer {
+            let message = format!(
+                "component <{}> uses itself: {path} is inside {}, another <{}>",
+                tag.name,
+                if outer.path == "/" {
+                    "the world"
+                } else {
+                    &outer.path
+                },
+                outer.tag
+            );
+            return Err(self.error(tag, Some(name), None, message));
+        }
+        if self.expanding.len() >= MAX_COMPONENT_DEPTH {
+            let message = format!("{path} nests components deeper than {MAX_COMPONENT_DEPTH}");
+            return Err(self.error(tag, Some(name), None, message));
+        }
+        Ok(())
     }
 
     /// Config of a new instance: defaults < tag attributes < overrides for its path.

@@ -5,6 +5,7 @@ use std::collections::BTreeSet;
 use std::path::{Component, Path, PathBuf};
 
 use super::error::Problem;
+use super::expand::MAX_WORLD_DEPTH;
 use crate::template::xml::{Element, Position};
 
 /// Nested `<include>`s deeper than this are refused (a file including itself).
@@ -157,18 +158,27 @@ pub(super) fn inline_includes(
     tree: &mut Element,
     dir: Option<&Path>,
 ) -> Result<(), (Option<Position>, String)> {
-    inline(tree, dir, 0)
+    inline(tree, dir, 0, 0)
 }
 
+/// Inlines the includes below `element`, which is `level` deep in its template, itself inside
+/// `depth` includes.
 fn inline(
     element: &mut Element,
     dir: Option<&Path>,
     depth: usize,
+    level: usize,
 ) -> Result<(), (Option<Position>, String)> {
     let mut children = Vec::with_capacity(element.children.len());
     for mut child in std::mem::take(&mut element.children) {
+        if level + 1 >= MAX_WORLD_DEPTH {
+            return Err((
+                Some(child.position),
+                format!("elements nested deeper than {MAX_WORLD_DEPTH} (through includes)"),
+            ));
+        }
         if child.name != "include" {
-            inline(&mut child, dir, depth)?;
+            crate::stack::deep(|| inline(&mut child, dir, depth, level + 1))?;
             children.push(child);
             continue;
         }
@@ -203,7 +213,7 @@ fn inline(
                 ),
             )
         })?;
-        inline(&mut included, dir, depth + 1)?;
+        inline(&mut included, dir, depth + 1, level)?;
         children.extend(included.children);
     }
     element.children = children;

@@ -201,7 +201,7 @@ fn rename(element: &mut Element, section: &str, prefixes: &[String], maps: &mut 
         attribute.value = qualified;
     }
     for child in &mut element.children {
-        rename(child, section, prefixes, maps);
+        crate::stack::deep(|| rename(child, section, prefixes, maps));
     }
 }
 

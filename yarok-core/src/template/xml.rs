@@ -38,7 +38,7 @@ pub struct Attribute {
 /// An element: name, attributes in document order, child elements, and its position.
 ///
 /// Text and comments are not kept: MJCF carries everything in attributes.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub struct Element {
     /// Tag name.
     pub name: String,
@@ -61,6 +61,19 @@ pub struct XmlError {
     pub position: Position,
     /// What the problem is.
     pub message: String,
+}
+
+impl Clone for Element {
+    fn clone(&self) -> Self {
+        crate::stack::deep(|| Self {
+            name: self.name.clone(),
+            attributes: self.attributes.clone(),
+            children: self.children.clone(),
+            position: self.position,
+            origin: self.origin,
+            owner: self.owner,
+        })
+    }
 }
 
 impl Element {
@@ -215,7 +228,7 @@ impl Element {
         }
         out.push_str(">\n");
         for child in &self.children {
-            child.write(out, depth + 1);
+            crate::stack::deep(|| child.write(out, depth + 1));
         }
         for _ in 0..depth {
             out.push_str("  ");
