@@ -89,5 +89,6 @@ pub use model::{
 };
 #[cfg(feature = "render")]
 pub use render::{
-    DepthImage, RenderError, RenderPreset, Renderer, RendererBuilder, depth_to_millimetres,
+    DepthImage, MAX_GEOMS, RenderError, RenderPreset, Renderer, RendererBuilder,
+    depth_to_millimetres,
 };

@@ -188,3 +188,72 @@ fn renderers_work_on_several_threads_at_once() {
         assert!((handle.join().unwrap() - 2.0).abs() < 1e-3);
     }
 }
+
+/// Renderers made, used and dropped on several threads at once, over and over, while this
+/// thread does the same: every image is right and the process survives.
+#[test]
+fn renderers_made_and_dropped_on_many_threads_at_once() {
+    let churn = || {
+        let (model, mut data) = scene();
+        let camera = model.camera("down").unwrap();
+        for round in 0..12 {
+            let preset = if round % 2 == 0 {
+                RenderPreset::Fast
+            } else {
+                RenderPreset::Quality
+            };
+            let mut renderer = Renderer::builder()
+                .size(32 + round, 24)
+                .preset(preset)
+                .build(&model)
+                .unwrap();
+            let depth = renderer.render_depth(&mut data, camera).unwrap();
+            let centre = depth.get_pixel(depth.width() / 2, 12)[0];
+            assert!((centre - 2.0).abs() < 1e-3, "round {round}: {centre}");
+        }
+    };
+    let threads: Vec<_> = (0..4).map(|_| std::thread::spawn(churn)).collect();
+    churn();
+    for thread in threads {
+        thread.join().unwrap();
+    }
+}
+
+/// An offscreen buffer or multisampling beyond what OpenGL supports is an error, not MuJoCo's
+/// fatal "framebuffer is not complete" abort; so is a scene too large to allocate.
+#[test]
+fn buffers_beyond_the_gl_limits_are_refused() {
+    for visual in [
+        r#"<global offwidth="1000000" offheight="64"/>"#,
+        r#"<global offwidth="64" offheight="1000000"/>"#,
+        r#"<global offwidth="64" offheight="64"/><quality offsamples="1000"/>"#,
+    ] {
+        let model = Arc::new(
+            Model::from_xml_str(&format!(
+                r#"<mujoco><visual>{visual}</visual><worldbody><camera name="c"/></worldbody></mujoco>"#
+            ))
+            .unwrap(),
+        );
+        let error = Renderer::builder()
+            .size(32, 32)
+            .preset(RenderPreset::Quality)
+            .build(&model)
+            .unwrap_err();
+        assert!(
+            matches!(error, RenderError::BeyondGl { max_width, max_height, .. }
+                if max_width >= 1024 && max_height >= 1024),
+            "{visual}: {error:?}"
+        );
+        assert!(error.to_string().contains("offwidth"), "{error}");
+    }
+    let (model, _) = scene();
+    let error = Renderer::builder()
+        .size(32, 32)
+        .max_geoms(yarok_mjc::MAX_GEOMS + 1)
+        .build(&model)
+        .unwrap_err();
+    assert!(
+        matches!(error, RenderError::TooManyGeoms { .. }),
+        "{error:?}"
+    );
+}

@@ -2,6 +2,7 @@
 //! platform as the fallback. Works with Mesa's llvmpipe on machines without a GPU.
 
 use std::ffi::c_void;
+use std::sync::OnceLock;
 
 use khronos_egl as egl;
 use libloading::os::unix::{Library, RTLD_GLOBAL, RTLD_NOW};
@@ -18,16 +19,29 @@ type QueryDevices =
     unsafe extern "system" fn(egl::Int, *mut *mut c_void, *mut egl::Int) -> egl::Boolean;
 type GetPlatformDisplay =
     unsafe extern "system" fn(egl::Enum, *mut c_void, *const egl::Int) -> egl::EGLDisplay;
+type GetIntegerv = unsafe extern "system" fn(u32, *mut i32);
 
-/// An OpenGL (compatibility profile) context with no surface, current on the creating thread.
-pub(super) struct GlContext {
-    egl: Egl,
-    display: egl::Display,
-    context: egl::Context,
+const GL_MAX_VIEWPORT_DIMS: u32 = 0x0D3A;
+const GL_MAX_RENDERBUFFER_SIZE: u32 = 0x84E8;
+const GL_MAX_SAMPLES: u32 = 0x8D57;
+
+/// What the OpenGL implementation can allocate for an offscreen framebuffer.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct GlLimits {
+    /// The largest width and height of a framebuffer: the smaller of the renderbuffer and viewport
+    /// limits.
+    pub(super) max_size: (u32, u32),
+    /// The most multisampling samples a renderbuffer can have.
+    pub(super) max_samples: u32,
 }
 
-impl GlContext {
-    pub(super) fn new() -> Result<Self, RenderError> {
+/// libEGL, opened once and never closed: the EGL and Mesa libraries register per-thread
+/// destructors, and unloading them while any thread still has one to run crashes that thread
+/// when it exits.
+static EGL: OnceLock<Result<Egl, RenderError>> = OnceLock::new();
+
+fn egl_library() -> Result<&'static Egl, RenderError> {
+    EGL.get_or_init(|| {
         // libEGL is opened globally so that MuJoCo's GL loader finds eglGetProcAddress.
         // SAFETY: loading libEGL runs only its initialisers, which have no preconditions.
         let library = unsafe { Library::open(Some("libEGL.so.1"), RTLD_NOW | RTLD_GLOBAL) }
@@ -38,9 +52,24 @@ impl GlContext {
                 )
             })?;
         // SAFETY: the library is libEGL, whose symbols have the signatures khronos-egl declares.
-        let egl = unsafe { Egl::load_required_from(library.into()) }
-            .map_err(|e| egl_error("load the EGL 1.4 functions", e))?;
-        let display = open_display(&egl)?;
+        unsafe { Egl::load_required_from(library.into()) }
+            .map_err(|e| egl_error("load the EGL 1.4 functions", e))
+    })
+    .as_ref()
+    .map_err(Clone::clone)
+}
+
+/// An OpenGL (compatibility profile) context with no surface, current on the creating thread.
+pub(super) struct GlContext {
+    egl: &'static Egl,
+    display: egl::Display,
+    context: egl::Context,
+}
+
+impl GlContext {
+    pub(super) fn new() -> Result<Self, RenderError> {
+        let egl = egl_library()?;
+        let display = open_display(egl)?;
         let config = egl
             .choose_first_config(display, &CONFIG)
             .map_err(|e| egl_error("choose a config", e))?
@@ -57,6 +86,32 @@ impl GlContext {
         };
         gl.make_current()?;
         Ok(gl)
+    }
+
+    /// The implementation's framebuffer limits, queried through this (current) context.
+    pub(super) fn limits(&self) -> Result<GlLimits, RenderError> {
+        let get = self
+            .egl
+            .get_proc_address("glGetIntegerv")
+            // SAFETY: glGetIntegerv has the GetIntegerv signature (OpenGL 1.0).
+            .map(|f| unsafe { std::mem::transmute::<extern "system" fn(), GetIntegerv>(f) })
+            .ok_or_else(|| egl_error("find glGetIntegerv", "no such GL function"))?;
+        self.make_current()?;
+        let query = |name: u32| {
+            let mut values = [0i32; 2];
+            // SAFETY: this context is current; every queried name writes at most two integers.
+            unsafe { get(name, values.as_mut_ptr()) };
+            values.map(|v| u32::try_from(v).unwrap_or(0))
+        };
+        let renderbuffer = query(GL_MAX_RENDERBUFFER_SIZE)[0];
+        let [viewport_width, viewport_height] = query(GL_MAX_VIEWPORT_DIMS);
+        Ok(GlLimits {
+            max_size: (
+                renderbuffer.min(viewport_width),
+                renderbuffer.min(viewport_height),
+            ),
+            max_samples: query(GL_MAX_SAMPLES)[0],
+        })
     }
 
     /// Makes this context current on the calling thread (a no-op when it already is).

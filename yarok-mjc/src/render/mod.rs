@@ -46,6 +46,34 @@ pub enum RenderError {
         /// `visual/global/@offheight`.
         max_height: u32,
     },
+    /// The model's offscreen buffer (`visual/global/@offwidth`, `@offheight`) or its
+    /// multisampling (`visual/quality/@offsamples`) is beyond what this OpenGL implementation can
+    /// allocate.
+    #[error(
+        "the model's offscreen buffer of {width}x{height} with {samples} samples is beyond what \
+         this OpenGL implementation supports ({max_width}x{max_height}, {max_samples} samples); \
+         lower <visual><global offwidth=\"..\" offheight=\"..\"/><quality offsamples=\"..\"/></visual>"
+    )]
+    BeyondGl {
+        /// `visual/global/@offwidth`.
+        width: u32,
+        /// `visual/global/@offheight`.
+        height: u32,
+        /// `visual/quality/@offsamples` (0 with [`RenderPreset::Fast`]).
+        samples: u32,
+        /// The largest framebuffer width the implementation supports.
+        max_width: u32,
+        /// The largest framebuffer height the implementation supports.
+        max_height: u32,
+        /// The most samples the implementation supports.
+        max_samples: u32,
+    },
+    /// A scene was asked to hold more geoms than [`MAX_GEOMS`].
+    #[error("a scene of {requested} geoms is more than the {MAX_GEOMS} a renderer can hold")]
+    TooManyGeoms {
+        /// The requested number.
+        requested: usize,
+    },
     /// A zero width or height was requested.
     #[error("image size {width}x{height} has a zero side")]
     Empty {
@@ -67,6 +95,9 @@ impl From<ModelError> for RenderError {
         }
     }
 }
+
+/// The most geoms [`RendererBuilder::max_geoms`] accepts (MuJoCo allocates the scene up front).
+pub const MAX_GEOMS: usize = 1_000_000;
 
 /// Rendering quality presets.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -101,7 +132,8 @@ impl RendererBuilder {
         self
     }
 
-    /// How many geoms a scene can hold (default 10 000); extra geoms are not drawn.
+    /// How many geoms a scene can hold (default 10 000, at most [`MAX_GEOMS`]); extra geoms are
+    /// not drawn.
     pub fn max_geoms(mut self, max_geoms: usize) -> Self {
         self.max_geoms = max_geoms;
         self
@@ -112,8 +144,10 @@ impl RendererBuilder {
     ///
     /// # Errors
     ///
-    /// [`RenderError::Empty`] or [`RenderError::TooLarge`] for a bad size, [`RenderError::Egl`]
-    /// when no OpenGL context can be made.
+    /// [`RenderError::Empty`] or [`RenderError::TooLarge`] for a bad size,
+    /// [`RenderError::BeyondGl`] when the model's offscreen buffer is more than OpenGL can
+    /// allocate, [`RenderError::TooManyGeoms`], [`RenderError::Egl`] when no OpenGL context can be
+    /// made.
     pub fn build(self, model: &Arc<Model>) -> Result<Renderer, RenderError> {
         let global = model.raw().vis.global;
         let (max_width, max_height) = (to_u32(global.offwidth), to_u32(global.offheight));
@@ -129,6 +163,11 @@ impl RendererBuilder {
                 max_height,
             });
         }
+        if self.max_geoms > MAX_GEOMS {
+            return Err(RenderError::TooManyGeoms {
+                requested: self.max_geoms,
+            });
+        }
         let gl = GlContext::new()?;
         let mj = model.mj();
         // mjr_makeContext reads the multisampling from the model; the fast preset hands it a
@@ -136,6 +175,23 @@ impl RendererBuilder {
         let mut context_model = *model.raw();
         if self.preset == RenderPreset::Fast {
             context_model.vis.quality.offsamples = 0;
+        }
+        // MuJoCo treats a framebuffer it cannot complete as a fatal error (the process aborts),
+        // so the model's buffer is checked against the implementation's limits first.
+        let samples = to_u32(context_model.vis.quality.offsamples);
+        let limits = gl.limits()?;
+        if max_width > limits.max_size.0
+            || max_height > limits.max_size.1
+            || samples > limits.max_samples
+        {
+            return Err(RenderError::BeyondGl {
+                width: max_width,
+                height: max_height,
+                samples,
+                max_width: limits.max_size.0,
+                max_height: limits.max_size.1,
+                max_samples: limits.max_samples,
+            });
         }
         let mut scene = Box::<sys::mjvScene>::default();
         let mut context = Box::<sys::mjrContext>::default();
