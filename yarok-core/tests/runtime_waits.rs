@@ -63,11 +63,26 @@ fn wait_seconds_counts_platform_time_to_the_tick() {
 fn timeouts_end_waits_that_never_resolve() {
     platform()
         .behaviour(|pl| async move {
+            let line = line!() + 1;
             let result = pl.wait(|| false).timeout(0.5).await;
-            assert_eq!(result, Err(WaitError::Timeout { seconds: 0.5 }));
+            let Err(WaitError::Timeout { seconds, location }) = result else {
+                panic!("{result:?}");
+            };
+            assert_eq!(seconds, 0.5);
+            assert_eq!((location.file(), location.line()), (file!(), line));
+            assert_eq!(
+                result.unwrap_err().to_string(),
+                format!(
+                    "the wait made at {}:{line}:29 timed out after 0.5 s of platform time",
+                    file!()
+                )
+            );
             assert_eq!(pl.ticks(), 50);
             let result = pl.wait_forever().timeout(0.25).await;
-            assert_eq!(result, Err(WaitError::Timeout { seconds: 0.25 }));
+            assert!(matches!(
+                result,
+                Err(WaitError::Timeout { seconds: 0.25, .. })
+            ));
             assert_eq!(pl.ticks(), 75);
             Ok(())
         })
@@ -137,10 +152,46 @@ fn a_behaviour_error_reaches_the_caller_and_stops_the_others() {
         .run()
         .unwrap_err();
     assert!(
-        matches!(&error, RuntimeError::Behaviour { index: 1, source } if source.to_string() == "gripper jammed"),
+        matches!(&error, RuntimeError::Behaviour { index: 1, source, .. } if source.to_string() == "gripper jammed"),
         "{error}"
     );
+    assert_eq!(
+        error.to_string(),
+        format!(
+            "behaviour closure at {}:{}:10 failed: gripper jammed",
+            file!(),
+            line!() - 15
+        )
+    );
     assert_eq!(other_ticks.get(), 10);
+}
+
+async fn pick_and_place(pl: yarok_core::runtime::Pl) -> yarok_core::runtime::BehaviourResult {
+    pl.wait(|| false).timeout(0.05).await?;
+    Ok(())
+}
+
+/// A failed behaviour is named by its function or its label, and a timed-out wait by where it
+/// was made.
+#[test]
+fn failed_behaviours_are_named() {
+    let error = platform().behaviour(pick_and_place).run().unwrap_err();
+    let message = error.to_string();
+    assert!(
+        message.starts_with(&format!(
+            "behaviour pick_and_place failed: the wait made at {}:",
+            file!()
+        )),
+        "{message}"
+    );
+    let error = platform()
+        .behaviour_named("left arm", pick_and_place)
+        .run()
+        .unwrap_err();
+    assert!(
+        error.to_string().starts_with("behaviour left arm failed"),
+        "{error}"
+    );
 }
 
 #[test]
@@ -180,4 +231,43 @@ async fn realtime_pacing_follows_simulated_time_on_tokios_clock() {
         .await
         .unwrap();
     assert_eq!(started.elapsed(), std::time::Duration::from_secs(2));
+}
+
+/// NaN and negative durations are errors at once (they used to wait forever or never time out);
+/// infinity means forever.
+#[test]
+fn nan_and_negative_durations_are_errors() {
+    platform()
+        .behaviour(|pl| async move {
+            for seconds in [f64::NAN, -1.0, f64::NEG_INFINITY] {
+                let line = line!() + 1;
+                let result = pl.wait_seconds(seconds).await;
+                let Err(WaitError::InvalidDuration { what, location, .. }) = result else {
+                    panic!("wait_seconds({seconds}): {result:?}");
+                };
+                assert_eq!((what, location.line()), ("wait_seconds", line));
+                let result = pl.wait_forever().timeout(seconds).await;
+                assert!(
+                    matches!(
+                        result,
+                        Err(WaitError::InvalidDuration {
+                            what: "timeout",
+                            ..
+                        })
+                    ),
+                    "timeout({seconds}): {result:?}"
+                );
+            }
+            assert_eq!(pl.ticks(), 0, "invalid waits end without a tick");
+            let message = pl.wait_seconds(f64::NAN).await.unwrap_err().to_string();
+            assert!(message.starts_with("wait_seconds(NaN) at "), "{message}");
+            let result = pl.wait_forever().timeout(f64::INFINITY).timeout(0.1).await;
+            assert!(
+                matches!(result, Err(WaitError::Timeout { .. })),
+                "{result:?}"
+            );
+            Ok(())
+        })
+        .run()
+        .unwrap();
 }

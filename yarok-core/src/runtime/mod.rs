@@ -121,10 +121,12 @@ pub enum RuntimeError {
         found: &'static str,
     },
     /// A behaviour returned an error.
-    #[error("behaviour {index} failed: {source}")]
+    #[error("behaviour {name} failed: {source}")]
     Behaviour {
         /// Which behaviour (in the order added).
         index: usize,
+        /// Its function's name, where it was added, or its label.
+        name: String,
         /// Its error.
         source: BoxError,
     },

@@ -9,7 +9,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::task::{Context, Poll, Wake, Waker};
 
 use super::bind::{Bind, Handle, Step};
-use super::wait::{Clock, Wait};
+use super::wait::{Clock, Wait, WaitError};
 use super::{Backend, BackendFactory, BoxError, Plugin, RuntimeError};
 use crate::compose::{Component, ComponentType, Composition, Config, Value, compose_with};
 use crate::config::{RunConfig, Settings};
@@ -19,7 +19,7 @@ use crate::suggest::did_you_mean;
 pub type BehaviourResult = Result<(), BoxError>;
 
 type Behaviour = Pin<Box<dyn Future<Output = BehaviourResult>>>;
-type BehaviourFactory = Box<dyn FnOnce(Pl) -> Behaviour>;
+type BehaviourFactory = (String, Box<dyn FnOnce(Pl) -> Behaviour>);
 type PluginFactory = Box<dyn Fn(&Config) -> Result<Box<dyn Plugin>, BoxError>>;
 
 /// Ticks between yields to the tokio scheduler when the simulation runs unpaced, so that Ctrl-C
@@ -89,23 +89,30 @@ impl Pl {
     /// # Cancel safety
     ///
     /// Cancel safe: dropping the wait changes nothing.
+    #[track_caller]
     pub fn wait<C: FnMut() -> bool + Unpin>(&self, condition: C) -> Wait<'_, C> {
         Wait::new(&self.inner.clock, condition)
     }
 
     /// Resolves once `seconds` of platform time have passed (to the nearest tick).
+    /// `f64::INFINITY` waits forever; NaN or a negative number makes the wait fail at once with
+    /// [`WaitError::InvalidDuration`](crate::runtime::WaitError::InvalidDuration).
+    #[track_caller]
     pub fn wait_seconds(&self, seconds: f64) -> Wait<'_, impl FnMut() -> bool + Unpin + '_> {
         let clock = &self.inner.clock;
         let target = clock.time.get() + seconds - clock.timestep / 2.0;
         Wait::new(clock, move || clock.time.get() >= target)
+            .invalid(WaitError::check_duration("wait_seconds", seconds))
     }
 
     /// Resolves after the next tick.
+    #[track_caller]
     pub fn tick(&self) -> Wait<'_, impl FnMut() -> bool + Unpin> {
         Wait::new(&self.inner.clock, || true)
     }
 
     /// Never resolves on its own; ends with an error when the platform stops (or its timeout).
+    #[track_caller]
     pub fn wait_forever(&self) -> Wait<'_, impl FnMut() -> bool + Unpin> {
         Wait::new(&self.inner.clock, || false)
     }
@@ -301,7 +308,7 @@ impl Platform {
         tasks.extend(
             std::mem::take(&mut self.behaviours)
                 .into_iter()
-                .map(|f| Task::new(f(self.pl.clone()))),
+                .map(|(name, f)| Task::new(name, f(self.pl.clone()))),
         );
         let interrupt = Interrupt::listen();
         let started = tokio::time::Instant::now();
@@ -388,6 +395,7 @@ impl Drop for Interrupt {
 
 /// A behaviour being driven by the platform: polled when woken, until done.
 struct Task {
+    name: String,
     future: Behaviour,
     woken: Arc<Flag>,
     waker: Waker,
@@ -403,10 +411,11 @@ impl Wake for Flag {
 }
 
 impl Task {
-    fn new(future: Behaviour) -> Self {
+    fn new(name: String, future: Behaviour) -> Self {
         let woken = Arc::new(Flag(AtomicBool::new(true)));
         let waker = Waker::from(Arc::clone(&woken));
         Self {
+            name,
             future,
             woken,
             waker,
@@ -427,7 +436,11 @@ fn poll_tasks(tasks: &mut [Task]) -> Result<(), RuntimeError> {
             let mut context = Context::from_waker(&task.waker);
             if let Poll::Ready(result) = task.future.as_mut().poll(&mut context) {
                 task.done = true;
-                result.map_err(|source| RuntimeError::Behaviour { index, source })?;
+                result.map_err(|source| RuntimeError::Behaviour {
+                    index,
+                    name: std::mem::take(&mut task.name),
+                    source,
+                })?;
             }
         }
         if !progressed {
@@ -525,13 +538,33 @@ impl PlatformBuilder {
     }
 
     /// Adds a behaviour; all behaviours run concurrently, sharing the ticks.
-    pub fn behaviour<F, Fut>(mut self, behaviour: F) -> Self
+    ///
+    /// Errors name it: by its function's name (`pick_and_place`), or, for a closure, by where it
+    /// was added (`closure at src/main.rs:12:10`); [`PlatformBuilder::behaviour_named`] gives it a
+    /// label instead.
+    #[track_caller]
+    pub fn behaviour<F, Fut>(self, behaviour: F) -> Self
+    where
+        F: FnOnce(Pl) -> Fut + 'static,
+        Fut: Future<Output = BehaviourResult> + 'static,
+    {
+        let function = std::any::type_name::<F>();
+        let name = if function.contains("{{closure}}") {
+            format!("closure at {}", std::panic::Location::caller())
+        } else {
+            function.rsplit("::").next().unwrap_or(function).to_owned()
+        };
+        self.behaviour_named(name, behaviour)
+    }
+
+    /// Adds a behaviour with a label that its errors carry.
+    pub fn behaviour_named<F, Fut>(mut self, name: impl Into<String>, behaviour: F) -> Self
     where
         F: FnOnce(Pl) -> Fut + 'static,
         Fut: Future<Output = BehaviourResult> + 'static,
     {
         self.behaviours
-            .push(Box::new(move |pl| Box::pin(behaviour(pl))));
+            .push((name.into(), Box::new(move |pl| Box::pin(behaviour(pl)))));
         self
     }
 

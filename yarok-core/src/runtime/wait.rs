@@ -3,6 +3,7 @@
 use std::cell::{Cell, RefCell};
 use std::fmt;
 use std::future::Future;
+use std::panic::Location;
 use std::pin::Pin;
 use std::task::{Context, Poll, Waker};
 
@@ -53,21 +54,47 @@ impl Clock {
 #[non_exhaustive]
 pub enum WaitError {
     /// The timeout (platform seconds) passed first.
-    #[error("wait timed out after {seconds} s of platform time")]
+    #[error("the wait made at {location} timed out after {seconds} s of platform time")]
     Timeout {
         /// The timeout that passed.
         seconds: f64,
+        /// Where the wait was made (the behaviour's file, line and column).
+        location: &'static Location<'static>,
     },
     /// The platform is shutting down.
     #[error("the platform stopped")]
     Stopped,
+    /// A duration was NaN or negative; the wait ends at once with this error.
+    #[error("{what}({seconds}) at {location}: a duration is a number of seconds, at least 0")]
+    InvalidDuration {
+        /// `wait_seconds` or `timeout`.
+        what: &'static str,
+        /// The duration given.
+        seconds: f64,
+        /// Where it was given.
+        location: &'static Location<'static>,
+    },
+}
+
+impl WaitError {
+    /// The error for `seconds` given to `what`, when it is not a valid duration.
+    #[track_caller]
+    pub(crate) fn check_duration(what: &'static str, seconds: f64) -> Option<Self> {
+        let location = Location::caller();
+        (seconds.is_nan() || seconds < 0.0).then_some(Self::InvalidDuration {
+            what,
+            seconds,
+            location,
+        })
+    }
 }
 
 /// A wait for a condition, checked once after every platform tick (the first check after the
 /// next tick: at least one tick always passes).
 ///
 /// Build it with [`Pl::wait`](crate::runtime::Pl::wait) and friends; refine it with
-/// [`Wait::timeout`] and [`Wait::on_tick`]; `.await` it.
+/// [`Wait::timeout`] and [`Wait::on_tick`]; `.await` it. A wait remembers where it was made, and
+/// its errors say so.
 ///
 /// # Cancel safety
 ///
@@ -81,9 +108,13 @@ pub struct Wait<'a, C> {
     seen_tick: u64,
     timeout: Option<f64>,
     on_tick: Option<Box<dyn FnMut() + 'a>>,
+    location: &'static Location<'static>,
+    /// An error found while the wait was built, returned by its first poll.
+    invalid: Option<WaitError>,
 }
 
 impl<'a, C: FnMut() -> bool + Unpin> Wait<'a, C> {
+    #[track_caller]
     pub(crate) fn new(clock: &'a Clock, condition: C) -> Self {
         let ticks = clock.ticks.get();
         Self {
@@ -94,14 +125,24 @@ impl<'a, C: FnMut() -> bool + Unpin> Wait<'a, C> {
             seen_tick: ticks,
             timeout: None,
             on_tick: None,
+            location: Location::caller(),
+            invalid: None,
         }
     }
 
+    /// Ends the wait with `error` on its first poll.
+    pub(crate) fn invalid(mut self, error: Option<WaitError>) -> Self {
+        self.invalid = self.invalid.or(error);
+        self
+    }
+
     /// Fails with [`WaitError::Timeout`] once `seconds` of platform time pass without the
-    /// condition holding.
+    /// condition holding. `f64::INFINITY` means no timeout; NaN or a negative number makes the
+    /// wait fail at once with [`WaitError::InvalidDuration`].
+    #[track_caller]
     pub fn timeout(mut self, seconds: f64) -> Self {
         self.timeout = Some(seconds);
-        self
+        self.invalid(WaitError::check_duration("timeout", seconds))
     }
 
     /// Calls `callback` on every tick the wait sees, before checking the condition.
@@ -116,6 +157,9 @@ impl<C: FnMut() -> bool + Unpin> Future for Wait<'_, C> {
 
     fn poll(self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<Self::Output> {
         let this = self.get_mut();
+        if let Some(error) = this.invalid {
+            return Poll::Ready(Err(error));
+        }
         if this.clock.stopped.get() {
             return Poll::Ready(Err(WaitError::Stopped));
         }
@@ -132,7 +176,10 @@ impl<C: FnMut() -> bool + Unpin> Future for Wait<'_, C> {
                 // Half a timestep of slack so that float time never adds or drops a tick.
                 if this.clock.time.get() - this.started_time >= seconds - this.clock.timestep / 2.0
                 {
-                    return Poll::Ready(Err(WaitError::Timeout { seconds }));
+                    return Poll::Ready(Err(WaitError::Timeout {
+                        seconds,
+                        location: this.location,
+                    }));
                 }
             }
         }
@@ -146,6 +193,7 @@ impl<C> fmt::Debug for Wait<'_, C> {
         f.debug_struct("Wait")
             .field("started_tick", &self.started_tick)
             .field("timeout", &self.timeout)
+            .field("location", &self.location)
             .finish()
     }
 }
