@@ -48,3 +48,59 @@ fn ctrl_c_stops_the_run_and_plugins_see_the_end() {
     assert!(matches!(error, RuntimeError::Interrupted), "{error}");
     assert!(ended.get());
 }
+
+/// Set in the child process of [`ctrl_c_ends_the_process_again_after_run`].
+const CHILD: &str = "YAROK_CTRL_C_CHILD";
+
+/// The child: runs a platform to its end, says so, then waits to be interrupted.
+#[test]
+fn ctrl_c_child() {
+    if std::env::var_os(CHILD).is_none() {
+        return;
+    }
+    Platform::builder()
+        .world::<Empty>()
+        .backend("sim", |_, _| Ok(Box::new(MockBackend::new(0.01, false))))
+        .behaviour(|pl| async move {
+            pl.wait_seconds(0.05).await?;
+            Ok(())
+        })
+        .run()
+        .unwrap();
+    println!("run ended");
+    std::thread::sleep(std::time::Duration::from_secs(30));
+    println!("still alive");
+}
+
+/// After `run()` returns, Ctrl-C ends the process, as it did before the run.
+#[test]
+fn ctrl_c_ends_the_process_again_after_run() {
+    use std::io::{BufRead, BufReader};
+    use std::os::unix::process::ExitStatusExt;
+    let mut child = std::process::Command::new(std::env::current_exe().unwrap())
+        .args(["--exact", "ctrl_c_child", "--nocapture", "--test-threads=1"])
+        .env(CHILD, "1")
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
+    let ended = lines.find(|line| line.as_ref().is_ok_and(|l| l.contains("run ended")));
+    assert!(ended.is_some(), "the child's run did not end");
+    let status = std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let started = std::time::Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        if started.elapsed() > std::time::Duration::from_secs(10) {
+            child.kill().unwrap();
+            panic!("Ctrl-C was swallowed after run()");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    };
+    assert_eq!(status.signal(), Some(2), "{status:?}");
+}

@@ -33,6 +33,7 @@
 
 mod backend;
 mod bind;
+mod interrupt;
 mod platform;
 mod plugin;
 mod thread;

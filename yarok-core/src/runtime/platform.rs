@@ -9,6 +9,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::task::{Context, Poll, Wake, Waker};
 
 use super::bind::{Bind, Handle, Step};
+use super::interrupt::Interrupt;
 use super::wait::{Clock, Wait, WaitError};
 use super::{Backend, BackendFactory, BoxError, Plugin, RuntimeError};
 use crate::compose::{Component, ComponentType, Composition, Config, Value, compose_with};
@@ -201,6 +202,7 @@ pub struct PlatformBuilder {
     plugins: Vec<Box<dyn Plugin>>,
     plugin_factories: BTreeMap<String, PluginFactory>,
     stop: Arc<AtomicBool>,
+    ctrl_c: bool,
 }
 
 impl std::fmt::Debug for PlatformBuilder {
@@ -221,6 +223,7 @@ pub struct Platform {
     behaviours: Vec<BehaviourFactory>,
     composition: Composition,
     realtime: bool,
+    ctrl_c: bool,
 }
 
 impl std::fmt::Debug for Platform {
@@ -242,6 +245,7 @@ impl Platform {
             plugins: Vec::new(),
             plugin_factories: BTreeMap::new(),
             stop: Arc::new(AtomicBool::new(false)),
+            ctrl_c: true,
         }
     }
 
@@ -310,7 +314,7 @@ impl Platform {
                 .into_iter()
                 .map(|(name, f)| Task::new(name, f(self.pl.clone()))),
         );
-        let interrupt = Interrupt::listen();
+        let interrupt = self.ctrl_c.then(Interrupt::listen);
         let started = tokio::time::Instant::now();
         let paced = self.realtime || self.backend.paced();
         poll_tasks(tasks)?;
@@ -344,51 +348,9 @@ impl Platform {
             }
             self.pl.inner.clock.tick(self.backend.time());
             poll_tasks(tasks)?;
-            if interrupt.happened() {
+            if interrupt.as_ref().is_some_and(Interrupt::happened) {
                 return Err(RuntimeError::Interrupted);
             }
-        }
-    }
-}
-
-/// Ctrl-C while the platform runs: the first one stops it cleanly (a flag checked every tick);
-/// a second one, if shutdown hangs, exits the process with status 130. The default behaviour
-/// comes back when the run ends.
-struct Interrupt {
-    flag: Arc<AtomicBool>,
-    handlers: Vec<signal_hook::SigId>,
-}
-
-impl Interrupt {
-    fn listen() -> Self {
-        let flag = Arc::new(AtomicBool::new(false));
-        let sigint = signal_hook::consts::SIGINT;
-        // Registered first, so that it sees the flag as the previous Ctrl-C left it.
-        let handlers = [
-            signal_hook::flag::register_conditional_shutdown(sigint, 130, Arc::clone(&flag)),
-            signal_hook::flag::register(sigint, Arc::clone(&flag)),
-        ]
-        .into_iter()
-        .filter_map(|registered| {
-            registered
-                .map_err(
-                    |error| tracing::warn!(%error, "Ctrl-C will not stop the platform cleanly"),
-                )
-                .ok()
-        })
-        .collect();
-        Self { flag, handlers }
-    }
-
-    fn happened(&self) -> bool {
-        self.flag.load(Ordering::Relaxed)
-    }
-}
-
-impl Drop for Interrupt {
-    fn drop(&mut self) {
-        for handler in self.handlers.drain(..) {
-            signal_hook::low_level::unregister(handler);
         }
     }
 }
@@ -686,6 +648,7 @@ impl PlatformBuilder {
             behaviours: self.behaviours,
             composition,
             realtime,
+            ctrl_c: self.ctrl_c,
         })
     }
 
@@ -693,6 +656,16 @@ impl PlatformBuilder {
     /// after the current tick (see [`Platform::stop_flag`]).
     pub fn stop_flag(mut self, flag: Arc<AtomicBool>) -> Self {
         self.stop = flag;
+        self
+    }
+
+    /// Whether Ctrl-C stops the platform (default: yes). While it runs, the first Ctrl-C stops it
+    /// cleanly ([`RuntimeError::Interrupted`]) and a second one, if shutdown hangs, exits with
+    /// status 130; once no platform runs, Ctrl-C ends the process again. An application that
+    /// handles Ctrl-C itself (say with `tokio::signal`) passes `false` and stops the platform
+    /// through its [stop flag](Platform::stop_flag).
+    pub fn ctrl_c(mut self, stops: bool) -> Self {
+        self.ctrl_c = stops;
         self
     }
 
