@@ -210,3 +210,25 @@ fn templates_cannot_exhaust_memory_or_stack() {
     let error = yarok_core::template::xml::Element::parse(&deep).unwrap_err();
     assert_eq!(error.message, "elements nested deeper than 256");
 }
+
+component!(
+    Peg,
+    "<mujoco><worldbody><geom size=\"0.1\"/></worldbody></mujoco>"
+);
+component!(
+    Typo,
+    "<mujoco><worldbody>\n  <body name=\"b\">\n    <peg name=\"p\"/>\n    <pegs name=\"q\"/>\n  </body>\n</worldbody></mujoco>",
+    Peg
+);
+
+#[test]
+fn an_unknown_tag_is_refused_with_a_suggestion() {
+    let error = error_of::<Typo>();
+    assert_eq!(error.component, "/");
+    assert_eq!(at(&error), (4, 5));
+    assert_eq!(error.element.as_deref(), Some("pegs"));
+    assert_eq!(
+        error.message,
+        "<pegs> is neither an MJCF element nor a component tag (<typo> uses <peg>); did you mean `peg`?"
+    );
+}

@@ -53,6 +53,7 @@ mod backend;
 mod composition;
 mod data;
 mod error;
+mod guard;
 mod library;
 mod locate;
 mod model;

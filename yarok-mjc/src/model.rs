@@ -6,6 +6,7 @@ use std::path::Path;
 use std::ptr::NonNull;
 
 use crate::error::ModelError;
+use crate::guard;
 use crate::library::mujoco;
 use crate::sys;
 use crate::vfs::Vfs;
@@ -87,6 +88,7 @@ impl Model {
         B: AsRef<[u8]>,
     {
         let mj = mujoco()?;
+        guard::refuse_known_aborts(xml, "<string>")?;
         let mut vfs = Vfs::new(mj);
         vfs.add(MAIN_FILE, xml.as_bytes())?;
         for (name, bytes) in assets {
@@ -102,6 +104,9 @@ impl Model {
     /// As [`Model::from_xml_str`]; a missing file is a [`ModelError::Compile`] naming it.
     pub fn from_file(path: impl AsRef<Path>) -> Result<Self, ModelError> {
         let path = path.as_ref();
+        if let Ok(xml) = std::fs::read_to_string(path) {
+            guard::refuse_known_aborts(&xml, &path.display().to_string())?;
+        }
         load(
             mujoco()?,
             &path.to_string_lossy(),

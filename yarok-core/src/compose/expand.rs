@@ -472,6 +472,10 @@ impl<'o> Composer<'o> {
                         ));
                     }
                     None => {
+                        if !super::elements::is_mjcf_element(tag) {
+                            let message = self.unknown_tag(ctx.owner, tag);
+                            return Err(self.error(&element, None, None, message));
+                        }
                         if let Some(parent) = element.attribute_entry("parent") {
                             let parent = parent.clone();
                             return Err(self.error(
@@ -507,6 +511,20 @@ impl<'o> Composer<'o> {
             }
         }
         Ok(out)
+    }
+
+    /// Why `tag` cannot be used in `owner`'s template, with the nearest tag that can.
+    fn unknown_tag(&self, owner: usize, tag: &str) -> String {
+        let instance = &self.instances[owner];
+        let usable = instance.components.iter().map(|(t, _)| t.as_str());
+        let hint = did_you_mean(tag, usable.clone().chain(super::MJCF_ELEMENTS));
+        let uses = if instance.components.is_empty() {
+            format!("<{}> uses no components", instance.tag)
+        } else {
+            let tags: Vec<String> = usable.map(|t| format!("<{t}>")).collect();
+            format!("<{}> uses {}", instance.tag, tags.join(", "))
+        };
+        format!("<{tag}> is neither an MJCF element nor a component tag ({uses}){hint}")
     }
 
     fn component_for(&self, owner: usize, tag: &str) -> Option<ComponentType> {

@@ -30,6 +30,7 @@
 //!   component's own joints and actuators. They are lifted out of the MJCF into
 //!   [`Composition::keyframes`]; the MuJoCo backend places them in whole-model vectors.
 
+mod elements;
 mod error;
 mod expand;
 mod files;
@@ -42,6 +43,7 @@ use std::collections::BTreeMap;
 use std::fmt;
 use std::path::PathBuf;
 
+pub use elements::MJCF_ELEMENTS;
 pub use error::{ComposeError, ErrorDetails};
 pub use evalexpr::Value;
 pub use names::{NameKind, NameMap};
