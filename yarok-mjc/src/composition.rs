@@ -17,7 +17,9 @@ impl Model {
     ///
     /// # Errors
     ///
-    /// As [`Model::from_xml_str`]; [`ModelError::Keyframe`] when a keyframe has more values than
+    /// As [`Model::from_xml_str`], except that a compile error MuJoCo reports against a line of
+    /// the composed MJCF names the component, template, line:column and element it came from;
+    /// [`ModelError::Keyframe`] when a keyframe has more values than
     /// its component has coordinates, uses mocap vectors, or the world generates joints the
     /// composer cannot count (`composite`, `flexcomp`, `replicate`, `attach`).
     ///
@@ -42,7 +44,8 @@ impl Model {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn from_composition(composition: &Composition) -> Result<Self, ModelError> {
-        let model = Self::from_xml_str(&composition.to_xml())?;
+        let model = Self::from_xml_str(&composition.to_xml())
+            .map_err(|error| located(error, composition))?;
         if composition.keyframes.is_empty() {
             return Ok(model);
         }
@@ -174,5 +177,26 @@ fn keyframe_error(keyframe: &ComponentKeyframe, reason: &str) -> ModelError {
         component: keyframe.component.clone(),
         name: keyframe.name.clone(),
         reason: reason.to_owned(),
+    }
+}
+
+/// MuJoCo's error with the composed document's line it names (its last line, `Element …, line
+/// N`) replaced by where that element was written.
+fn located(error: ModelError, composition: &Composition) -> ModelError {
+    let ModelError::Compile { message, .. } = &error else {
+        return error;
+    };
+    let mut lines: Vec<&str> = message.lines().filter(|l| !l.trim().is_empty()).collect();
+    let composed_line = lines
+        .last()
+        .and_then(|last| last.rsplit_once(", line "))
+        .and_then(|(_, number)| number.trim().parse::<usize>().ok());
+    let Some(source) = composed_line.and_then(|line| composition.source_of_line(line)) else {
+        return error;
+    };
+    lines.pop();
+    ModelError::Compile {
+        origin: source.to_string(),
+        message: lines.join("; "),
     }
 }

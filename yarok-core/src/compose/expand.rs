@@ -170,6 +170,7 @@ impl<'o> Composer<'o> {
             assets: self.assets.into_iter().collect(),
             keyframes,
             layout_known: layout.known,
+            templates: self.origins.into_iter().map(|o| o.label).collect(),
         })
     }
 

@@ -37,6 +37,7 @@ mod files;
 mod layout;
 mod names;
 mod sections;
+mod source;
 
 use std::any::{Any, TypeId};
 use std::collections::BTreeMap;
@@ -47,6 +48,7 @@ pub use elements::MJCF_ELEMENTS;
 pub use error::{ComposeError, ErrorDetails};
 pub use evalexpr::Value;
 pub use names::{NameKind, NameMap};
+pub use source::SourceLocation;
 
 use crate::runtime::{Bind, RuntimeError};
 use crate::template::xml::Element;
@@ -388,6 +390,9 @@ pub struct Composition {
     /// Whether joint and actuator indices are known (no `composite`, `flexcomp`, `replicate`,
     /// `attach` generate hidden ones).
     pub layout_known: bool,
+    /// The templates the world was composed from (file paths, or `<tag> (inline template)`),
+    /// indexed by the elements' origin; see [`Composition::source_of_line`].
+    pub templates: Vec<String>,
 }
 
 impl Composition {

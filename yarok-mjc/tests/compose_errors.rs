@@ -1,0 +1,76 @@
+//! MuJoCo's errors about a composed world name the component, template, line:column and element
+//! the user wrote, not a line of the composed document.
+
+use yarok_core::compose::{Component, Declaration, compose};
+use yarok_mjc::{Model, ModelError};
+
+struct Limb;
+impl Component for Limb {
+    fn declaration() -> Declaration {
+        Declaration::new("limb").template(
+            "<mujoco>\n  <worldbody>\n    <body name=\"upper\">\n      <joint name=\"j\"/>\n    </body>\n  </worldbody>\n</mujoco>",
+        )
+    }
+}
+
+struct Bench;
+impl Component for Bench {
+    fn declaration() -> Declaration {
+        Declaration::new("bench").uses::<Limb>().template(
+            r#"<mujoco>
+                 <worldbody>
+                   <geom name="floor" type="plane" size="1 1 0.1"/>
+                   <body name="mount" pos="0 0 1"><limb name="left"/></body>
+                 </worldbody>
+               </mujoco>"#,
+        )
+    }
+}
+
+struct Shelf;
+impl Component for Shelf {
+    fn declaration() -> Declaration {
+        Declaration::new("shelf").template(
+            "<mujoco>\n  <worldbody>\n    <geom size=\"0.1\"/>\n    <geom size=\"a b\"/>\n  </worldbody>\n</mujoco>",
+        )
+    }
+}
+
+struct Room;
+impl Component for Room {
+    fn declaration() -> Declaration {
+        Declaration::new("room")
+            .uses::<Shelf>()
+            .template(r#"<mujoco><worldbody><shelf name="s"/></worldbody></mujoco>"#)
+    }
+}
+
+fn compile_error<W: Component>() -> (String, String) {
+    match Model::from_composition(&compose::<W>().unwrap()) {
+        Err(ModelError::Compile { origin, message }) => (origin, message),
+        other => panic!("expected a compile error, got {other:?}"),
+    }
+}
+
+#[test]
+fn a_compile_error_names_the_component_template_and_element() {
+    let (origin, message) = compile_error::<Bench>();
+    assert_eq!(
+        origin,
+        "component /left, <limb> (inline template):3:5, <body>"
+    );
+    assert!(
+        message.contains("mass and inertia of moving bodies"),
+        "{message}"
+    );
+}
+
+#[test]
+fn a_schema_error_names_the_component_template_and_element() {
+    let (origin, message) = compile_error::<Room>();
+    assert_eq!(
+        origin,
+        "component /s, <shelf> (inline template):4:5, <geom>"
+    );
+    assert_eq!(message, "XML Error: bad format in attribute 'size'");
+}
