@@ -155,7 +155,7 @@ fn structural_mistakes_are_explained() {
         ),
         (
             error_of::<Lost>(),
-            "/h has no body named \"palm\"; did you mean `palm2`?",
+            "/h has no body or site named \"palm\"; did you mean `palm2`?",
         ),
         (
             error_of::<Stray>(),
@@ -172,6 +172,14 @@ fn structural_mistakes_are_explained() {
         assert_eq!(error.message, message, "{error}");
         assert!(error.position.is_some(), "{error}");
     }
+}
+
+#[test]
+fn a_parent_error_names_the_element_that_carries_the_attribute() {
+    let error = error_of::<Lost>();
+    assert_eq!(error.element.as_deref(), Some("site"));
+    assert_eq!(error.attribute.as_deref(), Some("parent"));
+    assert_eq!(at(&error), (1, 41));
 }
 
 struct FromFile;

@@ -5,7 +5,7 @@ use std::ptr::NonNull;
 use std::sync::Arc;
 
 use crate::error::ModelError;
-use crate::model::{ActuatorId, BodyId, JointId, KeyframeId, Model, SensorId, to_usize};
+use crate::model::{ActuatorId, BodyId, JointId, KeyframeId, Model, SensorId, SiteId, to_usize};
 use crate::sys;
 
 /// The state of one simulation of a [`Model`] (`mjData`): time, positions, velocities,
@@ -233,6 +233,37 @@ impl Data {
         };
         pose.pos.copy_from_slice(&xpos[3 * index..3 * index + 3]);
         pose.quat.copy_from_slice(&xquat[4 * index..4 * index + 4]);
+        pose
+    }
+
+    /// The pose of a site in world coordinates (a tool centre point, a mounting point), as
+    /// computed by the last [`Data::step`] or [`Data::forward`]; see [`Data::body_pose`].
+    ///
+    /// # Panics
+    ///
+    /// When `site` was resolved in a different model.
+    #[track_caller]
+    pub fn site_pose(&self, site: SiteId) -> Pose {
+        let index = self.model.index_of(site);
+        let nsite = self.model.count(crate::ObjectKind::Site);
+        // SAFETY: site_xpos holds 3·nsite elements and site_xmat 9·nsite.
+        let (xpos, xmat) = unsafe {
+            (
+                self.array(self.raw().site_xpos, 3 * nsite),
+                self.array(self.raw().site_xmat, 9 * nsite),
+            )
+        };
+        let mut pose = Pose {
+            pos: [0.0; 3],
+            quat: [0.0; 4],
+        };
+        pose.pos.copy_from_slice(&xpos[3 * index..3 * index + 3]);
+        // SAFETY: `quat` holds 4 numbers and the matrix 9, as mju_mat2Quat reads and writes.
+        unsafe {
+            self.model
+                .mj()
+                .mju_mat2Quat(pose.quat.as_mut_ptr(), xmat[9 * index..].as_ptr());
+        }
         pose
     }
 

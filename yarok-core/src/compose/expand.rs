@@ -592,19 +592,18 @@ impl<'o> Composer<'o> {
         };
         for mut child in std::mem::take(&mut tag.children) {
             let parent = child.take_attribute("parent");
+            let carrier = child.without_children();
             let expanded = self.expand(vec![child], &nested_ctx, scope)?;
-            match parent {
-                None => body.extend(expanded),
-                Some(parent) => match find_body(&mut body, sub_id, &parent.value) {
-                    Some(target) => target.children.extend(expanded),
-                    None => {
-                        let mut bodies = Vec::new();
-                        collect_bodies(&body, sub_id, &mut bodies);
-                        let hint = did_you_mean(&parent.value, bodies.iter().map(String::as_str));
-                        let message = format!("{path} has no body named {:?}{hint}", parent.value);
-                        return Err(self.error(&tag, Some(&parent), None, message));
-                    }
-                },
+            let Some(parent) = parent else {
+                body.extend(expanded);
+                continue;
+            };
+            if mount(&mut body, sub_id, &parent.value, expanded).is_err() {
+                let mut mounts = Vec::new();
+                collect_mounts(&body, sub_id, &mut mounts);
+                let hint = did_you_mean(&parent.value, mounts.iter().map(String::as_str));
+                let message = format!("{path} has no body or site named {:?}{hint}", parent.value);
+                return Err(self.error(&carrier, Some(&parent), None, message));
             }
         }
         Ok(body)
@@ -841,27 +840,53 @@ fn set_missing_class(elements: &mut [Element], in_worldbody: bool) {
     }
 }
 
-fn find_body<'a>(elements: &'a mut [Element], owner: usize, name: &str) -> Option<&'a mut Element> {
-    for element in elements {
-        if element.name == "body"
-            && element.owner == owner
-            && element.attribute("name") == Some(name)
-        {
-            return Some(element);
-        }
-        if let Some(found) = find_body(&mut element.children, owner, name) {
-            return Some(found);
-        }
+/// The attributes that give a site its place in its body, which a `<frame>` takes as well.
+const FRAME_ATTRIBUTES: [&str; 6] = ["pos", "quat", "axisangle", "xyaxes", "zaxis", "euler"];
+
+/// Places `children` in `owner`'s body named `name`, or at its site named `name` (inside a
+/// `<frame>` with the site's position and orientation, next to the site, as MuJoCo's attach
+/// does). Gives `children` back when `owner` has neither.
+fn mount(
+    elements: &mut Vec<Element>,
+    owner: usize,
+    name: &str,
+    children: Vec<Element>,
+) -> Result<(), Vec<Element>> {
+    let is_named = |e: &Element, tag: &str| {
+        e.name == tag && e.owner == owner && e.attribute("name") == Some(name)
+    };
+    if let Some(site) = elements.iter().find(|e| is_named(e, "site")) {
+        let mut frame = site.without_children();
+        frame.name = "frame".to_owned();
+        frame
+            .attributes
+            .retain(|a| FRAME_ATTRIBUTES.contains(&a.name.as_str()));
+        frame.children = children;
+        elements.push(frame);
+        return Ok(());
     }
-    None
+    let mut children = children;
+    for element in elements.iter_mut() {
+        if is_named(element, "body") {
+            element.children.extend(children);
+            return Ok(());
+        }
+        children = match crate::stack::deep(|| mount(&mut element.children, owner, name, children))
+        {
+            Ok(()) => return Ok(()),
+            Err(children) => children,
+        };
+    }
+    Err(children)
 }
 
-fn collect_bodies(elements: &[Element], owner: usize, out: &mut Vec<String>) {
+/// The names of `owner`'s bodies and sites.
+fn collect_mounts(elements: &[Element], owner: usize, out: &mut Vec<String>) {
     for element in elements {
-        if element.name == "body" && element.owner == owner {
+        if matches!(element.name.as_str(), "body" | "site") && element.owner == owner {
             out.extend(element.attribute("name").map(str::to_owned));
         }
-        collect_bodies(&element.children, owner, out);
+        crate::stack::deep(|| collect_mounts(&element.children, owner, out));
     }
 }
 

@@ -89,6 +89,18 @@ impl Element {
         }
     }
 
+    /// A copy of this element without its children.
+    pub fn without_children(&self) -> Self {
+        Self {
+            name: self.name.clone(),
+            attributes: self.attributes.clone(),
+            children: Vec::new(),
+            position: self.position,
+            origin: self.origin,
+            owner: self.owner,
+        }
+    }
+
     /// The value of an attribute.
     pub fn attribute(&self, name: &str) -> Option<&str> {
         self.attributes
