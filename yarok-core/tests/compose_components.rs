@@ -320,7 +320,7 @@ fn conflicting_global_settings_are_an_error_naming_both_components() {
 component!(
     Radians,
     Declaration::new("radians").template(
-        r#"<mujoco><compiler angle="radian"/><worldbody><body name="b" euler="0 0 1.57"/></worldbody></mujoco>"#
+        r#"<mujoco><compiler angle="radian"/><worldbody><body name="b" euler="0 0 3.141592653589793"><joint name="j" range="-1.5707963267948966 0"/></body></worldbody></mujoco>"#
     )
 );
 component!(
@@ -331,10 +331,27 @@ component!(
 );
 
 #[test]
-fn components_writing_angles_in_different_units_are_refused() {
-    let error = compose::<Degrees>().unwrap_err();
-    assert!(error.message.contains("writes angles in degree"), "{error}");
-    assert!(error.message.contains("set by /r"), "{error}");
+fn components_writing_angles_in_another_unit_are_converted_to_the_worlds() {
+    let world = compose::<Degrees>().unwrap();
+    assert!(
+        has(&world.mjcf, "body", "euler", "0 0 180"),
+        "{}",
+        world.to_xml()
+    );
+    assert!(
+        has(&world.mjcf, "joint", "range", "-90 0"),
+        "{}",
+        world.to_xml()
+    );
+    assert!(
+        has(&world.mjcf, "body", "euler", "0 0 90"),
+        "the world's own angles stay"
+    );
+    assert!(
+        !world.to_xml().contains("radian"),
+        "one unit for the whole model: {}",
+        world.to_xml()
+    );
 }
 
 #[test]

@@ -5,6 +5,7 @@ use std::fmt;
 use std::path::Path;
 use std::ptr::NonNull;
 
+use crate::data::Pose;
 use crate::error::ModelError;
 use crate::guard;
 use crate::library::mujoco;
@@ -179,6 +180,51 @@ impl Model {
         // SAFETY: geom_size holds 3·ngeom entries and `index` < ngeom.
         let sizes = unsafe { self.array(self.raw().geom_size, 3 * self.count(ObjectKind::Geom)) };
         [sizes[3 * index], sizes[3 * index + 1], sizes[3 * index + 2]]
+    }
+
+    /// A joint's limits (radians for hinge and ball joints, metres for slide joints), or `None`
+    /// when it is not limited.
+    ///
+    /// # Panics
+    ///
+    /// When `joint` was resolved in a different model.
+    #[track_caller]
+    pub fn joint_range(&self, joint: JointId) -> Option<[f64; 2]> {
+        let index = self.index_of(joint);
+        let njnt = self.count(ObjectKind::Joint);
+        // SAFETY: jnt_limited holds njnt entries and jnt_range 2·njnt.
+        let (limited, range) = unsafe {
+            (
+                self.array(self.raw().jnt_limited, njnt)[index],
+                self.array(self.raw().jnt_range, 2 * njnt),
+            )
+        };
+        limited.then(|| [range[2 * index], range[2 * index + 1]])
+    }
+
+    /// A body's pose in its parent's frame, as compiled (`body_pos`, `body_quat`).
+    ///
+    /// # Panics
+    ///
+    /// When `body` was resolved in a different model.
+    #[track_caller]
+    pub fn body_local_pose(&self, body: BodyId) -> Pose {
+        let index = self.index_of(body);
+        let nbody = self.count(ObjectKind::Body);
+        // SAFETY: body_pos holds 3·nbody entries and body_quat 4·nbody.
+        let (pos, quat) = unsafe {
+            (
+                self.array(self.raw().body_pos, 3 * nbody),
+                self.array(self.raw().body_quat, 4 * nbody),
+            )
+        };
+        let mut pose = Pose {
+            pos: [0.0; 3],
+            quat: [0.0; 4],
+        };
+        pose.pos.copy_from_slice(&pos[3 * index..3 * index + 3]);
+        pose.quat.copy_from_slice(&quat[4 * index..4 * index + 4]);
+        pose
     }
 
     /// The model's structural signature; ids resolved in one model are only valid for models

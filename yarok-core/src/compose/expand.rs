@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 use evalexpr::Value;
 
+use super::angles;
 use super::error::{ErrorDetails, Problem};
 use super::files::{self, Origin};
 use super::names::{self, CLASSED, NameMap};
@@ -90,6 +91,8 @@ pub(super) struct Composer<'o> {
     expanding: Vec<usize>,
     /// The component types whose templates are being loaded (`extends` chains), outermost first.
     loading: Vec<ComponentType>,
+    /// The world's `compiler/@angle`, to which every component's angles are converted.
+    angle_unit: String,
 }
 
 impl<'o> Composer<'o> {
@@ -108,6 +111,7 @@ impl<'o> Composer<'o> {
             keyframes: Vec::new(),
             expanding: Vec::new(),
             loading: Vec::new(),
+            angle_unit: angles::DEFAULT_UNIT.to_owned(),
         }
     }
 
@@ -130,10 +134,6 @@ impl<'o> Composer<'o> {
                 ),
             ));
         }
-        let paths: Vec<String> = self.instances.iter().map(|i| i.path.clone()).collect();
-        self.world
-            .check_angles(&paths)
-            .map_err(|e| self.located(&e))?;
         let mut mjcf = Element::new("mujoco");
         mjcf.attributes = root_attributes;
         let mut worldbody = Element::new("worldbody");
@@ -360,12 +360,24 @@ impl<'o> Composer<'o> {
         let mut sections = self.expand(sections, &ctx, &scope)?;
         files::resolve(&mut sections, &self.origins, &mut self.assets)
             .map_err(|e| self.located(&e))?;
+        super::sections::merge_top_level_defaults(&mut sections);
         let has_defaults = sections.iter().any(|s| s.name == "default");
-        let own_sections: Vec<Element> = sections
-            .iter()
-            .filter(|s| s.name == "compiler")
-            .cloned()
-            .collect();
+        let unit = angles::unit_of(&sections)
+            .unwrap_or(angles::DEFAULT_UNIT)
+            .to_owned();
+        let conversion = if id == 0 {
+            self.angle_unit = unit;
+            None
+        } else {
+            for compiler in sections.iter_mut().filter(|s| s.name == "compiler") {
+                compiler.take_attribute("angle");
+            }
+            angles::factor(&unit, &self.angle_unit)
+                .map(|factor| angles::Conversion::new(&sections, id, factor))
+        };
+        if let Some(conversion) = &conversion {
+            conversion.defaults(&mut sections);
+        }
         if id != 0 {
             for section in &mut sections {
                 if section.name == "default" {
@@ -401,10 +413,12 @@ impl<'o> Composer<'o> {
             body.extend(self.expand(worldbody.children, &body_ctx, &scope)?);
         }
         files::resolve(&mut body, &self.origins, &mut self.assets).map_err(|e| self.located(&e))?;
+        if let Some(conversion) = &conversion {
+            conversion.body(&mut body);
+        }
         if id != 0 && has_defaults {
             set_missing_class(&mut body, true);
         }
-        self.world.note_angles(&body, &own_sections, id);
         Ok(body)
     }
 

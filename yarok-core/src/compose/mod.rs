@@ -30,6 +30,7 @@
 //!   component's own joints and actuators. They are lifted out of the MJCF into
 //!   [`Composition::keyframes`]; the MuJoCo backend places them in whole-model vectors.
 
+mod angles;
 mod elements;
 mod error;
 mod expand;

@@ -2,7 +2,7 @@
 
 use std::collections::HashMap;
 
-use crate::template::xml::{Attribute, Element};
+use crate::template::xml::Element;
 
 use super::error::Problem;
 
@@ -15,8 +15,6 @@ pub(super) struct World {
     sections: Vec<Element>,
     /// Who set each settings attribute: (`option/flag`, `gravity`) → instance.
     setters: HashMap<(String, String), usize>,
-    /// Components that write angles: who, in which unit, and the first angle they write.
-    angle_writers: Vec<(usize, String, Element, Attribute)>,
 }
 
 impl World {
@@ -101,66 +99,6 @@ impl World {
         }
         Ok(())
     }
-
-    /// Records the unit a component writes its angles in (its own `compiler/@angle`, MuJoCo's
-    /// default degree), if it writes any.
-    pub(super) fn note_angles(&mut self, body: &[Element], sections: &[Element], owner: usize) {
-        let unit = sections
-            .iter()
-            .find(|s| s.name == "compiler")
-            .and_then(|c| c.attribute("angle"))
-            .unwrap_or("degree");
-        if let Some((element, attribute)) = first_angle(body).or_else(|| first_angle(sections)) {
-            self.angle_writers
-                .push((owner, unit.to_owned(), element.clone(), attribute.clone()));
-        }
-    }
-
-    /// Every component that writes angles must use the world's unit: one `compiler/@angle`
-    /// applies to the whole model.
-    pub(super) fn check_angles(&self, paths: &[String]) -> Result<(), Problem> {
-        let world = self
-            .sections
-            .iter()
-            .find(|s| s.name == "compiler")
-            .and_then(|c| c.attribute("angle"));
-        let unit = world.unwrap_or("degree");
-        let decided_by = self
-            .setters
-            .get(&("compiler".to_owned(), "angle".to_owned()))
-            .map_or("MuJoCo's default", |&o| paths[o].as_str());
-        match self.angle_writers.iter().find(|(_, own, _, _)| own != unit) {
-            Some((owner, own, element, attribute)) => Err(Box::new((
-                element.clone(),
-                Some(attribute.clone()),
-                format!(
-                    "{} writes angles in {own}, but the world's compiler/@angle is {unit} (set by {decided_by}); \
-                     set the same angle unit in both",
-                    paths[*owner]
-                ),
-            ))),
-            None => Ok(()),
-        }
-    }
-}
-/// The first attribute whose value is an angle (`euler`, `axisangle`, a hinge's `range`).
-fn first_angle(elements: &[Element]) -> Option<(&Element, &Attribute)> {
-    for element in elements {
-        let angular_joint =
-            element.name == "joint" && !matches!(element.attribute("type"), Some("slide" | "free"));
-        for attribute in &element.attributes {
-            let angle = matches!(attribute.name.as_str(), "euler" | "axisangle")
-                || (angular_joint
-                    && matches!(attribute.name.as_str(), "range" | "ref" | "springref"));
-            if angle {
-                return Some((element, attribute));
-            }
-        }
-        if let Some(found) = first_angle(&element.children) {
-            return Some(found);
-        }
-    }
-    None
 }
 
 fn walk_mut<'a>(element: &'a mut Element, trail: &[usize]) -> &'a mut Element {
@@ -176,6 +114,44 @@ pub(super) fn overlay(base: &mut Element, child: Element) {
         match base.children.iter_mut().find(|c| c.name == grandchild.name) {
             Some(existing) => overlay(existing, grandchild),
             None => base.children.push(grandchild),
+        }
+    }
+}
+
+/// Several top-level `<default>` sections (say, one per included file) all describe MuJoCo's
+/// main class; they become one: class defaults are kept in order, element defaults of the same
+/// kind are overlaid, later attributes winning, as MuJoCo reads them.
+pub(super) fn merge_top_level_defaults(sections: &mut Vec<Element>) {
+    let Some(first) = sections.iter().position(|s| s.name == "default") else {
+        return;
+    };
+    let mut later = Vec::new();
+    let mut index = first + 1;
+    while index < sections.len() {
+        if sections[index].name == "default" {
+            later.push(sections.remove(index));
+        } else {
+            index += 1;
+        }
+    }
+    let main = &mut sections[first];
+    for default in later {
+        for attribute in default.attributes {
+            main.set_attribute(&attribute.name, attribute.value);
+        }
+        for child in default.children {
+            let same = main
+                .children
+                .iter_mut()
+                .find(|c| c.name != "default" && c.name == child.name);
+            match same {
+                Some(existing) => {
+                    for attribute in child.attributes {
+                        existing.set_attribute(&attribute.name, attribute.value);
+                    }
+                }
+                _ => main.children.push(child),
+            }
         }
     }
 }
