@@ -9,5 +9,5 @@ pub mod compose;
 pub mod config;
 pub mod runtime;
 mod stack;
-mod suggest;
+pub mod suggest;
 pub mod template;

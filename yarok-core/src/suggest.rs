@@ -1,10 +1,8 @@
 //! "Did you mean …?" for unknown names.
 
-/// The candidate closest to `name` by edit distance, when it is close enough to be a typo.
-pub(crate) fn nearest<'a>(
-    name: &str,
-    candidates: impl IntoIterator<Item = &'a str>,
-) -> Option<&'a str> {
+/// The candidate closest to `name` by edit distance, when it is close enough to be a typo (at
+/// most a third of the longer name's characters differ).
+pub fn nearest<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
     candidates
         .into_iter()
         .map(|candidate| (distance(name, candidate), candidate))
@@ -15,11 +13,17 @@ pub(crate) fn nearest<'a>(
         .map(|(_, candidate)| candidate)
 }
 
-/// ", did you mean `x`?" or "".
-pub(crate) fn did_you_mean<'a>(
-    name: &str,
-    candidates: impl IntoIterator<Item = &'a str>,
-) -> String {
+/// "; did you mean `x`?" or "", to end an error message about an unknown `name`.
+///
+/// # Examples
+///
+/// ```
+/// use yarok_core::suggest::did_you_mean;
+///
+/// assert_eq!(did_you_mean("gripe", ["gripper", "arm"]), "; did you mean `gripper`?");
+/// assert_eq!(did_you_mean("camera", ["gripper", "arm"]), "");
+/// ```
+pub fn did_you_mean<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) -> String {
     nearest(name, candidates)
         .map(|n| format!("; did you mean `{n}`?"))
         .unwrap_or_default()

@@ -60,21 +60,95 @@ impl Model {
         let mut mjcf = composition.mjcf.clone();
         let mut section = Element::new("keyframe");
         for keyframe in &composition.keyframes {
-            let instance = composition.instance(&keyframe.component).ok_or_else(|| {
-                keyframe_error(keyframe, "its component is not in the composition")
-            })?;
-            section.children.push(model.place(keyframe, instance)?);
+            section.children.push(model.place(keyframe, composition)?);
         }
         mjcf.children.retain(|s| s.name != "keyframe");
         mjcf.children.push(section);
         Self::from_xml_str(&mjcf.to_xml())
     }
 
+    /// A whole-model `<key>` for a component's keyframe: the keyframes it names in `from`
+    /// first, in order, then its own values; everything else at the initial configuration and
+    /// zero velocities, controls and activations.
     fn place(
         &self,
         keyframe: &ComponentKeyframe,
-        instance: &Instance,
+        composition: &Composition,
     ) -> Result<Element, ModelError> {
+        let mut key = Element::new("key");
+        key.set_attribute("name", keyframe.name.clone());
+        let mut vectors = Vec::new();
+        for (name, value) in &keyframe.attributes {
+            match name.as_str() {
+                "time" => key.set_attribute("time", value.clone()),
+                "from" => {
+                    for source in value.split_whitespace() {
+                        let source = combined(keyframe, source, composition)?;
+                        self.fill(&mut vectors, source, composition)?;
+                    }
+                }
+                _ => {}
+            }
+        }
+        self.fill(&mut vectors, keyframe, composition)?;
+        for (name, values) in vectors {
+            let text: Vec<String> = values.iter().map(f64::to_string).collect();
+            key.set_attribute(name, text.join(" "));
+        }
+        Ok(key)
+    }
+
+    /// Writes `keyframe`'s vectors into the whole-model `vectors`, made on first use.
+    fn fill(
+        &self,
+        vectors: &mut Vec<(&'static str, Vec<f64>)>,
+        keyframe: &ComponentKeyframe,
+        composition: &Composition,
+    ) -> Result<(), ModelError> {
+        let instance = composition
+            .instance(&keyframe.component)
+            .ok_or_else(|| keyframe_error(keyframe, "its component is not in the composition"))?;
+        for (name, value) in &keyframe.attributes {
+            if matches!(name.as_str(), "time" | "from") {
+                continue;
+            }
+            let local = numbers(value).ok_or_else(|| {
+                keyframe_error(keyframe, &format!("`{name}` is not a list of numbers"))
+            })?;
+            let (vector, initial, slots) = self.slots(name, instance).ok_or_else(|| {
+                let message = format!("`{name}` is not supported in component keyframes");
+                keyframe_error(keyframe, &message)
+            })?;
+            if local.len() > slots.len() {
+                let message = format!(
+                    "`{name}` has {} values but {} has {}",
+                    local.len(),
+                    instance.path,
+                    slots.len()
+                );
+                return Err(keyframe_error(keyframe, &message));
+            }
+            let full = match vectors.iter().position(|(n, _)| *n == vector) {
+                Some(index) => &mut vectors[index].1,
+                None => {
+                    vectors.push((vector, initial));
+                    &mut vectors.last_mut().expect("just pushed").1
+                }
+            };
+            for (slot, value) in slots.iter().zip(local) {
+                full[*slot] = value;
+            }
+        }
+        Ok(())
+    }
+
+    /// For the key vector `name`: its attribute name, its initial whole-model value and the
+    /// indices of `instance`'s entries in it; `None` for a vector components cannot set.
+    fn slots(
+        &self,
+        name: &str,
+        instance: &Instance,
+    ) -> Option<(&'static str, Vec<f64>, Vec<usize>)> {
         let m = self.raw();
         let (njnt, nu) = (to_usize(m.njnt), to_usize(m.nu));
         // SAFETY: these model arrays hold the lengths given (nq, njnt, nu entries).
@@ -93,68 +167,54 @@ impl Model {
             sys::mjJNT_BALL => (4, 3),
             _ => (1, 1),
         };
-        let mut key = Element::new("key");
-        key.set_attribute("name", keyframe.name.clone());
-        for (name, value) in &keyframe.attributes {
-            let local = numbers(value).ok_or_else(|| {
-                keyframe_error(keyframe, &format!("`{name}` is not a list of numbers"))
-            })?;
-            let (mut full, slots): (Vec<f64>, Vec<usize>) = match name.as_str() {
-                "time" => {
-                    key.set_attribute("time", value.clone());
-                    continue;
-                }
-                "qpos" => (
-                    qpos0.to_vec(),
-                    expand(&instance.joints, |j| (to_usize(qposadr[j]), sizes(j).0)),
-                ),
-                "qvel" => (
-                    vec![0.0; to_usize(m.nv)],
-                    expand(&instance.joints, |j| (to_usize(dofadr[j]), sizes(j).1)),
-                ),
-                "ctrl" => (vec![0.0; nu], instance.actuators.clone()),
-                "act" => (
-                    vec![0.0; to_usize(m.na)],
-                    expand(&instance.actuators, |a| {
-                        (
-                            to_usize(actadr[a]),
-                            if actadr[a] < 0 {
-                                0
-                            } else {
-                                to_usize(actnum[a])
-                            },
-                        )
-                    }),
-                ),
-                other => {
-                    return Err(keyframe_error(
-                        keyframe,
-                        &format!("`{other}` is not supported in component keyframes"),
-                    ));
-                }
-            };
-            if local.len() > slots.len() {
-                let message = format!(
-                    "`{name}` has {} values but {} has {}",
-                    local.len(),
-                    instance.path,
-                    slots.len()
-                );
-                return Err(keyframe_error(keyframe, &message));
-            }
-            for (slot, value) in slots.iter().zip(local) {
-                full[*slot] = value;
-            }
-            key.set_attribute(
-                name,
-                full.iter()
-                    .map(f64::to_string)
-                    .collect::<Vec<_>>()
-                    .join(" "),
-            );
-        }
-        Ok(key)
+        Some(match name {
+            "qpos" => (
+                "qpos",
+                qpos0.to_vec(),
+                expand(&instance.joints, |j| (to_usize(qposadr[j]), sizes(j).0)),
+            ),
+            "qvel" => (
+                "qvel",
+                vec![0.0; to_usize(m.nv)],
+                expand(&instance.joints, |j| (to_usize(dofadr[j]), sizes(j).1)),
+            ),
+            "ctrl" => ("ctrl", vec![0.0; nu], instance.actuators.clone()),
+            "act" => (
+                "act",
+                vec![0.0; to_usize(m.na)],
+                expand(&instance.actuators, |a| {
+                    let count = if actadr[a] < 0 {
+                        0
+                    } else {
+                        to_usize(actnum[a])
+                    };
+                    (to_usize(actadr[a]), count)
+                }),
+            ),
+            _ => return None,
+        })
     }
+}
+
+/// The keyframe named `name` that `keyframe`'s `from` combines.
+fn combined<'a>(
+    keyframe: &ComponentKeyframe,
+    name: &str,
+    composition: &'a Composition,
+) -> Result<&'a ComponentKeyframe, ModelError> {
+    let Some(source) = composition.keyframes.iter().find(|k| k.name == name) else {
+        let names = composition.keyframes.iter().map(|k| k.name.as_str());
+        let message = format!(
+            "`from` names keyframe {name:?}, which the world does not have{}",
+            yarok_core::suggest::did_you_mean(name, names)
+        );
+        return Err(keyframe_error(keyframe, &message));
+    };
+    if source.attributes.iter().any(|(n, _)| n == "from") {
+        let message = format!("`from` names {name:?}, which itself combines keyframes");
+        return Err(keyframe_error(keyframe, &message));
+    }
+    Ok(source)
 }
 
 /// The model-vector indices of a component's objects, each `(start, count)`.

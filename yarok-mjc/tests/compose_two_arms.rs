@@ -66,6 +66,10 @@ impl Component for TwoArms {
                  <equality>
                    <weld name="glue" body1="left/arm/base" body2="right/arm/base" active="false"/>
                  </equality>
+                 <keyframe>
+                   <key name="start" from="left/arm/home right/arm/home right/arm/gripper/open"
+                        time="1.5"/>
+                 </keyframe>
                </mujoco>"#,
         )
     }
@@ -194,4 +198,66 @@ fn component_keyframes_set_only_their_components_state() {
         0.04
     );
     assert_eq!(data.ctrl().iter().filter(|c| **c != 0.0).count(), 1);
+}
+
+/// A world keyframe combines its components' keyframes by name: each component's part from its
+/// own keyframe, with no index arithmetic.
+#[test]
+fn a_world_keyframe_combines_component_keyframes() {
+    let model = Arc::new(Model::from_composition(&compose::<TwoArms>().unwrap()).unwrap());
+    let mut data = Data::new(&model).unwrap();
+    data.reset_to_keyframe(model.keyframe("start").unwrap());
+    for arm in ["left", "right"] {
+        assert_eq!(
+            data.qpos(model.joint(&format!("{arm}/arm/shoulder")).unwrap()),
+            &[0.3]
+        );
+        assert_eq!(
+            data.qpos(model.joint(&format!("{arm}/arm/elbow")).unwrap()),
+            &[-0.6]
+        );
+    }
+    let slide = |arm: &str| {
+        data.qpos(
+            model
+                .joint(&format!("{arm}/arm/gripper/right_slide"))
+                .unwrap(),
+        )[0]
+    };
+    assert_eq!((slide("left"), slide("right")), (0.0, 0.04));
+    let close = |arm: &str| {
+        data.ctrl()[model
+            .actuator(&format!("{arm}/arm/gripper/close"))
+            .unwrap()
+            .index()]
+    };
+    assert_eq!((close("left"), close("right")), (0.0, 0.04));
+    assert_eq!(
+        data.ctrl()[model.actuator("right/arm/shoulder").unwrap().index()],
+        0.3
+    );
+    assert_eq!(data.time(), 1.5);
+}
+
+struct Misnamed;
+impl Component for Misnamed {
+    fn declaration() -> Declaration {
+        Declaration::new("misnamed")
+            .uses::<ArmWithGripper>()
+            .template(
+                r#"<mujoco><compiler angle="radian"/>
+                 <worldbody><arm_with_gripper name="left"/></worldbody>
+                 <keyframe><key name="start" from="left/arm/hoem"/></keyframe>
+               </mujoco>"#,
+            )
+    }
+}
+
+#[test]
+fn combining_an_unknown_keyframe_is_an_error_with_a_suggestion() {
+    let error = Model::from_composition(&compose::<Misnamed>().unwrap()).unwrap_err();
+    assert_eq!(
+        error.to_string(),
+        "component /: keyframe \"start\": `from` names keyframe \"left/arm/hoem\", which the world does not have; did you mean `left/arm/home`?"
+    );
 }

@@ -373,7 +373,8 @@ pub struct ComponentKeyframe {
     /// The keyframe's name in the composed model.
     pub name: String,
     /// Its attributes (`time`, `qpos`, `qvel`, `ctrl`, `act`), vectors over the component's own
-    /// joints and actuators.
+    /// joints and actuators, and `from`: the composed names of keyframes it combines
+    /// (`from="left/home right/home"`), applied in order before its own vectors.
     pub attributes: Vec<(String, String)>,
 }
 
