@@ -80,3 +80,31 @@ fn errors_exit_with_2_and_say_where() {
     assert_eq!(code, 2);
     assert!(stderr.contains("tumble-tower"), "{stderr}");
 }
+
+#[test]
+fn help_goes_to_stdout_and_succeeds() {
+    for args in [
+        &["--help"][..],
+        &["-h"],
+        &["compose", "--help"],
+        &["tactile", "--help"],
+    ] {
+        let (code, out, err) = yarok(args);
+        assert_eq!(code, 0, "{args:?}: {err}");
+        assert!(out.starts_with("usage: yarok compose"), "{args:?}: {out}");
+        assert!(err.is_empty(), "{args:?}: {err}");
+    }
+    let (code, out, err) = yarok(&[]);
+    assert_eq!((code, out.as_str()), (2, ""));
+    assert!(err.contains("usage: yarok compose"), "{err}");
+}
+
+#[test]
+fn a_bad_set_value_names_the_argument() {
+    let (code, _, err) = yarok(&["compose", "tumble-tower", "--set", "rows=many"]);
+    assert_eq!(code, 2);
+    assert_eq!(
+        err.trim(),
+        "error: component /, --set /rows=many attribute `rows`: `rows` expects an integer, got \"many\""
+    );
+}

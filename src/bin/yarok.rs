@@ -1,6 +1,7 @@
 //! The `yarok` command line.
 //!
 //! ```text
+//! yarok --help
 //! yarok compose WORLD [--set [/PATH/]KEY=VALUE]... [--out FILE]
 //! yarok tactile digit|gelsight|geltip DEPTH OUT.png [--background PNG] [--geltip-params DIR]
 //!               [--noise SIGMA] [--seed N]
@@ -20,7 +21,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use yarok::components::catalogue;
-use yarok::core::compose::{Declaration, Overrides, Value, compose_declaration, compose_with};
+use yarok::core::compose::{Declaration, compose_configured, compose_declaration};
+use yarok::core::config::{RunConfig, Settings};
 
 const USAGE: &str = "usage: yarok compose WORLD [--set [/PATH/]KEY=VALUE]... [--out FILE]
        yarok tactile digit|gelsight|geltip DEPTH OUT.png [--background PNG] [--noise SIGMA] [--seed N]
@@ -33,12 +35,16 @@ const USAGE: &str = "usage: yarok compose WORLD [--set [/PATH/]KEY=VALUE]... [--
 
 struct Args {
     world: String,
-    overrides: Overrides,
+    settings: Settings,
     out: Option<PathBuf>,
 }
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.iter().any(|a| a == "-h" || a == "--help") {
+        println!("{USAGE}");
+        return ExitCode::SUCCESS;
+    }
     let result = match args.first().map(String::as_str) {
         Some("tactile") => tactile::run(&args[1..]),
         _ => parse(args.into_iter()).and_then(run),
@@ -57,34 +63,28 @@ fn parse(mut args: impl Iterator<Item = String>) -> Result<Args, String> {
         return Err(USAGE.to_owned());
     }
     let mut world = None;
-    let mut overrides = Overrides::new();
+    let mut config = RunConfig::default();
     let mut out = None;
     while let Some(arg) = args.next() {
         match arg.as_str() {
             "--set" => {
                 let assignment = args.next().ok_or("--set needs KEY=VALUE")?;
-                let (target, value) = assignment
-                    .split_once('=')
-                    .ok_or(format!("--set {assignment}: expected KEY=VALUE"))?;
-                let (path, key) = match target.rsplit_once('/') {
-                    Some(("", key)) => ("/".to_owned(), key),
-                    Some((path, key)) => (path.to_owned(), key),
-                    None => ("/".to_owned(), target),
+                // A bare KEY=VALUE sets the world's key.
+                let assignment = if assignment.starts_with('/') {
+                    assignment
+                } else {
+                    format!("/{assignment}")
                 };
-                overrides
-                    .entry(path)
-                    .or_default()
-                    .set(key, Value::String(value.to_owned()));
+                config.set(&assignment).map_err(|e| e.to_string())?;
             }
             "--out" => out = Some(PathBuf::from(args.next().ok_or("--out needs a file")?)),
-            "-h" | "--help" => return Err(USAGE.to_owned()),
             _ if world.is_none() => world = Some(arg),
             _ => return Err(format!("unexpected argument {arg:?}\n{USAGE}")),
         }
     }
     Ok(Args {
         world: world.ok_or(USAGE)?,
-        overrides,
+        settings: config.settings("sim"),
         out,
     })
 }
@@ -92,13 +92,13 @@ fn parse(mut args: impl Iterator<Item = String>) -> Result<Args, String> {
 fn run(args: Args) -> Result<(), String> {
     let bundled = catalogue();
     let composition = match bundled.iter().find(|c| c.declaration().tag() == args.world) {
-        Some(component) => compose_with(*component, &args.overrides),
+        Some(component) => compose_configured(*component, &args.settings),
         None if PathBuf::from(&args.world).is_file() => {
             let world = bundled.iter().fold(
                 Declaration::new("world").template_file(&args.world),
                 |d, c| d.uses_type(*c),
             );
-            compose_declaration(world, &args.overrides)
+            compose_declaration(world, &args.settings)
         }
         None => {
             let tags: Vec<String> = bundled

@@ -39,6 +39,39 @@ pub struct ConfigError {
     pub message: String,
 }
 
+/// Where each value of a run configuration was set: the file and key, or the `--set`
+/// argument, by section (`components`, `interfaces`, `plugins`, `behaviour`, `platform`), path
+/// (component path or plugin name; empty for `behaviour` and `platform`) and key.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct ConfigOrigins(BTreeMap<(String, String, String), String>);
+
+impl ConfigOrigins {
+    /// Where `section` / `path` / `key` was set, if it was.
+    pub fn of(&self, section: &str, path: &str, key: &str) -> Option<&str> {
+        self.0
+            .get(&(section.to_owned(), path.to_owned(), key.to_owned()))
+            .map(String::as_str)
+    }
+
+    /// Where `section` / `path` / `key` was set, or "run configuration" when unknown.
+    pub fn describe(&self, section: &str, path: &str, key: &str) -> String {
+        self.of(section, path, key)
+            .unwrap_or("run configuration")
+            .to_owned()
+    }
+
+    fn record(&mut self, section: &str, path: &str, key: &str, origin: String) {
+        self.0.insert(
+            (section.to_owned(), path.to_owned(), key.to_owned()),
+            origin,
+        );
+    }
+
+    fn merge(&mut self, other: ConfigOrigins) {
+        self.0.extend(other.0);
+    }
+}
+
 /// The sections of one layer.
 #[derive(Debug, Clone, Default, PartialEq)]
 struct Layer {
@@ -47,6 +80,7 @@ struct Layer {
     behaviour: Config,
     plugins: BTreeMap<String, Config>,
     platform: Config,
+    origins: ConfigOrigins,
 }
 
 const SECTIONS: [&str; 5] = [
@@ -69,6 +103,7 @@ impl Layer {
         by_path(&mut self.plugins, other.plugins);
         merge_config(&mut self.behaviour, other.behaviour);
         merge_config(&mut self.platform, other.platform);
+        self.origins.merge(other.origins);
     }
 }
 
@@ -87,6 +122,7 @@ pub struct RunConfig {
 }
 
 /// The settings in force for one run: the base layer overlaid with the selected environment's.
+/// The default is an empty configuration for environment `sim`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Settings {
     /// The selected environment.
@@ -101,6 +137,14 @@ pub struct Settings {
     pub plugins: BTreeMap<String, Config>,
     /// Platform settings (`realtime`, `tick_hz`, …).
     pub platform: Config,
+    /// Where each of these values was set.
+    pub origins: ConfigOrigins,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        RunConfig::default().settings("sim")
+    }
 }
 
 impl RunConfig {
@@ -140,15 +184,17 @@ impl RunConfig {
                         let toml::Value::Table(layer) = layer else {
                             return Err(error(format!("`environments.{name}` must be a table")));
                         };
-                        let layer =
-                            read_layer(layer, &format!("environments.{name}.")).map_err(error)?;
+                        let layer = read_layer(layer, &format!("environments.{name}."), origin)
+                            .map_err(error)?;
                         config.environments.insert(name, layer);
                     }
                 }
                 _ => {
                     let mut single = toml::Table::new();
                     single.insert(key, value);
-                    config.base.merge(read_layer(single, "").map_err(error)?);
+                    config
+                        .base
+                        .merge(read_layer(single, "", origin).map_err(error)?);
                 }
             }
         }
@@ -209,30 +255,35 @@ impl RunConfig {
             return Err(error("the key is empty".into()));
         }
         let layer = &mut self.base;
-        let config = match path
+        let (section, owner, config) = match path
             .split_once('/')
             .map_or((path, ""), |(section, rest)| (section, rest))
         {
-            ("", _) => layer
-                .components
-                .entry(if path.is_empty() {
-                    "/".into()
-                } else {
-                    path.to_owned()
-                })
-                .or_default(),
-            ("interfaces", rest) => layer.interfaces.entry(format!("/{rest}")).or_default(),
-            ("plugins", name) if !name.is_empty() => {
-                layer.plugins.entry(name.to_owned()).or_default()
+            ("", _) => {
+                let owner = if path.is_empty() { "/" } else { path }.to_owned();
+                let config = layer.components.entry(owner.clone()).or_default();
+                ("components", owner, config)
             }
-            ("behaviour", "") => &mut layer.behaviour,
-            ("platform", "") => &mut layer.platform,
+            ("interfaces", rest) => {
+                let owner = format!("/{rest}");
+                let config = layer.interfaces.entry(owner.clone()).or_default();
+                ("interfaces", owner, config)
+            }
+            ("plugins", name) if !name.is_empty() => {
+                let config = layer.plugins.entry(name.to_owned()).or_default();
+                ("plugins", name.to_owned(), config)
+            }
+            ("behaviour", "") => ("behaviour", String::new(), &mut layer.behaviour),
+            ("platform", "") => ("platform", String::new(), &mut layer.platform),
             (section, _) => {
                 let hint = did_you_mean(section, SECTIONS);
                 return Err(error(format!("unknown target `{section}`{hint}")));
             }
         };
         config.set(key, value);
+        layer
+            .origins
+            .record(section, &owner, key, format!("--set {assignment}"));
         Ok(())
     }
 
@@ -253,6 +304,7 @@ impl RunConfig {
             behaviour: layer.behaviour,
             plugins: layer.plugins,
             platform: layer.platform,
+            origins: layer.origins,
         }
     }
 
@@ -262,53 +314,85 @@ impl RunConfig {
     }
 }
 
-fn read_layer(table: toml::Table, prefix: &str) -> Result<Layer, String> {
+/// Reads the sections of one layer from `origin`; `prefix` is where the layer is in the file
+/// (`environments.real.`).
+fn read_layer(table: toml::Table, prefix: &str, origin: &str) -> Result<Layer, String> {
     let mut layer = Layer::default();
     for (section, value) in table {
+        if !SECTIONS.contains(&section.as_str()) {
+            let mut known = SECTIONS.to_vec();
+            if prefix.is_empty() {
+                known.extend(["environment", "environments"]);
+            }
+            return Err(format!(
+                "unknown section `{prefix}{section}`{}",
+                did_you_mean(&section, known)
+            ));
+        }
         let toml::Value::Table(entries) = value else {
             return Err(format!("`{prefix}{section}` must be a table"));
         };
-        let named = |entries: toml::Table| -> Result<BTreeMap<String, Config>, String> {
-            entries
-                .into_iter()
-                .map(|(name, config)| match config {
-                    toml::Value::Table(config) => Ok((
-                        name.clone(),
-                        to_config(config, &format!("{prefix}{section}.{name}"))?,
-                    )),
-                    _ => Err(format!("`{prefix}{section}.{name}` must be a table")),
-                })
-                .collect()
+        let mut reader = Reader {
+            origin,
+            origins: &mut layer.origins,
+            section: &section,
+            prefix,
         };
         match section.as_str() {
-            "components" => layer.components = named(entries)?,
-            "interfaces" => layer.interfaces = named(entries)?,
-            "plugins" => layer.plugins = named(entries)?,
-            "behaviour" => layer.behaviour = to_config(entries, &format!("{prefix}behaviour"))?,
-            "platform" => layer.platform = to_config(entries, &format!("{prefix}platform"))?,
-            other => {
-                let mut known = SECTIONS.to_vec();
-                if prefix.is_empty() {
-                    known.extend(["environment", "environments"]);
-                }
-                return Err(format!(
-                    "unknown section `{prefix}{other}`{}",
-                    did_you_mean(other, known)
-                ));
-            }
+            "components" => layer.components = reader.named(entries)?,
+            "interfaces" => layer.interfaces = reader.named(entries)?,
+            "plugins" => layer.plugins = reader.named(entries)?,
+            "behaviour" => layer.behaviour = reader.config(entries, "")?,
+            _ => layer.platform = reader.config(entries, "")?,
         }
     }
     Ok(layer)
 }
 
-fn to_config(table: toml::Table, place: &str) -> Result<Config, String> {
-    let mut config = Config::default();
-    for (key, value) in table {
-        let value = to_value(value)
-            .ok_or_else(|| format!("`{place}.{key}`: tables and dates are not config values"))?;
-        config.set(&key, value);
+/// Reads one section's values, noting where each was set.
+struct Reader<'a> {
+    origin: &'a str,
+    origins: &'a mut ConfigOrigins,
+    section: &'a str,
+    prefix: &'a str,
+}
+
+impl Reader<'_> {
+    /// A table of configs by component path or plugin name.
+    fn named(&mut self, entries: toml::Table) -> Result<BTreeMap<String, Config>, String> {
+        let mut named = BTreeMap::new();
+        for (name, config) in entries {
+            let toml::Value::Table(config) = config else {
+                let (prefix, section) = (self.prefix, self.section);
+                return Err(format!("`{prefix}{section}.{name:?}` must be a table"));
+            };
+            let config = self.config(config, &name)?;
+            named.insert(name, config);
+        }
+        Ok(named)
     }
-    Ok(config)
+
+    /// The values of one config table, at `path` (empty for `behaviour` and `platform`).
+    fn config(&mut self, table: toml::Table, path: &str) -> Result<Config, String> {
+        let mut config = Config::default();
+        for (key, value) in table {
+            let place = if path.is_empty() {
+                format!("{}{}.{key}", self.prefix, self.section)
+            } else {
+                format!("{}{}.{path:?}.{key}", self.prefix, self.section)
+            };
+            let value = to_value(value)
+                .ok_or_else(|| format!("`{place}`: tables and dates are not config values"))?;
+            self.origins.record(
+                self.section,
+                path,
+                &key,
+                format!("{}, key `{place}`", self.origin),
+            );
+            config.set(&key, value);
+        }
+        Ok(config)
+    }
 }
 
 fn to_value(value: toml::Value) -> Option<Value> {

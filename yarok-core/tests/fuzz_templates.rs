@@ -4,7 +4,8 @@
 //! many more cases than CI does.
 
 use proptest::prelude::*;
-use yarok_core::compose::{Component, Declaration, Overrides, compose_declaration};
+use yarok_core::compose::{Component, Declaration, compose_declaration};
+use yarok_core::config::Settings;
 use yarok_core::template::expr::{Expr, Variables};
 use yarok_core::template::xml::Element;
 
@@ -114,7 +115,7 @@ fn compose_text(text: String) {
         .uses::<Leaf>()
         .uses::<Selfish>()
         .template(text);
-    if let Ok(composition) = compose_declaration(world, &Overrides::new()) {
+    if let Ok(composition) = compose_declaration(world, &Settings::default()) {
         Element::parse(&composition.to_xml()).expect("composed MJCF parses back");
     }
 }

@@ -383,7 +383,7 @@ fn unknown_names_in_the_configuration_are_errors_with_the_nearest_name() {
         error("[environments.mok.behaviour]\n")
             .contains("names no known environment; did you mean `mock`?")
     );
-    assert!(error("[behaviour]\nlaps = 2").contains("[behaviour] has no key `laps`"));
+    assert!(error("[behaviour]\nlaps = 2").contains("[behaviour] no config key `laps`"));
     assert!(error("[platform]\nrealtim = true").contains("did you mean `realtime`?"));
     assert!(error("[interfaces.\"/car/lef\"]\nport = 1").contains("did you mean `/car/left`?"));
     let syntax = RunConfig::from_toml("[behaviour\nlaps = 2", "run.toml").unwrap_err();
@@ -395,5 +395,44 @@ fn unknown_names_in_the_configuration_are_errors_with_the_nearest_name() {
     assert_eq!(
         section.to_string(),
         "run.toml: unknown section `behavior`; did you mean `behaviour`?"
+    );
+    let key = RunConfig::from_toml("enviroment = \"mock\"", "run.toml").unwrap_err();
+    assert_eq!(
+        key.to_string(),
+        "run.toml: unknown section `enviroment`; did you mean `environment`?"
+    );
+}
+
+/// A wrong value names where it was set: the file and key, or the `--set` argument.
+#[test]
+fn config_value_errors_name_where_the_value_was_set() {
+    let error = |config: RunConfig| {
+        platform()
+            .backend("mock", |_, _| Ok(Box::new(MockBackend::new(0.01, false))))
+            .config(config)
+            .build()
+            .unwrap_err()
+            .to_string()
+    };
+    let file = |toml: &str| RunConfig::from_toml(toml, "run.toml").unwrap();
+    assert_eq!(
+        error(file("[platform]\nrealtime = \"yes\"")),
+        "run.toml, key `platform.realtime`: [platform] `realtime` expects true or false, got \"yes\""
+    );
+    assert_eq!(
+        error(file("[components.\"/car/left\"]\nspeed = \"fast\"")),
+        "component /car/left, run.toml, key `components.\"/car/left\".speed` attribute `speed`: `speed` expects a number, got \"fast\""
+    );
+    let mut config = RunConfig::default();
+    config.set("/car/lft/speed=2").unwrap();
+    assert_eq!(
+        error(config),
+        "component /car/lft, --set /car/lft/speed=2 attribute `speed`: config names component /car/lft, which the world does not have; did you mean `/car/left`?"
+    );
+    let mut config = RunConfig::default();
+    config.set("behaviour/laps=many").unwrap();
+    assert!(
+        error(config).starts_with("--set behaviour/laps=many: [behaviour] "),
+        "behaviour values are checked too"
     );
 }

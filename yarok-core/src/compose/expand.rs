@@ -14,6 +14,7 @@ use super::{
     ComponentKeyframe, ComponentType, ComposeError, Composition, Config, Instance, Overrides,
     Source, layout,
 };
+use crate::config::ConfigOrigins;
 use crate::suggest::did_you_mean;
 use crate::template::expr::{Expr, Variables, format_value, truthy};
 use crate::template::xml::{Attribute, Element, Position};
@@ -75,6 +76,8 @@ impl Variables for Scope<'_> {
 
 pub(super) struct Composer<'o> {
     overrides: &'o Overrides,
+    /// Where each override was set (a file and key, a `--set`), when known.
+    config_origins: Option<&'o ConfigOrigins>,
     used_overrides: HashSet<String>,
     origins: Vec<Origin>,
     loaded: HashMap<std::any::TypeId, Loaded>,
@@ -96,8 +99,13 @@ pub(super) struct Composer<'o> {
 }
 
 impl<'o> Composer<'o> {
-    pub(super) fn new(overrides: &'o Overrides, runtime_world: Option<super::Declaration>) -> Self {
+    pub(super) fn new(
+        overrides: &'o Overrides,
+        origins: Option<&'o ConfigOrigins>,
+        runtime_world: Option<super::Declaration>,
+    ) -> Self {
         Self {
+            config_origins: origins,
             runtime_world,
             produced: 0,
             overrides,
@@ -126,13 +134,12 @@ impl<'o> Composer<'o> {
             .find(|path| !self.used_overrides.contains(*path))
         {
             let paths: Vec<&str> = self.instances.iter().map(|i| i.path.as_str()).collect();
-            return Err(self.plain_error(
-                0,
-                format!(
-                    "config names component {unused}, which the world does not have{}",
-                    did_you_mean(unused, paths)
-                ),
-            ));
+            let message = format!(
+                "config names component {unused}, which the world does not have{}",
+                did_you_mean(unused, paths)
+            );
+            let key = self.overrides[unused].keys().next().unwrap_or_default();
+            return Err(self.override_error(unused, key, message));
         }
         let mut mjcf = Element::new("mujoco");
         mjcf.attributes = root_attributes;
@@ -675,7 +682,7 @@ impl<'o> Composer<'o> {
             self.used_overrides.insert(path.to_owned());
             for (key, value) in overrides.iter() {
                 let typed = typed(&loaded.defaults, key, value.clone())
-                    .map_err(|m| self.plain_error(0, format!("config for {path}: {m}")))?;
+                    .map_err(|m| self.override_error(path, key, m))?;
                 config.set(key, typed);
             }
         }
@@ -770,19 +777,19 @@ impl<'o> Composer<'o> {
         })
     }
 
-    fn plain_error(&self, owner: usize, message: String) -> ComposeError {
+    /// An error in the config value `key` for the component at `path`, placed where the value
+    /// was set (a file and key, a `--set`).
+    fn override_error(&self, path: &str, key: &str, message: String) -> ComposeError {
+        let origin = self.config_origins.map_or_else(
+            || "run configuration".to_owned(),
+            |o| o.describe("components", path, key),
+        );
         ComposeError::from(ErrorDetails {
-            component: self
-                .instances
-                .get(owner)
-                .map_or_else(|| "/".to_owned(), |i| i.path.clone()),
-            template: self
-                .origins
-                .first()
-                .map_or_else(String::new, |o| o.label.clone()),
+            component: path.to_owned(),
+            template: origin,
             position: None,
             element: None,
-            attribute: None,
+            attribute: Some(key.to_owned()),
             expression: None,
             message,
         })
@@ -912,7 +919,7 @@ fn required(element: &Element, name: &str) -> Result<Attribute, String> {
 }
 
 /// A config value converted to the type of the key's default.
-fn typed(defaults: &Config, key: &str, value: Value) -> Result<Value, String> {
+pub(crate) fn typed(defaults: &Config, key: &str, value: Value) -> Result<Value, String> {
     let Some(default) = defaults.get(key) else {
         let keys: Vec<&str> = defaults.keys().collect();
         let known = if keys.is_empty() {

@@ -48,9 +48,11 @@ use std::path::PathBuf;
 pub use elements::MJCF_ELEMENTS;
 pub use error::{ComposeError, ErrorDetails};
 pub use evalexpr::Value;
+pub(crate) use expand::typed;
 pub use names::{NameKind, NameMap};
 pub use source::SourceLocation;
 
+use crate::config::Settings;
 use crate::runtime::{Bind, RuntimeError};
 use crate::template::xml::Element;
 
@@ -431,23 +433,38 @@ pub fn compose_with(
     world: ComponentType,
     overrides: &Overrides,
 ) -> Result<Composition, ComposeError> {
-    expand::Composer::new(overrides, None).compose(world)
+    expand::Composer::new(overrides, None, None).compose(world)
 }
 
-/// Composes a world declared at run time, e.g. from a template file named on a command line.
+/// Composes the world `world` with a run's settings: its component config, and errors in a
+/// value name where it was set (the file and key, or the `--set` argument).
+///
+/// # Errors
+///
+/// As [`compose_with`].
+pub fn compose_configured(
+    world: ComponentType,
+    settings: &Settings,
+) -> Result<Composition, ComposeError> {
+    expand::Composer::new(&settings.components, Some(&settings.origins), None).compose(world)
+}
+
+/// Composes a world declared at run time, e.g. from a template file named on a command line,
+/// with a run's settings (see [`compose_configured`]).
 ///
 /// # Errors
 ///
 /// As [`compose_with`].
 pub fn compose_declaration(
     world: Declaration,
-    overrides: &Overrides,
+    settings: &Settings,
 ) -> Result<Composition, ComposeError> {
     let world_type = ComponentType {
         type_name: "run-time world",
         ..ComponentType::of::<RuntimeWorld>()
     };
-    expand::Composer::new(overrides, Some(world)).compose(world_type)
+    expand::Composer::new(&settings.components, Some(&settings.origins), Some(world))
+        .compose(world_type)
 }
 
 /// Stands for a world declared at run time; its declaration is handed to the composer.

@@ -12,7 +12,7 @@ use super::bind::{Bind, Handle, Step};
 use super::interrupt::Interrupt;
 use super::wait::{Clock, Wait, WaitError};
 use super::{Backend, BackendFactory, BoxError, Plugin, RuntimeError};
-use crate::compose::{Component, ComponentType, Composition, Config, Value, compose_with};
+use crate::compose::{Component, ComponentType, Composition, Config, Value, compose_configured};
 use crate::config::{RunConfig, Settings};
 use crate::suggest::did_you_mean;
 
@@ -29,8 +29,6 @@ const YIELD_EVERY: u64 = 64;
 /// Polling rounds per tick after which behaviours that keep waking themselves are left for the
 /// next tick.
 const MAX_ROUNDS: usize = 1000;
-/// Platform settings the platform itself understands.
-const PLATFORM_KEYS: [&str; 3] = ["realtime", "tick_hz", "seed"];
 
 /// The handle behaviours and plugins use: platform time, waits, components.
 ///
@@ -576,9 +574,10 @@ impl PlatformBuilder {
                     environment: settings.environment.clone(),
                     available: self.backends.keys().cloned().collect::<Vec<_>>().join(", "),
                 })?;
-        check_keys("[platform]", &settings.platform, PLATFORM_KEYS)?;
-        let behaviour = defaulted("[behaviour]", &self.behaviour_defaults, &settings.behaviour)?;
-        let composition = compose_with(world, &settings.components)?;
+        let mut settings = settings;
+        settings.platform = typed_settings("platform", &platform_types(), &settings)?;
+        let behaviour = defaulted(&self.behaviour_defaults, &settings)?;
+        let composition = compose_configured(world, &settings)?;
         for path in settings.interfaces.keys() {
             if composition.instance(path).is_none() {
                 let hint =
@@ -687,29 +686,43 @@ fn config_error(message: String) -> RuntimeError {
     .into()
 }
 
-fn check_keys<const N: usize>(
-    section: &str,
-    config: &Config,
-    known: [&str; N],
-) -> Result<(), RuntimeError> {
-    match config.keys().find(|k| !known.contains(k)) {
-        Some(key) => Err(config_error(format!(
-            "{section} has no key `{key}`{}",
-            did_you_mean(key, known)
-        ))),
-        None => Ok(()),
-    }
+/// The type of each platform setting, by an example value.
+fn platform_types() -> Config {
+    Config::from([
+        ("realtime", Value::Boolean(false)),
+        ("tick_hz", Value::Float(100.0)),
+        ("seed", Value::Int(0)),
+    ])
 }
 
-fn defaulted(section: &str, defaults: &Config, given: &Config) -> Result<Config, RuntimeError> {
-    let mut config = defaults.clone();
+/// The values of `[section]` (`platform` or `behaviour`), each of the type its key's value in
+/// `types` has; an unknown key or a wrong type is an error naming where the value was set.
+fn typed_settings(
+    section: &str,
+    types: &Config,
+    settings: &Settings,
+) -> Result<Config, RuntimeError> {
+    let given = match section {
+        "platform" => &settings.platform,
+        _ => &settings.behaviour,
+    };
+    let mut typed = Config::default();
     for (key, value) in given.iter() {
-        if defaults.get(key).is_none() {
-            return Err(config_error(format!(
-                "{section} has no key `{key}`{}",
-                did_you_mean(key, defaults.keys())
-            )));
-        }
+        let value = crate::compose::typed(types, key, value.clone()).map_err(|message| {
+            crate::config::ConfigError {
+                origin: settings.origins.describe(section, "", key),
+                message: format!("[{section}] {message}"),
+            }
+        })?;
+        typed.set(key, value);
+    }
+    Ok(typed)
+}
+
+/// The behaviour's settings: its defaults, overlaid with the run's `[behaviour]` values.
+fn defaulted(defaults: &Config, settings: &Settings) -> Result<Config, RuntimeError> {
+    let mut config = defaults.clone();
+    for (key, value) in typed_settings("behaviour", defaults, settings)?.iter() {
         config.set(key, value.clone());
     }
     Ok(config)
