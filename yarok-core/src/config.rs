@@ -30,7 +30,7 @@ use crate::compose::{Config, Overrides, Value};
 use crate::suggest::did_you_mean;
 
 /// A run configuration could not be read.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[derive(Clone, PartialEq, Eq, thiserror::Error)]
 #[error("{origin}: {message}")]
 pub struct ConfigError {
     /// The file, `<string>`, or `--set`.
@@ -71,6 +71,8 @@ impl ConfigOrigins {
         self.0.extend(other.0);
     }
 }
+
+crate::debug_as_report!(ConfigError);
 
 /// The sections of one layer.
 #[derive(Debug, Clone, Default, PartialEq)]

@@ -7,6 +7,7 @@
 
 pub mod compose;
 pub mod config;
+pub mod report;
 pub mod runtime;
 mod stack;
 pub mod suggest;

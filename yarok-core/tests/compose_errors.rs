@@ -240,3 +240,19 @@ fn an_unknown_tag_is_refused_with_a_suggestion() {
         "<pegs> is neither an MJCF element nor a component tag (<typo> uses <peg>); did you mean `peg`?"
     );
 }
+
+/// `fn main() -> Result<(), Box<dyn Error>>` prints a returned error with `{:?}`: the readable
+/// message, with any cause it does not already include, not a dump of fields.
+#[test]
+fn errors_returned_from_main_print_their_message() {
+    let boxed: Box<dyn std::error::Error> = Box::new(error_of::<Holder>());
+    assert_eq!(format!("{boxed:?}"), boxed.to_string());
+    assert!(!format!("{boxed:?}").contains("ErrorDetails"));
+    let runtime: Box<dyn std::error::Error> = Box::new(yarok_core::runtime::RuntimeError::Compose(
+        error_of::<Holder>(),
+    ));
+    assert_eq!(
+        format!("{runtime:?}"),
+        "component /p, <part> (inline template):3:20, <geom> attribute `size` expression `n / (n - 2)`: division by zero"
+    );
+}

@@ -72,6 +72,9 @@ impl Data {
     }
 
     /// Advances the simulation by one timestep.
+    ///
+    /// MuJoCo logs the first of each kind of warning (a NaN or infinite control, which it
+    /// zeroes; an unstable state, which it resets) as a `tracing` warning with target `mujoco`.
     pub fn step(&mut self) {
         // SAFETY: model and data are valid and belong together.
         unsafe { self.model.mj().mj_step(self.model.raw(), self.raw.as_ptr()) }

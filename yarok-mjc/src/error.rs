@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use crate::ObjectKind;
 
 /// libmujoco could not be used.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[derive(Clone, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
 pub enum LibraryError {
     /// `MUJOCO_DIR` is set but holds no MuJoCo shared library.
@@ -39,7 +39,7 @@ pub enum LibraryError {
 }
 
 /// A model could not be built or a name could not be resolved in it.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[derive(Clone, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
 pub enum ModelError {
     /// libmujoco is unavailable.
@@ -92,3 +92,5 @@ pub enum ModelError {
         what: &'static str,
     },
 }
+
+yarok_core::debug_as_report!(LibraryError, ModelError);

@@ -39,7 +39,13 @@ trait PrinterInterface {
 impl AnetA30 {
     /// Starts moving the head to `target` (millimetres), clamped to the work volume; returns the
     /// clamped target.
+    ///
+    /// A NaN coordinate is a warning (`tracing`) and goes to 0; an infinite one to the end of
+    /// its axis.
     pub fn move_to(&self, target: [f64; 3]) -> [f64; 3] {
+        if target.iter().any(|t| t.is_nan()) {
+            tracing::warn!("printer: move_to({target:?}) has a NaN coordinate; it goes to 0");
+        }
         let clamped = clamp(target);
         self.interface.borrow_mut().move_to(clamped);
         clamped

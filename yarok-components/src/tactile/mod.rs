@@ -18,8 +18,10 @@ pub mod npy;
 pub mod phong;
 mod rows;
 
+yarok_core::debug_as_report!(SizeError);
+
 /// An input whose size does not fit the image being rendered.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[derive(Clone, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
 pub enum SizeError {
     /// The depth map is not a whole number of rows of the given width.

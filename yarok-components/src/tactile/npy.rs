@@ -12,8 +12,10 @@ pub struct NpyArray {
     pub data: Vec<f32>,
 }
 
+yarok_core::debug_as_report!(NpyError);
+
 /// Why a `.npy` file could not be read.
-#[derive(Debug, thiserror::Error)]
+#[derive(thiserror::Error)]
 #[non_exhaustive]
 pub enum NpyError {
     /// The file could not be read or decompressed.

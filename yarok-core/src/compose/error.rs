@@ -10,8 +10,10 @@ pub(super) type Problem = Box<(Element, Option<Attribute>, String)>;
 
 /// A world could not be composed. Its [`ErrorDetails`] (reached through `Deref`) say where and
 /// what.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Clone, PartialEq, Eq)]
 pub struct ComposeError(Box<ErrorDetails>);
+
+crate::debug_as_report!(ComposeError);
 
 impl From<ErrorDetails> for ComposeError {
     fn from(details: ErrorDetails) -> Self {

@@ -52,8 +52,10 @@ use crate::config::ConfigError;
 /// Errors of behaviours, plugins and interfaces: anything that can be sent across threads.
 pub type BoxError = Box<dyn std::error::Error + Send + Sync>;
 
+crate::debug_as_report!(RuntimeError);
+
 /// What stopped a platform from starting or running.
-#[derive(Debug, thiserror::Error)]
+#[derive(thiserror::Error)]
 #[non_exhaustive]
 pub enum RuntimeError {
     /// The builder was given no world.

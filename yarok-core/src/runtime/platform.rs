@@ -553,10 +553,14 @@ impl PlatformBuilder {
 
     /// Composes the world, makes the backend and binds every component (children first).
     ///
+    /// When the application has installed no `tracing` subscriber, one is installed that writes
+    /// warnings (MuJoCo's among them) to standard error; `RUST_LOG` chooses what else it shows.
+    ///
     /// # Errors
     ///
     /// Composition, configuration, backend and binding errors, each naming its place.
     pub fn build(mut self) -> Result<Platform, RuntimeError> {
+        report_warnings();
         let world = self.world.ok_or(RuntimeError::NoWorld)?;
         let settings = self.config.settings(&self.default_environment);
         for environment in self.config.environments() {
@@ -684,6 +688,21 @@ fn config_error(message: String) -> RuntimeError {
         message,
     }
     .into()
+}
+
+/// Sends warnings (MuJoCo's among them) to standard error when the application has installed no
+/// `tracing` subscriber of its own, so that none is lost; `RUST_LOG` chooses what else to show.
+fn report_warnings() {
+    if tracing::dispatcher::has_been_set() {
+        return;
+    }
+    let filter = tracing_subscriber::EnvFilter::try_from_default_env()
+        .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("warn"));
+    // Another thread may have installed one since the check: then that one reports.
+    let _installed = tracing_subscriber::fmt()
+        .with_env_filter(filter)
+        .with_writer(std::io::stderr)
+        .try_init();
 }
 
 /// The type of each platform setting, by an example value.

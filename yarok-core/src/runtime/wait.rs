@@ -50,7 +50,7 @@ impl Clock {
 }
 
 /// Why a wait ended without its condition holding.
-#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[derive(Clone, Copy, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum WaitError {
     /// The timeout (platform seconds) passed first.
@@ -75,6 +75,8 @@ pub enum WaitError {
         location: &'static Location<'static>,
     },
 }
+
+crate::debug_as_report!(WaitError);
 
 impl WaitError {
     /// The error for `seconds` given to `what`, when it is not a valid duration.

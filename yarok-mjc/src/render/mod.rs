@@ -17,7 +17,7 @@ use egl::GlContext;
 pub type DepthImage = ImageBuffer<Luma<f32>, Vec<f32>>;
 
 /// Rendering could not be set up or carried out.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[derive(Clone, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
 pub enum RenderError {
     /// libmujoco is unavailable.
@@ -86,6 +86,8 @@ pub enum RenderError {
     #[error("the data belongs to another model than the renderer was built for")]
     ModelMismatch,
 }
+
+yarok_core::debug_as_report!(RenderError);
 
 impl From<ModelError> for RenderError {
     fn from(error: ModelError) -> Self {
