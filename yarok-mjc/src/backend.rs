@@ -16,6 +16,8 @@ use crate::{ActuatorId, BodyId, CameraId, Data, JointId, Model, ModelError, Sens
 pub struct SimBackend {
     model: Arc<Model>,
     data: Rc<RefCell<Data>>,
+    /// Simulation time after the last step, so that reading it needs no borrow of the data.
+    time: f64,
     #[cfg(feature = "render")]
     renderers: RefCell<Vec<((u32, u32), SharedRenderer)>>,
 }
@@ -43,6 +45,7 @@ impl SimBackend {
         let mut data = Data::new(&model)?;
         data.forward();
         Ok(Self {
+            time: data.time(),
             model,
             data: Rc::new(RefCell::new(data)),
             #[cfg(feature = "render")]
@@ -101,12 +104,21 @@ impl SimBackend {
 
 impl Backend for SimBackend {
     fn step(&mut self) -> Result<(), RuntimeError> {
-        self.data.borrow_mut().step();
+        let mut data = self.data.try_borrow_mut().map_err(|_| {
+            RuntimeError::Backend(
+                "the simulation data is still borrowed when the platform steps: a behaviour or \
+                 component keeps a `borrow()`/`borrow_mut()` of it across an `.await`; drop the \
+                 borrow before awaiting"
+                    .into(),
+            )
+        })?;
+        data.step();
+        self.time = data.time();
         Ok(())
     }
 
     fn time(&self) -> f64 {
-        self.data.borrow().time()
+        self.time
     }
 
     fn timestep(&self) -> f64 {
