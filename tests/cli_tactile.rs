@@ -179,3 +179,64 @@ fn mistakes_are_explained() {
     let (code, stderr) = yarok(&["tactile", "gelsight", "/nonexistent.npy", "/tmp/x.png"]);
     assert!(code == 2 && stderr.contains("/nonexistent.npy"), "{stderr}");
 }
+
+/// Writes an uncompressed `.npy` (format 1.0, little-endian f32, C order).
+fn write_npy(path: &std::path::Path, rows: usize, columns: usize, data: &[f32]) {
+    let mut header =
+        format!("{{'descr': '<f4', 'fortran_order': False, 'shape': ({rows}, {columns}), }}");
+    while (10 + header.len() + 1) % 64 != 0 {
+        header.push(' ');
+    }
+    header.push('\n');
+    let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+    bytes.extend((header.len() as u16).to_le_bytes());
+    bytes.extend(header.as_bytes());
+    bytes.extend(data.iter().flat_map(|x| x.to_le_bytes()));
+    std::fs::write(path, bytes).unwrap();
+}
+
+/// A 16-bit PNG in millimetres gives the same image as a metric `.npy` of the same depths.
+#[test]
+fn a_millimetre_png_gives_the_same_image_as_the_equivalent_metric_npy() {
+    let dir = tempfile::tempdir().unwrap();
+    let metric =
+        yarok::components::tactile::npy::read(golden("gelsight/sphere_center/input_depth.npy.gz"))
+            .unwrap();
+    let [rows, columns] = [metric.shape[0], metric.shape[1]];
+    let millimetres: Vec<u16> = metric
+        .data
+        .iter()
+        .map(|m| (m * 1000.0).round() as u16)
+        .collect();
+    let png = dir.path().join("depth_mm.png");
+    image::ImageBuffer::<image::Luma<u16>, _>::from_raw(
+        columns as u32,
+        rows as u32,
+        millimetres.clone(),
+    )
+    .unwrap()
+    .save(&png)
+    .unwrap();
+    let npy = dir.path().join("depth_m.npy");
+    let metres: Vec<f32> = millimetres
+        .iter()
+        .map(|&mm| f32::from(mm) / 1000.0)
+        .collect();
+    write_npy(&npy, rows, columns, &metres);
+    let render = |input: &std::path::Path| {
+        let out = dir.path().join("out.png");
+        let (code, stderr) = yarok(&[
+            "tactile",
+            "gelsight",
+            input.to_str().unwrap(),
+            out.to_str().unwrap(),
+            "--seed",
+            "7",
+        ]);
+        assert_eq!(code, 0, "{stderr}");
+        image::open(&out).unwrap().to_rgb8()
+    };
+    let (from_png, from_npy) = (render(&png), render(&npy));
+    assert_eq!(from_png.dimensions(), (columns as u32, rows as u32));
+    assert!(from_png == from_npy, "the two inputs give different images");
+}

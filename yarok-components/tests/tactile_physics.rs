@@ -331,3 +331,35 @@ fn wrong_sizes_are_errors() {
         })
     ));
 }
+
+/// With `clamp_diffuse`, no pixel is darker than the ambient term (`ia` × background); without
+/// it, as in the reference, surfaces facing away from a light are.
+#[test]
+fn clamped_diffuse_never_darkens_below_the_ambient_term() {
+    let bg = background("geltip");
+    let pressed = depth("geltip", "sphere_offcenter");
+    let darkest_below_ambient = |clamp_diffuse: bool| {
+        let params = GelTipParams {
+            clamp_diffuse,
+            ..GelTipParams::default()
+        };
+        let ambient = params.ia;
+        let mut model = GelTipModel::load(params, golden("geltip/params")).unwrap();
+        let image = model.render(&pressed.data, &bg).unwrap();
+        image
+            .iter()
+            .zip(&bg)
+            .map(|(out, back)| ambient * f64::from(*back) - f64::from(*out))
+            .fold(f64::MIN, f64::max)
+    };
+    let clamped = darkest_below_ambient(true);
+    assert!(
+        clamped <= 1.0,
+        "a pixel is {clamped:.1} levels below the ambient term"
+    );
+    let unclamped = darkest_below_ambient(false);
+    assert!(
+        unclamped > 5.0,
+        "the reference's dark crescents: {unclamped:.1}"
+    );
+}

@@ -436,3 +436,42 @@ fn config_value_errors_name_where_the_value_was_set() {
         "behaviour values are checked too"
     );
 }
+
+/// `--config FILE` reads a run configuration file, which later `--set`s override; a value wrong
+/// in the file names the file and key, a missing file names the file.
+#[test]
+fn config_files_are_read_from_the_command_line() {
+    let dir = std::env::temp_dir().join(format!("yarok-config-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("run.toml");
+    std::fs::write(&file, RUN).unwrap();
+    let file_arg = file.to_str().unwrap().to_owned();
+    let args = ["--config", &file_arg, "--env", "mock"].map(String::from);
+    assert_eq!(speeds(platform().args(args).unwrap()), (5.0, 4.0, 2));
+    let args = ["--config", &file_arg, "--set", "behaviour/laps=9"].map(String::from);
+    assert_eq!(speeds(platform().args(args).unwrap()), (3.0, 4.0, 9));
+
+    let bad = dir.join("bad.toml");
+    std::fs::write(&bad, "[platform]\nrealtime = \"yes\"\n").unwrap();
+    let error = platform()
+        .backend("mock", |_, _| Ok(Box::new(MockBackend::new(0.01, false))))
+        .args(["--config", bad.to_str().unwrap()].map(String::from))
+        .unwrap()
+        .build()
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.starts_with(&format!("{}, key `platform.realtime`: ", bad.display())),
+        "{error}"
+    );
+    let missing = dir.join("missing.toml");
+    let error = platform()
+        .args(["--config", missing.to_str().unwrap()].map(String::from))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.starts_with(&format!("{}: cannot read", missing.display())),
+        "{error}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

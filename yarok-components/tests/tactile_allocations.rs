@@ -1,0 +1,74 @@
+//! "A frame allocates nothing": once a model has rendered one frame of a size, rendering more
+//! frames into a caller's buffer allocates no memory, counted on the rendering thread by
+//! `allocation-counter`'s global allocator.
+
+use std::path::PathBuf;
+
+use yarok_components::tactile::geltip::{GelTipModel, GelTipParams};
+use yarok_components::tactile::npy;
+use yarok_components::tactile::phong::{PhongModel, PhongParams};
+
+/// Allocations `frame` makes on this thread.
+fn allocations(frame: impl FnOnce()) -> u64 {
+    allocation_counter::measure(frame).count_total
+}
+
+fn golden(path: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../tests/golden/tactile")
+        .join(path)
+}
+
+fn background(model: &str) -> Vec<u8> {
+    image::open(golden(&format!("{model}/background.png")))
+        .unwrap()
+        .to_rgb8()
+        .into_raw()
+}
+
+#[test]
+fn phong_frames_allocate_nothing() {
+    for (model, params) in [
+        ("digit", PhongParams::digit()),
+        ("gelsight", PhongParams::gelsight2014()),
+    ] {
+        let bg = background(model);
+        let depth =
+            npy::read(golden(&format!("{model}/sphere_center/input_depth.npy.gz"))).unwrap();
+        let width = depth.shape[1];
+        let mut phong = PhongModel::new(params);
+        let mut out = vec![0; bg.len()];
+        phong
+            .render_into(&depth.data, width, &bg, &mut out)
+            .unwrap();
+        let counted = allocations(|| {
+            for _ in 0..3 {
+                phong
+                    .render_into(&depth.data, width, &bg, &mut out)
+                    .unwrap();
+            }
+        });
+        assert_eq!(counted, 0, "{model}");
+        assert!(out.iter().any(|&v| v != 0), "{model}: a frame was drawn");
+        assert!(
+            allocations(|| drop(phong.render(&depth.data, width, &bg).unwrap())) > 0,
+            "the counter counts"
+        );
+    }
+}
+
+#[test]
+fn geltip_frames_allocate_nothing() {
+    let bg = background("geltip");
+    let depth = npy::read(golden("geltip/sphere_center/input_depth.npy.gz")).unwrap();
+    let mut model = GelTipModel::load(GelTipParams::default(), golden("geltip/params")).unwrap();
+    let mut out = vec![0; bg.len()];
+    model.render_into(&depth.data, &bg, &mut out).unwrap();
+    let counted = allocations(|| {
+        for _ in 0..3 {
+            model.render_into(&depth.data, &bg, &mut out).unwrap();
+        }
+    });
+    assert_eq!(counted, 0);
+    assert!(out.iter().any(|&v| v != 0));
+}
