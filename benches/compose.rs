@@ -17,7 +17,7 @@ use yarok::core::template::xml::Element;
 use yarok::mjc::Model;
 
 mod measure;
-use measure::mean_time;
+use measure::mean_times;
 
 static MESHES: OnceLock<PathBuf> = OnceLock::new();
 
@@ -242,14 +242,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         composition.mjcf.descendants().len(),
         model.count(yarok::mjc::ObjectKind::Body)
     );
-    let compose_time = mean_time(|| {
-        compose::<DigitWorld>().expect("compose");
-    });
-    let parse_time = mean_time(|| {
-        Element::parse(&xml).expect("parse");
-    });
-    let compile_time = mean_time(|| {
-        Model::from_composition(&composition).expect("compile");
+    let [compose_time, parse_time, compile_time] = mean_times(|variant| match variant {
+        0 => compose::<DigitWorld>().expect("compose").instances.len(),
+        1 => Element::parse(&xml).expect("parse").children.len(),
+        _ => Model::from_composition(&composition)
+            .expect("compile")
+            .count(yarok::mjc::ObjectKind::Body),
     });
     let ms = |d: Duration| d.as_secs_f64() * 1e3;
     println!("\n{:<34} {:>10}", "step", "ms");

@@ -13,20 +13,22 @@ use yarok::mjc::{Data, Model, RenderPreset, Renderer};
 const SCENE: &str = include_str!("../examples/sim/falling_boxes.xml");
 mod measure;
 
-/// How many times per second `work` runs.
-fn rate(work: impl FnMut()) -> f64 {
-    1.0 / measure::mean_time(work).as_secs_f64()
+/// Runs per second, from the mean time of one run.
+fn rate(time: std::time::Duration) -> f64 {
+    1.0 / time.as_secs_f64()
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let model = Arc::new(Model::from_xml_str(SCENE)?);
     let mut data = Data::new(&model)?;
-    let steps_per_s = rate(|| {
+    let [step_time] = measure::mean_times(|_| {
         data.step();
         if data.time() > 2.0 {
             data.reset();
         }
+        data.time()
     });
+    let steps_per_s = rate(step_time);
     println!("mj_step, falling boxes: {steps_per_s:>10.0} steps/s");
 
     let camera = model.camera("overview")?;
@@ -36,19 +38,22 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     println!("\nrender fps     quality       fast  fast/quality");
     for (width, height) in [(640, 480), (320, 240)] {
-        let mut fps = [0.0; 2];
-        for (slot, preset) in [RenderPreset::Quality, RenderPreset::Fast]
-            .into_iter()
-            .enumerate()
-        {
-            let mut renderer = Renderer::builder()
+        let renderer = |preset| {
+            Renderer::builder()
                 .size(width, height)
                 .preset(preset)
-                .build(&model)?;
-            fps[slot] = rate(|| {
-                renderer.render_rgb(&mut data, camera).expect("render");
-            });
-        }
+                .build(&model)
+        };
+        let mut renderers = [
+            renderer(RenderPreset::Quality)?,
+            renderer(RenderPreset::Fast)?,
+        ];
+        let times: [_; 2] = measure::mean_times(|variant| {
+            renderers[variant]
+                .render_rgb(&mut data, camera)
+                .expect("render")
+        });
+        let fps = times.map(rate);
         println!(
             "{:<10} {:>11.1} {:>10.1} {:>12.2}x",
             format!("{width}x{height}"),

@@ -121,17 +121,15 @@ fn main() {
         }
         let mut model = make();
         let single_image = model.render();
-        let single = measure::mean_time(|| {
-            std::hint::black_box(model.render());
-        });
         model.set_parallel(true);
         assert_eq!(
             model.render(),
             single_image,
             "{name}: threads change the image"
         );
-        let parallel = measure::mean_time(|| {
-            std::hint::black_box(model.render());
+        let [single, parallel] = measure::mean_times(|variant| {
+            model.set_parallel(variant == 1);
+            model.render()
         });
         println!(
             "{name:<18} {:>16.2} {:>12.2} {:>8.2}× {target:>10.1}",
