@@ -24,6 +24,7 @@ fi
 echo "== tests of process-wide state, as threads of one process (as cargo test runs them)"
 cargo test --locked -p yarok-mjc --test render_offscreen
 cargo test --locked -p yarok-core --test runtime_interrupt
+cargo test --locked --test warnings_visible
 cargo test --workspace --doc --locked
 echo "== docs"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked

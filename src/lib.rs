@@ -5,7 +5,7 @@
 //!
 //! - [`core`] (`yarok-core`): templates, composition, config and the async runtime;
 //! - [`mjc`] (`yarok-mjc`): MuJoCo bindings, safe model/data, headless rendering;
-//! - [`hw`] (`yarok-hw`): the hardware backend and device drivers;
+//! - [`hw`] (`yarok-hw`): the hardware backend (device drivers come next);
 //! - [`components`] (`yarok-components`): the bundled components.
 //!
 //! # Cargo features
@@ -18,9 +18,13 @@
 
 use yarok_core::runtime::{MockBackend, PlatformBuilder};
 
+#[doc(inline)]
 pub use yarok_components as components;
+#[doc(inline)]
 pub use yarok_core as core;
+#[doc(inline)]
 pub use yarok_hw as hw;
+#[doc(inline)]
 pub use yarok_mjc as mjc;
 
 pub use yarok_core::compose::{Component, Declaration};

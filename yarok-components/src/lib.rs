@@ -1,8 +1,10 @@
 //! yarok-components: the components that ship with yarok.
 //!
-//! Its one job is the catalogue: cameras, the DIGIT, GelSight and GelTip tactile sensors and
-//! their optical models, the UR5 arm, the Robotiq 2F-85 gripper, the Anet A30 printer used as a
-//! cartesian robot, worlds and toys, each with one interface per environment.
+//! Its one job is the catalogue of components, each with one interface per environment. Today:
+//! a camera ([`cameras::Cam`]), the optical models of the DIGIT, GelSight and GelTip tactile
+//! sensors ([`tactile`]), the Anet A30 printer used as a cartesian robot ([`robots::AnetA30`]),
+//! a tumble tower ([`toys::TumbleTower`]) and worlds ([`worlds`]). Arms, grippers and tactile
+//! sensors in the world come with their own issues.
 //!
 pub mod cameras;
 pub mod robots;
