@@ -41,13 +41,27 @@ pub struct Data {
 // Sync model; moving both to another thread is sound. It is not Sync: stepping needs `&mut`.
 unsafe impl Send for Data {}
 
-/// The position and orientation of a body in world coordinates.
+/// A position and orientation: of a body or site in world coordinates, or of a body in its
+/// parent's frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Pose {
     /// Position in metres.
     pub pos: [f64; 3],
     /// Orientation as a unit quaternion `[w, x, y, z]`.
     pub quat: [f64; 4],
+}
+
+impl Pose {
+    /// The `index`th pose of MuJoCo arrays of positions (3 numbers each) and quaternions (4).
+    pub(crate) fn of(positions: &[f64], quaternions: &[f64], index: usize) -> Self {
+        let mut pose = Pose {
+            pos: [0.0; 3],
+            quat: [0.0; 4],
+        };
+        pose.pos.copy_from_slice(&positions[3 * index..3 * index + 3]);
+        pose.quat.copy_from_slice(&quaternions[4 * index..4 * index + 4]);
+        pose
+    }
 }
 
 impl Data {
@@ -230,13 +244,7 @@ impl Data {
                 self.array(self.raw().xquat, 4 * nbody),
             )
         };
-        let mut pose = Pose {
-            pos: [0.0; 3],
-            quat: [0.0; 4],
-        };
-        pose.pos.copy_from_slice(&xpos[3 * index..3 * index + 3]);
-        pose.quat.copy_from_slice(&xquat[4 * index..4 * index + 4]);
-        pose
+        Pose::of(xpos, xquat, index)
     }
 
     /// The pose of a site in world coordinates (a tool centre point, a mounting point), as
@@ -256,18 +264,17 @@ impl Data {
                 self.array(self.raw().site_xmat, 9 * nsite),
             )
         };
-        let mut pose = Pose {
-            pos: [0.0; 3],
-            quat: [0.0; 4],
-        };
-        pose.pos.copy_from_slice(&xpos[3 * index..3 * index + 3]);
+        let mut quat = [0.0; 4];
         // SAFETY: `quat` holds 4 numbers and the matrix 9, as mju_mat2Quat reads and writes.
         unsafe {
             self.model
                 .mj()
-                .mju_mat2Quat(pose.quat.as_mut_ptr(), xmat[9 * index..].as_ptr());
+                .mju_mat2Quat(quat.as_mut_ptr(), xmat[9 * index..].as_ptr());
         }
-        pose
+        Pose {
+            pos: [xpos[3 * index], xpos[3 * index + 1], xpos[3 * index + 2]],
+            quat,
+        }
     }
 
     /// The raw `mjData`, for what the safe layer does not cover yet.

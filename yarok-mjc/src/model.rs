@@ -218,13 +218,7 @@ impl Model {
                 self.array(self.raw().body_quat, 4 * nbody),
             )
         };
-        let mut pose = Pose {
-            pos: [0.0; 3],
-            quat: [0.0; 4],
-        };
-        pose.pos.copy_from_slice(&pos[3 * index..3 * index + 3]);
-        pose.quat.copy_from_slice(&quat[4 * index..4 * index + 4]);
-        pose
+        Pose::of(pos, quat, index)
     }
 
     /// The model's structural signature; ids resolved in one model are only valid for models
