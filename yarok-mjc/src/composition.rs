@@ -8,6 +8,9 @@ use crate::error::ModelError;
 use crate::model::{Model, to_usize};
 use crate::sys;
 
+/// A composition reads its files from disk: no assets in memory.
+const NO_ASSETS: [(&str, &[u8]); 0] = [];
+
 impl Model {
     /// Compiles a composed world.
     ///
@@ -44,7 +47,15 @@ impl Model {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn from_composition(composition: &Composition) -> Result<Self, ModelError> {
-        let model = Self::from_xml_str(&composition.to_xml())
+        if let Some((element, problem)) = crate::guard::known_abort(&composition.mjcf) {
+            return Err(ModelError::Compile {
+                origin: composition
+                    .source_of(element)
+                    .map_or_else(|| "the composed world".to_owned(), |s| s.to_string()),
+                message: problem.to_owned(),
+            });
+        }
+        let model = Self::compile_xml(&composition.to_xml(), NO_ASSETS)
             .map_err(|error| located(error, composition))?;
         if composition.keyframes.is_empty() {
             return Ok(model);
@@ -64,7 +75,7 @@ impl Model {
         }
         mjcf.children.retain(|s| s.name != "keyframe");
         mjcf.children.push(section);
-        Self::from_xml_str(&mjcf.to_xml())
+        Self::compile_xml(&mjcf.to_xml(), NO_ASSETS)
     }
 
     /// A whole-model `<key>` for a component's keyframe: the keyframes it names in `from`

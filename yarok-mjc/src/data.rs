@@ -58,8 +58,10 @@ impl Pose {
             pos: [0.0; 3],
             quat: [0.0; 4],
         };
-        pose.pos.copy_from_slice(&positions[3 * index..3 * index + 3]);
-        pose.quat.copy_from_slice(&quaternions[4 * index..4 * index + 4]);
+        pose.pos
+            .copy_from_slice(&positions[3 * index..3 * index + 3]);
+        pose.quat
+            .copy_from_slice(&quaternions[4 * index..4 * index + 4]);
         pose
     }
 }

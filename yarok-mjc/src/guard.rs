@@ -14,18 +14,24 @@ pub(crate) fn refuse_known_aborts(xml: &str, origin: &str) -> Result<(), ModelEr
     let Ok(root) = Element::parse(xml) else {
         return Ok(());
     };
-    let assets = root.children.iter().filter(|s| s.name == "asset");
-    let fileless = assets
-        .flat_map(|asset| &asset.children)
-        .find(|e| e.name == "model" && e.attribute("file").is_none());
-    match fileless {
-        Some(model) => Err(ModelError::Compile {
+    match known_abort(&root) {
+        Some((element, problem)) => Err(ModelError::Compile {
             origin: origin.to_owned(),
             message: format!(
-                "line {}, column {}: <model> in <asset> needs a `file`",
-                model.position.line, model.position.column
+                "line {}, column {}: {problem}",
+                element.position.line, element.position.column
             ),
         }),
         None => Ok(()),
     }
+}
+
+/// The first element of `root` known to abort MuJoCo, and why.
+pub(crate) fn known_abort(root: &Element) -> Option<(&Element, &'static str)> {
+    root.children
+        .iter()
+        .filter(|s| s.name == "asset")
+        .flat_map(|asset| &asset.children)
+        .find(|e| e.name == "model" && e.attribute("file").is_none())
+        .map(|model| (model, "<model> in <asset> needs a `file`"))
 }

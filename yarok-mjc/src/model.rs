@@ -88,8 +88,18 @@ impl Model {
         N: AsRef<str>,
         B: AsRef<[u8]>,
     {
-        let mj = mujoco()?;
         guard::refuse_known_aborts(xml, "<string>")?;
+        Self::compile_xml(xml, assets)
+    }
+
+    /// Compiles MJCF text that [`guard`] has seen.
+    pub(crate) fn compile_xml<I, N, B>(xml: &str, assets: I) -> Result<Self, ModelError>
+    where
+        I: IntoIterator<Item = (N, B)>,
+        N: AsRef<str>,
+        B: AsRef<[u8]>,
+    {
+        let mj = mujoco()?;
         let mut vfs = Vfs::new(mj);
         vfs.add(MAIN_FILE, xml.as_bytes())?;
         for (name, bytes) in assets {

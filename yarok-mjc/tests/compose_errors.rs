@@ -74,3 +74,31 @@ fn a_schema_error_names_the_component_template_and_element() {
     );
     assert_eq!(message, "XML Error: bad format in attribute 'size'");
 }
+
+struct Shop;
+impl Component for Shop {
+    fn declaration() -> Declaration {
+        Declaration::new("shop")
+            .uses::<Crate>()
+            .template(r#"<mujoco><worldbody><crate name="c"/></worldbody></mujoco>"#)
+    }
+}
+
+struct Crate;
+impl Component for Crate {
+    fn declaration() -> Declaration {
+        Declaration::new("crate")
+            .template("<mujoco>\n  <asset>\n    <model name=\"inside\"/>\n  </asset>\n</mujoco>")
+    }
+}
+
+/// An input that would abort MuJoCo is refused first, and named like any compile error.
+#[test]
+fn an_aborting_input_is_refused_with_its_place() {
+    let (origin, message) = compile_error::<Shop>();
+    assert_eq!(
+        origin,
+        "component /c, <crate> (inline template):3:5, <model>"
+    );
+    assert_eq!(message, "<model> in <asset> needs a `file`");
+}

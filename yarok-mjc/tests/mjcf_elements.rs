@@ -56,8 +56,8 @@ fn mujoco_recognises_every_listed_element() {
         .collect();
     assert!(unknown.is_empty(), "MuJoCo does not know {unknown:?}");
     assert!(
-        MJCF_ELEMENTS.is_sorted(),
-        "the list is searched by bisection"
+        MJCF_ELEMENTS.is_sorted_by_key(|name| (name.len(), *name)),
+        "the list is searched by bisection, by length then text"
     );
 }
 

@@ -8,8 +8,11 @@ use evalexpr::Value;
 use super::angles;
 use super::error::{ErrorDetails, Problem};
 use super::files::{self, Origin};
+use super::mount::{collect_mounts, mount};
 use super::names::{self, CLASSED, NameMap};
 use super::sections::World;
+use super::segments::{Segment, segments, whole_expression};
+use super::typed::typed;
 use super::{
     ComponentKeyframe, ComponentType, ComposeError, Composition, Config, Instance, Overrides,
     Source, layout,
@@ -127,7 +130,7 @@ impl<'o> Composer<'o> {
         let loaded = self.load(world, "/")?;
         let config = self.configure(&loaded, "/", Vec::new(), None)?;
         let root_attributes = loaded.tree.attributes.clone();
-        let body = self.instance(world, "/", config, 0)?;
+        let body = self.instance(world, loaded, "/", config, 0)?;
         if let Some(unused) = self
             .overrides
             .keys()
@@ -308,17 +311,18 @@ impl<'o> Composer<'o> {
         Ok(loaded)
     }
 
-    /// Composes one component instance; returns its worldbody content. Its other sections go to
-    /// the world.
+    /// Composes one component instance from its loaded template; returns its worldbody
+    /// content. Its other sections go to the world.
     fn instance(
         &mut self,
         component: ComponentType,
+        loaded: Loaded,
         path: &str,
         config: Config,
         depth: usize,
     ) -> Result<Vec<Element>, ComposeError> {
         self.expanding.push(self.instances.len());
-        let body = self.expand_instance(component, path, config, depth);
+        let body = self.expand_instance(component, loaded, path, config, depth);
         self.expanding.pop();
         body
     }
@@ -326,11 +330,11 @@ impl<'o> Composer<'o> {
     fn expand_instance(
         &mut self,
         component: ComponentType,
+        loaded: Loaded,
         path: &str,
         config: Config,
         depth: usize,
     ) -> Result<Vec<Element>, ComposeError> {
-        let loaded = self.load(component, path)?;
         let id = self.instances.len();
         let components = loaded
             .components
@@ -606,19 +610,18 @@ impl<'o> Composer<'o> {
         }
         let config = self.configure(&loaded, &path, assigned, Some(&tag))?;
         let sub_id = self.instances.len();
-        let mut body = self.instance(component, &path, config, ctx.depth)?;
+        let mut body = self.instance(component, loaded, &path, config, ctx.depth)?;
         let nested_ctx = Ctx {
             base_path: path.clone(),
             ..ctx.clone()
         };
         for mut child in std::mem::take(&mut tag.children) {
-            let parent = child.take_attribute("parent");
-            let carrier = child.without_children();
-            let expanded = self.expand(vec![child], &nested_ctx, scope)?;
-            let Some(parent) = parent else {
-                body.extend(expanded);
+            let Some(parent) = child.take_attribute("parent") else {
+                body.extend(self.expand(vec![child], &nested_ctx, scope)?);
                 continue;
             };
+            let carrier = child.without_children();
+            let expanded = self.expand(vec![child], &nested_ctx, scope)?;
             if mount(&mut body, sub_id, &parent.value, expanded).is_err() {
                 let mut mounts = Vec::new();
                 collect_mounts(&body, sub_id, &mut mounts);
@@ -861,193 +864,9 @@ fn set_missing_class(elements: &mut [Element], in_worldbody: bool) {
     }
 }
 
-/// The attributes that give a site its place in its body, which a `<frame>` takes as well.
-const FRAME_ATTRIBUTES: [&str; 6] = ["pos", "quat", "axisangle", "xyaxes", "zaxis", "euler"];
-
-/// Places `children` in `owner`'s body named `name`, or at its site named `name` (inside a
-/// `<frame>` with the site's position and orientation, next to the site, as MuJoCo's attach
-/// does). Gives `children` back when `owner` has neither.
-fn mount(
-    elements: &mut Vec<Element>,
-    owner: usize,
-    name: &str,
-    children: Vec<Element>,
-) -> Result<(), Vec<Element>> {
-    let is_named = |e: &Element, tag: &str| {
-        e.name == tag && e.owner == owner && e.attribute("name") == Some(name)
-    };
-    if let Some(site) = elements.iter().find(|e| is_named(e, "site")) {
-        let mut frame = site.without_children();
-        frame.name = "frame".to_owned();
-        frame
-            .attributes
-            .retain(|a| FRAME_ATTRIBUTES.contains(&a.name.as_str()));
-        frame.children = children;
-        elements.push(frame);
-        return Ok(());
-    }
-    let mut children = children;
-    for element in elements.iter_mut() {
-        if is_named(element, "body") {
-            element.children.extend(children);
-            return Ok(());
-        }
-        children = match crate::stack::deep(|| mount(&mut element.children, owner, name, children))
-        {
-            Ok(()) => return Ok(()),
-            Err(children) => children,
-        };
-    }
-    Err(children)
-}
-
-/// The names of `owner`'s bodies and sites.
-fn collect_mounts(elements: &[Element], owner: usize, out: &mut Vec<String>) {
-    for element in elements {
-        if matches!(element.name.as_str(), "body" | "site") && element.owner == owner {
-            out.extend(element.attribute("name").map(str::to_owned));
-        }
-        crate::stack::deep(|| collect_mounts(&element.children, owner, out));
-    }
-}
-
 fn required(element: &Element, name: &str) -> Result<Attribute, String> {
     element
         .attribute_entry(name)
         .cloned()
         .ok_or_else(|| format!("<{}> needs a `{name}` attribute", element.name))
-}
-
-/// A config value converted to the type of the key's default.
-pub(crate) fn typed(defaults: &Config, key: &str, value: Value) -> Result<Value, String> {
-    let Some(default) = defaults.get(key) else {
-        let keys: Vec<&str> = defaults.keys().collect();
-        let known = if keys.is_empty() {
-            "it has none".to_owned()
-        } else {
-            format!("it has {}", keys.join(", "))
-        };
-        return Err(format!(
-            "no config key `{key}` ({known}){}",
-            did_you_mean(key, keys.iter().copied())
-        ));
-    };
-    let mismatch = |value: &Value| {
-        format!(
-            "`{key}` expects {}, got {:?}",
-            kind(default),
-            format_value(value)
-        )
-    };
-    match (default, value) {
-        (Value::Float(_), Value::Int(n)) => Ok(Value::Float(n as f64)),
-        (Value::Int(_), Value::Int(n)) => Ok(Value::Int(n)),
-        (Value::Float(_), Value::Float(x)) => Ok(Value::Float(x)),
-        (Value::Boolean(_), Value::Boolean(b)) => Ok(Value::Boolean(b)),
-        (Value::Tuple(_), Value::Tuple(items)) => Ok(Value::Tuple(items)),
-        (Value::String(_) | Value::Empty, value) => Ok(value),
-        (_, Value::String(text)) => {
-            parse_as(default, &text).ok_or_else(|| mismatch(&Value::String(text)))
-        }
-        (_, value) => Err(mismatch(&value)),
-    }
-}
-
-fn kind(value: &Value) -> &'static str {
-    match value {
-        Value::Int(_) => "an integer",
-        Value::Float(_) => "a number",
-        Value::Boolean(_) => "true or false",
-        Value::Tuple(_) => "a list of numbers",
-        _ => "a string",
-    }
-}
-
-fn parse_as(default: &Value, text: &str) -> Option<Value> {
-    let text = text.trim();
-    match default {
-        Value::Int(_) => text.parse().ok().map(Value::Int),
-        Value::Float(_) => text.parse().ok().map(Value::Float),
-        Value::Boolean(_) => match text {
-            "true" | "True" => Some(Value::Boolean(true)),
-            "false" | "False" => Some(Value::Boolean(false)),
-            _ => None,
-        },
-        Value::Tuple(_) => text
-            .split_whitespace()
-            .map(|item| {
-                item.parse()
-                    .ok()
-                    .map(Value::Int)
-                    .or_else(|| item.parse().ok().map(Value::Float))
-            })
-            .collect::<Option<Vec<_>>>()
-            .map(Value::Tuple),
-        _ => Some(Value::String(text.to_owned())),
-    }
-}
-
-enum Segment<'a> {
-    Text(&'a str),
-    Expression(&'a str),
-}
-
-/// The source of an attribute that is exactly one `{expr}` (or `${expr}`).
-fn whole_expression(value: &str) -> Option<&str> {
-    match segments(value).ok()?.as_slice() {
-        [Segment::Expression(source)] => Some(source),
-        _ => None,
-    }
-}
-
-/// Splits `a {x} b ${y}` into text and expressions; `{{` and `}}` are literal braces.
-fn segments(value: &str) -> Result<Vec<Segment<'_>>, String> {
-    let bytes = value.as_bytes();
-    let mut out = Vec::new();
-    let (mut text_start, mut at) = (0, 0);
-    while at < bytes.len() {
-        match bytes[at] {
-            b'{' | b'}' if bytes.get(at + 1) == Some(&bytes[at]) => {
-                out.push(Segment::Text(&value[text_start..=at]));
-                at += 2;
-                text_start = at;
-            }
-            b'{' => {
-                let dollar = at > text_start && bytes[at - 1] == b'$';
-                out.push(Segment::Text(&value[text_start..at - usize::from(dollar)]));
-                let end = closing_brace(bytes, at)
-                    .ok_or_else(|| format!("unclosed `{{` at character {}", at + 1))?;
-                out.push(Segment::Expression(&value[at + 1..end]));
-                at = end + 1;
-                text_start = at;
-            }
-            b'}' => return Err(format!("`}}` without `{{` at character {}", at + 1)),
-            _ => at += 1,
-        }
-    }
-    out.push(Segment::Text(&value[text_start..]));
-    out.retain(|s| !matches!(s, Segment::Text("")));
-    Ok(out)
-}
-
-/// The `}` closing the `{` at `open`, skipping quoted strings and nested braces.
-fn closing_brace(bytes: &[u8], open: usize) -> Option<usize> {
-    let (mut depth, mut quote, mut at) = (0usize, None, open + 1);
-    while at < bytes.len() {
-        let byte = bytes[at];
-        match quote {
-            Some(_) if byte == b'\\' => at += 1,
-            Some(q) if byte == q => quote = None,
-            Some(_) => {}
-            None => match byte {
-                b'\'' | b'"' => quote = Some(byte),
-                b'{' => depth += 1,
-                b'}' if depth == 0 => return Some(at),
-                b'}' => depth -= 1,
-                _ => {}
-            },
-        }
-        at += 1;
-    }
-    None
 }

@@ -36,9 +36,12 @@ mod error;
 mod expand;
 mod files;
 mod layout;
+mod mount;
 mod names;
 mod sections;
+mod segments;
 mod source;
+mod typed;
 
 use std::any::{Any, TypeId};
 use std::collections::BTreeMap;
@@ -48,9 +51,9 @@ use std::path::PathBuf;
 pub use elements::MJCF_ELEMENTS;
 pub use error::{ComposeError, ErrorDetails};
 pub use evalexpr::Value;
-pub(crate) use expand::typed;
 pub use names::{NameKind, NameMap};
 pub use source::SourceLocation;
+pub(crate) use typed::typed;
 
 use crate::config::Settings;
 use crate::runtime::{Bind, RuntimeError};

@@ -200,8 +200,12 @@ fn rename(element: &mut Element, section: &str, prefixes: &[String], maps: &mut 
         }
         attribute.value = qualified;
     }
-    for child in &mut element.children {
-        crate::stack::deep(|| rename(child, section, prefixes, maps));
+    if !element.children.is_empty() {
+        crate::stack::deep(|| {
+            for child in &mut element.children {
+                rename(child, section, prefixes, maps);
+            }
+        });
     }
 }
 

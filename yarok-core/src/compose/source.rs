@@ -35,7 +35,12 @@ impl Composition {
     /// root and the sections that gather every component's content).
     pub fn source_of_line(&self, line: usize) -> Option<SourceLocation> {
         let mut current = 0;
-        let element = element_on_line(&self.mjcf, line, &mut current)?;
+        self.source_of(element_on_line(&self.mjcf, line, &mut current)?)
+    }
+
+    /// Where `element`, an element of [`Composition::mjcf`], was written; `None` for the
+    /// elements the composer makes itself.
+    pub fn source_of(&self, element: &Element) -> Option<SourceLocation> {
         if element.position.line == 0 {
             return None;
         }

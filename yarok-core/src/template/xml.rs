@@ -65,14 +65,11 @@ pub struct XmlError {
 
 impl Clone for Element {
     fn clone(&self) -> Self {
-        crate::stack::deep(|| Self {
-            name: self.name.clone(),
-            attributes: self.attributes.clone(),
-            children: self.children.clone(),
-            position: self.position,
-            origin: self.origin,
-            owner: self.owner,
-        })
+        let mut copy = self.without_children();
+        if !self.children.is_empty() {
+            copy.children = crate::stack::deep(|| self.children.clone());
+        }
+        copy
     }
 }
 
@@ -239,9 +236,11 @@ impl Element {
             return;
         }
         out.push_str(">\n");
-        for child in &self.children {
-            crate::stack::deep(|| child.write(out, depth + 1));
-        }
+        crate::stack::deep(|| {
+            for child in &self.children {
+                child.write(out, depth + 1);
+            }
+        });
         for _ in 0..depth {
             out.push_str("  ");
         }

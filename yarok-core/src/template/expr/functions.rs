@@ -178,7 +178,11 @@ pub(super) fn call(identifier: &str, argument: &Value) -> EvalexprResult<Value> 
     let Some(name) = identifier.strip_prefix("py::") else {
         return fail(format!("function `{identifier}` is not defined"));
     };
-    let args = arguments(argument)?;
+    apply(name, arguments(argument)?)
+}
+
+/// The `py::` function `name` applied to `args`.
+fn apply(name: &str, args: &[Value]) -> EvalexprResult<Value> {
     match name {
         "none" => Ok(Value::Empty),
         "literal" => Ok(Value::Tuple(args.to_vec())),
@@ -297,10 +301,7 @@ fn chain(args: &[Value]) -> EvalexprResult<Value> {
     };
     rest.chunks(2)
         .try_fold(first.clone(), |left, pair| match pair {
-            [Value::String(op), right] => call(
-                &format!("py::{op}"),
-                &Value::Tuple(vec![Value::Int(2), left, right.clone()]),
-            ),
+            [Value::String(op), right] => apply(op, &[left, right.clone()]),
             _ => fail("internal: malformed chain"),
         })
 }

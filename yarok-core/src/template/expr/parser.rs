@@ -149,27 +149,27 @@ impl Parser<'_> {
     }
 
     fn or(&mut self) -> Result<Ast, ExprError> {
-        let mut operands = vec![self.and()?];
+        let first = self.and()?;
+        if !self.is_keyword("or") {
+            return Ok(first);
+        }
+        let mut operands = vec![first];
         while self.eat_keyword("or") {
             operands.push(self.and()?);
         }
-        Ok(if operands.len() == 1 {
-            operands.remove(0)
-        } else {
-            Ast::Or(operands)
-        })
+        Ok(Ast::Or(operands))
     }
 
     fn and(&mut self) -> Result<Ast, ExprError> {
-        let mut operands = vec![self.not()?];
+        let first = self.not()?;
+        if !self.is_keyword("and") {
+            return Ok(first);
+        }
+        let mut operands = vec![first];
         while self.eat_keyword("and") {
             operands.push(self.not()?);
         }
-        Ok(if operands.len() == 1 {
-            operands.remove(0)
-        } else {
-            Ast::And(operands)
-        })
+        Ok(Ast::And(operands))
     }
 
     fn not(&mut self) -> Result<Ast, ExprError> {
