@@ -153,6 +153,8 @@ impl Element {
     ///
     /// [`XmlError`] with the line and column of malformed XML or of a second root element.
     pub fn parse(source: &str) -> Result<Element, XmlError> {
+        // The XML reader skips a byte-order mark without counting it in its offsets.
+        let source = source.strip_prefix('\u{feff}').unwrap_or(source);
         let lines = LineIndex::new(source);
         let mut reader = Reader::from_str(source);
         reader.config_mut().check_end_names = true;
@@ -277,7 +279,10 @@ fn element(
     lines: &LineIndex,
 ) -> Result<Element, XmlError> {
     let name = String::from_utf8_lossy(start.name().as_ref()).into_owned();
-    let raw = &source[offset..];
+    let raw = source.get(offset..).ok_or_else(|| XmlError {
+        position: lines.position(offset),
+        message: "the XML reader lost its place in the text".into(),
+    })?;
     let mut cursor = 1 + name.len();
     let mut attributes = Vec::new();
     for attribute in start.attributes() {
@@ -363,6 +368,16 @@ impl<'a> LineIndex<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_byte_order_mark_is_skipped() {
+        let element = Element::parse("\u{feff}\u{c}<mujoco>\n <¡/></mujoco>").unwrap();
+        assert_eq!(element.children[0].name, "¡");
+        assert_eq!(
+            element.children[0].position,
+            Position { line: 2, column: 2 }
+        );
+    }
 
     #[test]
     fn parses_with_positions_and_writes_back() {
