@@ -2,8 +2,8 @@
 //! precomputed files: for each pixel, the unit direction in which an LED's light travels when it
 //! reaches the membrane point that pixel sees.
 
-use super::geltip::{Camera, back_project_row, dot, normalised, normals_row};
 use super::rows::{RowRing, neighbours};
+use super::surface::{Camera, back_project_row, dot, normalised, normals_row};
 use super::{SizeError, image_height};
 
 /// How light is taken to travel from an LED to a membrane point.

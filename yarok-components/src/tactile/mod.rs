@@ -17,6 +17,7 @@ pub mod noise;
 pub mod npy;
 pub mod phong;
 mod rows;
+mod surface;
 
 yarok_core::debug_as_report!(SizeError);
 
