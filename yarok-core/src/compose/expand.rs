@@ -51,12 +51,12 @@ struct InstanceState {
 }
 
 /// What the expansion of one list of elements needs to know.
-#[derive(Clone)]
-struct Ctx {
+#[derive(Clone, Copy)]
+struct Ctx<'p> {
     /// The instance whose template is being expanded (its components are usable as tags).
     owner: usize,
     /// The path new component tags are children of.
-    base_path: String,
+    base_path: &'p str,
     in_worldbody: bool,
     /// How deep in the composed world the elements being expanded are.
     depth: usize,
@@ -360,7 +360,7 @@ impl<'o> Composer<'o> {
         };
         let ctx = Ctx {
             owner: id,
-            base_path: path.to_owned(),
+            base_path: path,
             in_worldbody: false,
             depth: 1,
         };
@@ -436,7 +436,7 @@ impl<'o> Composer<'o> {
     fn expand(
         &mut self,
         elements: Vec<Element>,
-        ctx: &Ctx,
+        ctx: &Ctx<'_>,
         scope: &Scope<'_>,
     ) -> Result<Vec<Element>, ComposeError> {
         if self.instances[ctx.owner].verbatim {
@@ -527,7 +527,7 @@ impl<'o> Composer<'o> {
                         let children = std::mem::take(&mut element.children);
                         let inner = Ctx {
                             depth: ctx.depth + 1,
-                            ..ctx.clone()
+                            ..*ctx
                         };
                         element.children =
                             crate::stack::deep(|| self.expand(children, &inner, scope))?;
@@ -573,7 +573,7 @@ impl<'o> Composer<'o> {
         &mut self,
         component: ComponentType,
         mut tag: Element,
-        ctx: &Ctx,
+        ctx: &Ctx<'_>,
         scope: &Scope<'_>,
     ) -> Result<Vec<Element>, ComposeError> {
         let name_attribute = tag
@@ -612,8 +612,8 @@ impl<'o> Composer<'o> {
         let sub_id = self.instances.len();
         let mut body = self.instance(component, loaded, &path, config, ctx.depth)?;
         let nested_ctx = Ctx {
-            base_path: path.clone(),
-            ..ctx.clone()
+            base_path: &path,
+            ..*ctx
         };
         for mut child in std::mem::take(&mut tag.children) {
             let Some(parent) = child.take_attribute("parent") else {

@@ -13,7 +13,7 @@ use super::interrupt::Interrupt;
 use super::wait::{Clock, Wait, WaitError};
 use super::{Backend, BackendFactory, BoxError, Plugin, RuntimeError};
 use crate::compose::{Component, ComponentType, Composition, Config, Value, compose_configured};
-use crate::config::{RunConfig, Settings};
+use crate::config::{ConfigOrigins, RunConfig, Settings};
 use crate::suggest::did_you_mean;
 
 /// What a behaviour returns.
@@ -562,7 +562,7 @@ impl PlatformBuilder {
     pub fn build(mut self) -> Result<Platform, RuntimeError> {
         report_warnings();
         let world = self.world.ok_or(RuntimeError::NoWorld)?;
-        let settings = self.config.settings(&self.default_environment);
+        let mut settings = self.config.settings(&self.default_environment);
         for environment in self.config.environments() {
             if !self.backends.contains_key(environment) {
                 let hint = did_you_mean(environment, self.backends.keys().map(String::as_str));
@@ -578,8 +578,12 @@ impl PlatformBuilder {
                     environment: settings.environment.clone(),
                     available: self.backends.keys().cloned().collect::<Vec<_>>().join(", "),
                 })?;
-        let mut settings = settings;
-        settings.platform = typed_settings("platform", &platform_types(), &settings)?;
+        settings.platform = typed_settings(
+            "platform",
+            &platform_types(),
+            &settings.platform,
+            &settings.origins,
+        )?;
         let behaviour = defaulted(&self.behaviour_defaults, &settings)?;
         let composition = compose_configured(world, &settings)?;
         for path in settings.interfaces.keys() {
@@ -714,22 +718,20 @@ fn platform_types() -> Config {
     ])
 }
 
-/// The values of `[section]` (`platform` or `behaviour`), each of the type its key's value in
-/// `types` has; an unknown key or a wrong type is an error naming where the value was set.
+/// The values `given` in `[section]` (`platform` or `behaviour`), each of the type its key's
+/// value in `types` has; an unknown key or a wrong type is an error naming where the value was
+/// set.
 fn typed_settings(
     section: &str,
     types: &Config,
-    settings: &Settings,
+    given: &Config,
+    origins: &ConfigOrigins,
 ) -> Result<Config, RuntimeError> {
-    let given = match section {
-        "platform" => &settings.platform,
-        _ => &settings.behaviour,
-    };
     let mut typed = Config::default();
     for (key, value) in given.iter() {
         let value = crate::compose::typed(types, key, value.clone()).map_err(|message| {
             crate::config::ConfigError {
-                origin: settings.origins.describe(section, "", key),
+                origin: origins.describe(section, "", key),
                 message: format!("[{section}] {message}"),
             }
         })?;
@@ -741,7 +743,13 @@ fn typed_settings(
 /// The behaviour's settings: its defaults, overlaid with the run's `[behaviour]` values.
 fn defaulted(defaults: &Config, settings: &Settings) -> Result<Config, RuntimeError> {
     let mut config = defaults.clone();
-    for (key, value) in typed_settings("behaviour", defaults, settings)?.iter() {
+    let given = typed_settings(
+        "behaviour",
+        defaults,
+        &settings.behaviour,
+        &settings.origins,
+    )?;
+    for (key, value) in given.iter() {
         config.set(key, value.clone());
     }
     Ok(config)
