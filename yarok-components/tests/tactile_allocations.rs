@@ -2,28 +2,15 @@
 //! frames into a caller's buffer allocates no memory, counted on the rendering thread by
 //! `allocation-counter`'s global allocator.
 
-use std::path::PathBuf;
+mod common;
 
+use common::{background, depth, golden};
 use yarok_components::tactile::geltip::{GelTipModel, GelTipParams};
-use yarok_components::tactile::npy;
 use yarok_components::tactile::phong::{PhongModel, PhongParams};
 
 /// Allocations `frame` makes on this thread.
 fn allocations(frame: impl FnOnce()) -> u64 {
     allocation_counter::measure(frame).count_total
-}
-
-fn golden(path: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../tests/golden/tactile")
-        .join(path)
-}
-
-fn background(model: &str) -> Vec<u8> {
-    image::open(golden(&format!("{model}/background.png")))
-        .unwrap()
-        .to_rgb8()
-        .into_raw()
 }
 
 #[test]
@@ -33,8 +20,7 @@ fn phong_frames_allocate_nothing() {
         ("gelsight", PhongParams::gelsight2014()),
     ] {
         let bg = background(model);
-        let depth =
-            npy::read(golden(&format!("{model}/sphere_center/input_depth.npy.gz"))).unwrap();
+        let depth = depth(model, "sphere_center");
         let width = depth.shape[1];
         let mut phong = PhongModel::new(params);
         let mut out = vec![0; bg.len()];
@@ -60,7 +46,7 @@ fn phong_frames_allocate_nothing() {
 #[test]
 fn geltip_frames_allocate_nothing() {
     let bg = background("geltip");
-    let depth = npy::read(golden("geltip/sphere_center/input_depth.npy.gz")).unwrap();
+    let depth = depth("geltip", "sphere_center");
     let mut model = GelTipModel::load(GelTipParams::default(), golden("geltip/params")).unwrap();
     let mut out = vec![0; bg.len()];
     model.render_into(&depth.data, &bg, &mut out).unwrap();

@@ -1,18 +1,13 @@
 //! The optical models make physical sense: deeper presses make larger contacts, an off-centre
 //! sphere moves the imprint, outputs have the documented size.
 
-use std::path::PathBuf;
+mod common;
 
+use common::{background, depth, golden};
 use yarok_components::tactile::geltip::{GelTipModel, GelTipParams};
 use yarok_components::tactile::light_fields::{LightFieldMethod, led_ring};
 use yarok_components::tactile::npy;
 use yarok_components::tactile::phong::{PhongModel, PhongParams};
-
-fn golden(path: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../tests/golden/tactile")
-        .join(path)
-}
 
 /// The golden cases kept for `model` (the folders holding an input depth map).
 #[cfg(feature = "parallel")]
@@ -26,17 +21,6 @@ fn cases(model: &str) -> Vec<String> {
     cases.sort();
     assert!(cases.len() >= 4, "{model}: {cases:?}");
     cases
-}
-
-fn background(model: &str) -> Vec<u8> {
-    image::open(golden(&format!("{model}/background.png")))
-        .unwrap()
-        .to_rgb8()
-        .into_raw()
-}
-
-fn depth(model: &str, case: &str) -> npy::NpyArray {
-    npy::read(golden(&format!("{model}/{case}/input_depth.npy.gz"))).unwrap()
 }
 
 /// Pixels whose colour differs from the no-contact image by more than 10 levels, and their
