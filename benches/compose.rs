@@ -12,7 +12,8 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 use std::time::Duration;
 
-use yarok::core::compose::{Component, Declaration, compose};
+use yarok::core::component::{Component, Declaration};
+use yarok::core::compose::compose;
 use yarok::core::template::xml::Element;
 use yarok::mjc::Model;
 

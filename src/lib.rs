@@ -16,7 +16,8 @@
 //!
 #![doc = include_str!("../README.md")]
 
-use yarok_core::runtime::{MockBackend, PlatformBuilder};
+use yarok_core::component::{Mock, MockBackend};
+use yarok_core::runtime::{Platform, PlatformBuilder};
 
 #[doc(inline)]
 pub use yarok_components as components;
@@ -27,16 +28,28 @@ pub use yarok_hw as hw;
 #[doc(inline)]
 pub use yarok_mjc as mjc;
 
-pub use yarok_core::compose::{Component, Declaration};
-pub use yarok_core::runtime::{
-    BehaviourResult, Bind, BoxError, Pl, Platform, Plugin, RuntimeError, WaitError,
-};
+pub use yarok_core::BoxError;
+pub use yarok_core::component::{Component, Declaration};
+pub use yarok_core::runtime::{BehaviourResult, Pl, Plugin, RuntimeError, World};
+pub use yarok_core::time::WaitError;
+
+/// What writing components and behaviours needs, in one `use yarok::prelude::*;`.
+pub mod prelude {
+    pub use yarok_core::BoxError;
+    pub use yarok_core::component::{
+        Bind, BindError, Component, Declaration, Interface, Interfaces, Mock,
+    };
+    pub use yarok_core::runtime::{BehaviourResult, Pl, Plugin, World};
+    pub use yarok_hw::Real;
+    pub use yarok_mjc::{Actuator, Body, Joint, Sensor, Sim, SimBind, Site};
+}
 
 /// Seconds per tick of the `mock` environment.
 pub const MOCK_TIMESTEP: f64 = 0.002;
 
-/// A platform builder with yarok's environments registered: `sim` (MuJoCo, the default),
-/// `real` (hardware, ticking at `[platform] tick_hz`) and `mock` (no backend, 2 ms ticks).
+/// A platform builder with yarok's environments and plugins registered: environments `sim`
+/// (MuJoCo, the default), `real` (hardware, ticking at `[platform] tick_hz`) and `mock` (no
+/// backend, 2 ms ticks); plugin `joints_csv` ([`components::plugins::JointRecorder`]).
 ///
 /// # Examples
 ///
@@ -57,9 +70,8 @@ pub const MOCK_TIMESTEP: f64 = 0.002;
 /// ```
 pub fn platform() -> PlatformBuilder {
     Platform::builder()
-        .backend("sim", yarok_mjc::SimBackend::from_settings)
-        .backend("real", yarok_hw::HardwareBackend::from_settings)
-        .backend("mock", |_, _| {
-            Ok(Box::new(MockBackend::new(MOCK_TIMESTEP, false)))
-        })
+        .backend::<mjc::Sim, _>(mjc::SimBackend::from_settings)
+        .backend::<hw::Real, _>(hw::HardwareBackend::from_settings)
+        .backend::<Mock, _>(|_, _| Ok::<_, BoxError>(MockBackend::new(MOCK_TIMESTEP, false)))
+        .plugin_factory("joints_csv", components::plugins::JointRecorder::new)
 }

@@ -105,6 +105,6 @@ fn a_bad_set_value_names_the_argument() {
     assert_eq!(code, 2);
     assert_eq!(
         err.trim(),
-        "error: component /, --set /rows=many attribute `rows`: `rows` expects an integer, got \"many\""
+        "error: component /, --set rows=many attribute `rows`: `rows` expects an integer, got \"many\""
     );
 }

@@ -5,7 +5,8 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use yarok::components::worlds::TowerWorld;
-use yarok::core::compose::{Component, Declaration, compose};
+use yarok::core::component::{Component, Declaration};
+use yarok::core::compose::compose;
 use yarok::mjc::{Data, Model, ObjectKind};
 
 #[test]

@@ -3,22 +3,18 @@
 //! only counts) are among them. Checked from a child process, since a subscriber is
 //! process-wide.
 
-use std::cell::RefCell;
 use std::process::Command;
-use std::rc::Rc;
 
 use yarok::components::robots::AnetA30;
 use yarok::components::worlds::PrinterWorld;
-use yarok::mjc::{ActuatorId, Data, SimBind};
-use yarok::{Bind, Component, Declaration, RuntimeError};
+use yarok::prelude::*;
 
 const CHILD: &str = "YAROK_WARNINGS_CHILD";
 
 /// A free-spinning wheel with an unlimited motor.
 #[derive(Clone)]
 struct Wheel {
-    data: Rc<RefCell<Data>>,
-    motor: ActuatorId,
+    motor: Actuator,
 }
 
 impl Component for Wheel {
@@ -29,10 +25,15 @@ impl Component for Wheel {
         )
     }
 
-    fn bind(bind: &mut Bind<'_>) -> Result<Self, RuntimeError> {
+    fn interfaces(interfaces: &mut Interfaces<Self>) {
+        interfaces.add::<Sim>();
+    }
+}
+
+impl Interface<Sim> for Wheel {
+    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
         Ok(Wheel {
-            data: bind.sim()?.data(),
-            motor: bind.actuator_id("motor")?,
+            motor: bind.actuator("motor")?,
         })
     }
 }
@@ -45,7 +46,7 @@ fn nan_child() {
             .world::<Wheel>()
             .behaviour(|pl| async move {
                 let wheel: Wheel = pl.get("/")?;
-                wheel.data.borrow_mut().set_ctrl(wheel.motor, f64::NAN);
+                wheel.motor.set(f64::NAN);
                 pl.wait_seconds(0.05).await?;
                 Ok(())
             })

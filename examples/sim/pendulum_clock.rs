@@ -3,20 +3,16 @@
 //!
 //! ```text
 //! cargo run --example pendulum_clock [-- --set /right/length=0.4]
+//! cargo run --example pendulum_clock -- --set plugins/joints_csv/path=clock.csv
 //! ```
 
-use std::cell::RefCell;
-use std::rc::Rc;
-
-use yarok::mjc::{ActuatorId, Data, SensorId, SimBind};
-use yarok::{Bind, Component, Declaration, Pl, RuntimeError};
+use yarok::prelude::*;
 
 /// A pendulum with a position servo: `swing_to(angle)`, `angle()`.
 #[derive(Clone, Debug)]
 pub struct Pendulum {
-    data: Rc<RefCell<Data>>,
-    servo: ActuatorId,
-    angle: SensorId,
+    servo: Actuator,
+    angle: Sensor,
 }
 
 impl Component for Pendulum {
@@ -38,14 +34,16 @@ impl Component for Pendulum {
             )
     }
 
-    fn bind(bind: &mut Bind<'_>) -> Result<Self, RuntimeError> {
-        if bind.environment() != "sim" {
-            return Err(bind.no_interface());
-        }
+    fn interfaces(interfaces: &mut Interfaces<Self>) {
+        interfaces.add::<Sim>();
+    }
+}
+
+impl Interface<Sim> for Pendulum {
+    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
         Ok(Pendulum {
-            data: bind.sim()?.data(),
-            servo: bind.actuator_id("servo")?,
-            angle: bind.sensor_id("angle")?,
+            servo: bind.actuator("servo")?,
+            angle: bind.sensor("angle")?,
         })
     }
 }
@@ -53,12 +51,12 @@ impl Component for Pendulum {
 impl Pendulum {
     /// Sets the servo's target angle.
     pub fn swing_to(&self, radians: f64) {
-        self.data.borrow_mut().set_ctrl(self.servo, radians);
+        self.servo.set(radians);
     }
 
     /// The current angle, from the joint sensor.
     pub fn angle(&self) -> f64 {
-        self.data.borrow().sensor(self.angle)[0]
+        self.angle.value()
     }
 }
 
@@ -76,7 +74,7 @@ impl Component for Clock {
     }
 }
 
-async fn tick_tock(pl: Pl, name: &'static str) -> yarok::BehaviourResult {
+async fn tick_tock(pl: Pl, name: &'static str) -> BehaviourResult {
     let pendulum: Pendulum = pl.get(name)?;
     for target in [0.5, -0.5, 0.0] {
         pendulum.swing_to(target);

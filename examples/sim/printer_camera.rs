@@ -10,7 +10,6 @@ use yarok::Pl;
 use yarok::components::cameras::Cam;
 use yarok::components::robots::AnetA30;
 use yarok::components::worlds::PrinterWorld;
-use yarok::core::compose::Value;
 
 /// Head positions in millimetres: around the tower, then straight above it.
 const POSES: [[f64; 3]; 4] = [
@@ -23,7 +22,7 @@ const POSES: [[f64; 3]; 4] = [
 async fn survey(pl: Pl) -> yarok::BehaviourResult {
     let printer: AnetA30 = pl.get("/printer")?;
     let camera: Cam = pl.get("/printer/cam")?;
-    let Some(Value::String(out)) = pl.config().get("out") else {
+    let Some(out) = pl.config().get("out").and_then(|out| out.as_str()) else {
         return Err("behaviour/out must be a folder".into());
     };
     std::fs::create_dir_all(out)?;

@@ -21,7 +21,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use yarok::components::catalogue;
-use yarok::core::compose::{Declaration, compose_configured, compose_declaration};
+use yarok::core::component::Declaration;
+use yarok::core::compose::{compose_configured, compose_declaration};
 use yarok::core::config::{RunConfig, Settings};
 
 const USAGE: &str = "usage: yarok compose WORLD [--set [/PATH/]KEY=VALUE]... [--out FILE]
@@ -69,12 +70,6 @@ fn parse(mut args: impl Iterator<Item = String>) -> Result<Args, String> {
         match arg.as_str() {
             "--set" => {
                 let assignment = args.next().ok_or("--set needs KEY=VALUE")?;
-                // A bare KEY=VALUE sets the world's key.
-                let assignment = if assignment.starts_with('/') {
-                    assignment
-                } else {
-                    format!("/{assignment}")
-                };
                 config.set(&assignment).map_err(|e| e.to_string())?;
             }
             "--out" => out = Some(PathBuf::from(args.next().ok_or("--out needs a file")?)),

@@ -7,12 +7,13 @@
 //! sensors in the world come with their own issues.
 //!
 pub mod cameras;
+pub mod plugins;
 pub mod robots;
 pub mod tactile;
 pub mod toys;
 pub mod worlds;
 
-use yarok_core::compose::ComponentType;
+use yarok_core::component::ComponentType;
 
 /// Every bundled component, for tools that pick components by tag at run time.
 pub fn catalogue() -> Vec<ComponentType> {

@@ -1,8 +1,10 @@
 //! The tumble tower of the original README: `<for>` loops and the Python-style conditional.
 
 use yarok_components::toys::TumbleTower;
-use yarok_core::compose::{ComponentType, Config, IntoValue, Overrides, compose, compose_with};
+use yarok_core::component::ComponentType;
+use yarok_core::compose::{compose, compose_with};
 use yarok_core::template::xml::Element;
+use yarok_core::value::{Config, IntoValue, Overrides};
 
 fn numbers(element: &Element, attribute: &str) -> Vec<f64> {
     element

@@ -26,8 +26,10 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use crate::compose::{Config, Overrides, Value};
+use serde::de::DeserializeOwned;
+
 use crate::suggest::did_you_mean;
+use crate::value::{Config, Overrides, Value};
 
 /// A run configuration could not be read.
 #[derive(Clone, PartialEq, Eq, thiserror::Error)]
@@ -97,21 +99,15 @@ impl Layer {
     fn merge(&mut self, other: Layer) {
         let by_path = |mine: &mut BTreeMap<String, Config>, theirs: BTreeMap<String, Config>| {
             for (path, config) in theirs {
-                merge_config(mine.entry(path).or_default(), config);
+                mine.entry(path).or_default().merge(&config);
             }
         };
         by_path(&mut self.components, other.components);
         by_path(&mut self.interfaces, other.interfaces);
         by_path(&mut self.plugins, other.plugins);
-        merge_config(&mut self.behaviour, other.behaviour);
-        merge_config(&mut self.platform, other.platform);
+        self.behaviour.merge(&other.behaviour);
+        self.platform.merge(&other.platform);
         self.origins.merge(other.origins);
-    }
-}
-
-fn merge_config(into: &mut Config, from: Config) {
-    for (key, value) in from.iter() {
-        into.set(key, value.clone());
     }
 }
 
@@ -146,6 +142,99 @@ pub struct Settings {
 impl Default for Settings {
     fn default() -> Self {
         RunConfig::default().settings("sim")
+    }
+}
+
+impl Settings {
+    /// The `[platform]` settings, typed.
+    ///
+    /// # Errors
+    ///
+    /// [`ConfigError`] naming where an unknown key or a value of the wrong type was set.
+    pub fn platform_settings(&self) -> Result<PlatformSettings, ConfigError> {
+        self.read("platform", "", &self.platform)
+    }
+
+    /// The settings of plugin `name` (`[plugins.name]`), read into `T`.
+    ///
+    /// # Errors
+    ///
+    /// As [`Settings::platform_settings`].
+    pub fn plugin_settings<T: DeserializeOwned>(&self, name: &str) -> Result<T, ConfigError> {
+        let empty = Config::default();
+        let config = self.plugins.get(name).unwrap_or(&empty);
+        self.read("plugins", name, config)
+    }
+
+    fn read<T: DeserializeOwned>(
+        &self,
+        section: &str,
+        path: &str,
+        config: &Config,
+    ) -> Result<T, ConfigError> {
+        config.deserialize().map_err(|error| {
+            let origin = match &error.key {
+                Some(key) => self.origins.describe(section, path, key),
+                None => "run configuration".to_owned(),
+            };
+            let place = if path.is_empty() {
+                format!("[{section}]")
+            } else {
+                format!("[{section}.{path}]")
+            };
+            ConfigError {
+                origin,
+                message: format!("{place} {error}"),
+            }
+        })
+    }
+}
+
+/// The `[platform]` section.
+#[derive(Debug, Clone, PartialEq, serde::Deserialize)]
+#[serde(default)]
+#[non_exhaustive]
+pub struct PlatformSettings {
+    /// Pace simulated ticks to the wall clock (for watching); hardware always is.
+    pub realtime: bool,
+    /// Ticks per second on hardware.
+    pub tick_hz: f64,
+    /// The seed every component's random numbers derive from (see [`PlatformSettings::seed_for`]).
+    pub seed: u64,
+}
+
+impl Default for PlatformSettings {
+    fn default() -> Self {
+        Self {
+            realtime: false,
+            tick_hz: 100.0,
+            seed: 0,
+        }
+    }
+}
+
+impl PlatformSettings {
+    /// The seed of the component at `path`: the platform seed mixed with the path, so the same
+    /// configuration gives the same numbers and two components differ.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use yarok_core::config::PlatformSettings;
+    ///
+    /// let settings = PlatformSettings::default();
+    /// assert_eq!(settings.seed_for("/left"), settings.seed_for("/left"));
+    /// assert_ne!(settings.seed_for("/left"), settings.seed_for("/right"));
+    /// ```
+    pub fn seed_for(&self, path: &str) -> u64 {
+        // FNV-1a over the path, then SplitMix64's finaliser over it and the seed.
+        let hash = path.bytes().fold(0xcbf2_9ce4_8422_2325_u64, |hash, byte| {
+            (hash ^ u64::from(byte)).wrapping_mul(0x0000_0100_0000_01b3)
+        });
+        let mut z = (hash ^ self.seed).wrapping_add(0x9e37_79b9_7f4a_7c15);
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
     }
 }
 
@@ -234,7 +323,7 @@ impl RunConfig {
     }
 
     /// Sets one value, as the command line's `--set` does: `/path/key=value` for a component
-    /// (`/key=value` for the world), `interfaces/path/key=value`, `behaviour/key=value`,
+    /// (`/key=value` or just `key=value` for the world), `interfaces/path/key=value`, `behaviour/key=value`,
     /// `platform/key=value`, `plugins/name/key=value`. The value is read as TOML (`0.5`, `true`,
     /// `[1, 2]`, `"text"`), and as a plain string when it is not valid TOML.
     ///
@@ -249,10 +338,9 @@ impl RunConfig {
         let (target, text) = assignment
             .split_once('=')
             .ok_or_else(|| error("expected TARGET=VALUE".into()))?;
-        let value = parse_value(text);
-        let (path, key) = target
-            .rsplit_once('/')
-            .ok_or_else(|| error("expected /path/key=value".into()))?;
+        let value = Value::from_text(text);
+        // A bare `key=value` sets the world's key.
+        let (path, key) = target.rsplit_once('/').unwrap_or(("", target));
         if key.is_empty() {
             return Err(error("the key is empty".into()));
         }
@@ -383,7 +471,7 @@ impl Reader<'_> {
             } else {
                 format!("{}{}.{path:?}.{key}", self.prefix, self.section)
             };
-            let value = to_value(value)
+            let value = Value::from_toml(value)
                 .ok_or_else(|| format!("`{place}`: tables and dates are not config values"))?;
             self.origins.record(
                 self.section,
@@ -395,27 +483,4 @@ impl Reader<'_> {
         }
         Ok(config)
     }
-}
-
-fn to_value(value: toml::Value) -> Option<Value> {
-    Some(match value {
-        toml::Value::String(s) => Value::String(s),
-        toml::Value::Integer(n) => Value::Int(n),
-        toml::Value::Float(x) => Value::Float(x),
-        toml::Value::Boolean(b) => Value::Boolean(b),
-        toml::Value::Array(items) => {
-            Value::Tuple(items.into_iter().map(to_value).collect::<Option<_>>()?)
-        }
-        toml::Value::Table(_) | toml::Value::Datetime(_) => return None,
-    })
-}
-
-/// A command-line value: TOML when it parses as TOML, else the text itself.
-fn parse_value(text: &str) -> Value {
-    format!("v = {text}")
-        .parse::<toml::Table>()
-        .ok()
-        .and_then(|mut t| t.remove("v"))
-        .and_then(to_value)
-        .unwrap_or_else(|| Value::String(text.to_owned()))
 }

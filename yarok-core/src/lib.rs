@@ -1,10 +1,18 @@
 //! yarok-core: everything about a robot that does not depend on where it runs.
 //!
-//! Its one job is the platform-independent half of yarok: MJCF component templates and their
-//! composition into one world, the layered run configuration, the component model, and the
-//! single-threaded async runtime on which behaviours `await` platform ticks. It names neither
-//! MuJoCo nor any device; simulation lives in `yarok-mjc`, hardware in `yarok-hw`.
+//! Its one job is the platform-independent half of yarok. Its modules stand on each other in
+//! one direction:
+//!
+//! - the floor: [`value`] (config values), [`config`] (the layered run configuration),
+//!   [`time`] (platform time and waits) and [`component`] (the component model: components,
+//!   environments, interfaces, binding, backends);
+//! - [`template`] and [`compose`]: MJCF component templates and their composition into one world;
+//! - [`runtime`]: the platform that binds components and runs behaviours and plugins on ticks.
+//!
+//! It names neither MuJoCo nor any device; simulation lives in `yarok-mjc`, hardware in
+//! `yarok-hw`.
 
+pub mod component;
 pub mod compose;
 pub mod config;
 pub mod report;
@@ -12,3 +20,8 @@ pub mod runtime;
 mod stack;
 pub mod suggest;
 pub mod template;
+pub mod time;
+pub mod value;
+
+/// Errors of behaviours, plugins and interfaces: anything that can be sent across threads.
+pub type BoxError = Box<dyn std::error::Error + Send + Sync>;

@@ -4,10 +4,10 @@
 #[macro_use]
 mod common;
 
-use yarok_core::compose::{
-    ComponentType, Config, Declaration, NameKind, Overrides, Value, compose, compose_with,
-};
+use yarok_core::component::{ComponentType, Declaration, NameKind};
+use yarok_core::compose::{compose, compose_with};
 use yarok_core::template::xml::Element;
+use yarok_core::value::{Config, IntoValue, Overrides};
 
 /// Every `(tag, attribute, value)` in the subtree, for asserting names and references.
 fn attributes(element: &Element) -> Vec<(String, String, String)> {
@@ -360,7 +360,7 @@ fn config_is_typed_and_unknown_keys_and_paths_are_errors_with_suggestions() {
     let world = compose_with(ComponentType::of::<World>(), &overrides).unwrap();
     assert_eq!(
         world.instance("/hand/left").unwrap().config.get("length"),
-        Some(&Value::Float(0.07))
+        Some(&0.07.into_value())
     );
     assert!(has(&world.mjcf, "geom", "size", "0.01 0.01 0.07"));
 

@@ -1,6 +1,7 @@
 //! Errors name the component path, the template, line:column, element, attribute and expression.
 
-use yarok_core::compose::{Component, ComposeError, Declaration, compose};
+use yarok_core::component::{Component, Declaration};
+use yarok_core::compose::{ComposeError, compose};
 
 macro_rules! component {
     ($name:ident, $template:expr) => {

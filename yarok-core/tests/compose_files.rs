@@ -5,7 +5,8 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use yarok_core::compose::{Declaration, compose};
+use yarok_core::component::Declaration;
+use yarok_core::compose::compose;
 use yarok_core::template::xml::Element;
 
 fn fixtures() -> PathBuf {

@@ -1,7 +1,8 @@
 //! Components that contain themselves, `extends` cycles and worlds nested too deep are errors that
 //! say where, never a stack overflow.
 
-use yarok_core::compose::{Component, ComposeError, Declaration, compose};
+use yarok_core::component::{Component, Declaration};
+use yarok_core::compose::{ComposeError, compose};
 
 fn error_of<C: Component>() -> ComposeError {
     compose::<C>().expect_err("composition should fail")

@@ -4,7 +4,8 @@
 #[macro_use]
 mod common;
 
-use yarok_core::compose::{Composition, Declaration, compose};
+use yarok_core::component::Declaration;
+use yarok_core::compose::{Composition, compose};
 use yarok_core::template::xml::Element;
 
 fn names(parent: &Element) -> Vec<String> {

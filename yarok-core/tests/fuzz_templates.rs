@@ -4,14 +4,15 @@
 //! many more cases than CI does.
 
 use proptest::prelude::*;
-use yarok_core::compose::{Component, Declaration, compose_declaration};
+use yarok_core::component::{Component, Declaration};
+use yarok_core::compose::compose_declaration;
 use yarok_core::config::Settings;
 use yarok_core::template::expr::{Expr, Variables};
 use yarok_core::template::xml::Element;
 
 struct NoVariables;
 impl Variables for NoVariables {
-    fn get(&self, _: &str) -> Option<&yarok_core::compose::Value> {
+    fn get(&self, _: &str) -> Option<&yarok_core::value::Value> {
         None
     }
 }

@@ -4,8 +4,12 @@
 use std::cell::Cell;
 use std::rc::Rc;
 
-use yarok_core::compose::{Component, Declaration};
-use yarok_core::runtime::{BoxError, MockBackend, Pl, Platform, Plugin, RuntimeError};
+use std::convert::Infallible;
+use yarok_core::BoxError;
+use yarok_core::component::{Component, Declaration};
+use yarok_core::runtime::{Platform, Plugin, RuntimeError, World};
+
+use yarok_core::component::{Mock, MockBackend};
 
 struct Empty;
 impl Component for Empty {
@@ -17,12 +21,13 @@ impl Component for Empty {
 struct Watch(Rc<Cell<bool>>);
 
 impl Plugin for Watch {
-    fn step(&mut self, _: &Pl) -> Result<(), BoxError> {
+    fn step(&mut self, _: &World<'_>) -> Result<(), BoxError> {
         Ok(())
     }
 
-    fn on_end(&mut self, _: &Pl) {
+    fn end(&mut self, _: &World<'_>) -> Result<(), BoxError> {
         self.0.set(true);
+        Ok(())
     }
 }
 
@@ -32,7 +37,8 @@ fn ctrl_c_stops_the_run_and_plugins_see_the_end() {
     let error = Platform::builder()
         .world::<Empty>()
         // Paced, so that ticks take real time and the signal has time to arrive.
-        .backend("sim", |_, _| Ok(Box::new(MockBackend::new(0.01, true))))
+        .environment("mock")
+        .backend::<Mock, Infallible>(|_, _| Ok(MockBackend::new(0.01, true)))
         .plugin(Watch(Rc::clone(&ended)))
         .behaviour(|pl| async move {
             pl.wait_seconds(0.1).await?;
@@ -60,7 +66,8 @@ fn ctrl_c_child() {
     }
     Platform::builder()
         .world::<Empty>()
-        .backend("sim", |_, _| Ok(Box::new(MockBackend::new(0.01, false))))
+        .environment("mock")
+        .backend::<Mock, Infallible>(|_, _| Ok(MockBackend::new(0.01, false)))
         .behaviour(|pl| async move {
             pl.wait_seconds(0.05).await?;
             Ok(())

@@ -1,13 +1,30 @@
 //! Components bound per environment, injection, plugins, and layered configuration.
 
 use std::cell::{Cell, RefCell};
+use std::convert::Infallible;
 use std::rc::Rc;
 
-use yarok_core::compose::{Component, Declaration, NameKind, Value};
-use yarok_core::config::RunConfig;
-use yarok_core::runtime::{
-    Bind, BoxError, MockBackend, Pl, Platform, PlatformBuilder, Plugin, RuntimeError,
+use yarok_core::BoxError;
+use yarok_core::component::{
+    Bind, BindError, Component, Declaration, Environment, Interface, Interfaces, Mock,
+    MockBackend, NameKind,
 };
+use yarok_core::config::RunConfig;
+use yarok_core::runtime::{Platform, PlatformBuilder, Plugin, RuntimeError, World};
+
+/// A stand-in for the simulator, so that these tests need no MuJoCo.
+struct Sim;
+impl Environment for Sim {
+    const NAME: &'static str = "sim";
+    type Backend = MockBackend;
+}
+
+/// A stand-in for hardware.
+struct Real;
+impl Environment for Real {
+    const NAME: &'static str = "real";
+    type Backend = MockBackend;
+}
 
 thread_local! {
     /// The order interfaces stepped in, by path (each test runs on its own thread).
@@ -29,17 +46,18 @@ impl Component for Motor {
             .template(r#"<mujoco><worldbody><body name="rotor"><joint name="axle"/></body></worldbody></mujoco>"#)
     }
 
-    fn bind(bind: &mut Bind<'_>) -> Result<Self, RuntimeError> {
-        if bind.environment() == "real" {
-            return Err(bind.no_interface());
-        }
-        let Some(Value::Float(speed)) = bind.config().get("speed").cloned() else {
-            return Err(bind.error("speed must be a number"));
-        };
+    fn interfaces(interfaces: &mut Interfaces<Self>) {
+        interfaces.add::<Sim>().add::<Mock>();
+    }
+}
+
+impl Motor {
+    fn bind<E: Environment>(bind: &mut Bind<E>) -> Result<Self, BindError> {
+        let speed = bind.config_value("speed")?;
         let ticks = Rc::new(Cell::new(0));
         let counter = Rc::clone(&ticks);
         let path = bind.path().to_owned();
-        bind.on_step(move || {
+        bind.on_tick(move || {
             counter.set(counter.get() + 1);
             STEPS.with(|s| s.borrow_mut().push(path.clone()));
             Ok(())
@@ -49,6 +67,18 @@ impl Component for Motor {
             speed,
             ticks,
         })
+    }
+}
+
+impl Interface<Sim> for Motor {
+    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
+        Motor::bind(bind)
+    }
+}
+
+impl Interface<Mock> for Motor {
+    async fn bind(bind: &mut Bind<Mock>) -> Result<Self, BindError> {
+        Motor::bind(bind)
     }
 }
 
@@ -68,9 +98,27 @@ impl Component for Car {
         )
     }
 
-    fn bind(bind: &mut Bind<'_>) -> Result<Self, RuntimeError> {
+    fn interfaces(interfaces: &mut Interfaces<Self>) {
+        interfaces.add::<Sim>().add::<Mock>();
+    }
+}
+
+impl Interface<Sim> for Car {
+    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
+        Car::bind(bind)
+    }
+}
+
+impl Interface<Mock> for Car {
+    async fn bind(bind: &mut Bind<Mock>) -> Result<Self, BindError> {
+        Car::bind(bind)
+    }
+}
+
+impl Car {
+    fn bind<E: Environment>(bind: &mut Bind<E>) -> Result<Self, BindError> {
         let path = bind.path().to_owned();
-        bind.on_step(move || {
+        bind.on_tick(move || {
             STEPS.with(|s| s.borrow_mut().push(path.clone()));
             Ok(())
         });
@@ -94,7 +142,8 @@ impl Component for Garage {
 fn platform() -> PlatformBuilder {
     Platform::builder()
         .world::<Garage>()
-        .backend("sim", |_, _| Ok(Box::new(MockBackend::new(0.01, false))))
+        .environment("mock")
+        .backend::<Mock, Infallible>(|_, _| Ok(MockBackend::new(0.01, false)))
 }
 
 #[test]
@@ -148,7 +197,7 @@ fn behaviours_get_typed_handles_by_path_or_name() {
             );
             assert!(matches!(
                 pl.get::<Garage>("/"),
-                Err(RuntimeError::NoHandle { .. })
+                Err(yarok_core::component::HandleError::NoHandle { .. })
             ));
             Ok(())
         })
@@ -157,16 +206,24 @@ fn behaviours_get_typed_handles_by_path_or_name() {
 }
 
 #[test]
-fn a_component_without_an_interface_for_the_environment_fails_at_start() {
+fn environments_that_components_do_not_support_fail_before_anything_binds() {
     let error = platform()
-        .backend("real", |_, _| Ok(Box::new(MockBackend::new(0.01, true))))
+        .backend::<Real, Infallible>(|_, _| Ok(MockBackend::new(0.01, true)))
         .environment("real")
         .build()
         .unwrap_err();
     assert_eq!(
         error.to_string(),
-        "component /car/right has no `real` interface"
+        format!(
+            "components cannot run in `real`: /car (Car) supports sim, mock; /car/left (Motor) \
+             supports sim, mock; /car/right (Motor) supports sim, mock"
+        )
     );
+    let RuntimeError::Unsupported { components, .. } = error else {
+        panic!("{error}");
+    };
+    assert_eq!(components[1].supports, ["sim", "mock"]);
+    assert_eq!(STEPS.with(|s| s.borrow().len()), 0, "nothing was bound");
 }
 
 struct Recorder {
@@ -179,12 +236,13 @@ impl Plugin for Recorder {
         self.name.to_owned()
     }
 
-    fn start(&mut self, _: &Pl) -> Result<(), BoxError> {
+    fn start(&mut self, _: &World<'_>) -> Result<(), BoxError> {
         self.log.borrow_mut().push(format!("{} start", self.name));
         Ok(())
     }
 
-    fn step(&mut self, pl: &Pl) -> Result<(), BoxError> {
+    fn step(&mut self, world: &World<'_>) -> Result<(), BoxError> {
+        let pl = world.pl();
         self.log
             .borrow_mut()
             .push(format!("{} {}", self.name, pl.ticks()));
@@ -194,8 +252,9 @@ impl Plugin for Recorder {
         Ok(())
     }
 
-    fn on_end(&mut self, _: &Pl) {
+    fn end(&mut self, _: &World<'_>) -> Result<(), BoxError> {
         self.log.borrow_mut().push(format!("{} end", self.name));
+        Ok(())
     }
 }
 
@@ -254,6 +313,11 @@ fn plugins_step_in_order_and_always_see_the_end() {
     );
 }
 
+#[derive(serde::Deserialize)]
+struct CounterSettings {
+    every: i64,
+}
+
 #[test]
 fn plugins_are_created_from_the_run_configuration() {
     let created = Rc::new(Cell::new(0i64));
@@ -261,12 +325,9 @@ fn plugins_are_created_from_the_run_configuration() {
     let config = RunConfig::from_toml("[plugins.counter]\nevery = 5\n", "run.toml").unwrap();
     platform()
         .config(config)
-        .plugin_factory("counter", move |config| {
-            let Some(Value::Int(every)) = config.get("every") else {
-                return Err("`every` must be an integer".into());
-            };
-            seen.set(*every);
-            Ok(Box::new(|_: &Pl| Ok(())))
+        .plugin_factory("counter", move |settings: CounterSettings| {
+            seen.set(settings.every);
+            Ok::<_, BoxError>(|_: &World<'_>| Ok(()))
         })
         .behaviour(|pl| async move {
             pl.tick().await?;
@@ -277,7 +338,9 @@ fn plugins_are_created_from_the_run_configuration() {
     assert_eq!(created.get(), 5);
     let error = platform()
         .config(RunConfig::from_toml("[plugins.countr]\n", "run.toml").unwrap())
-        .plugin_factory("counter", |_| Ok(Box::new(|_: &Pl| Ok(()))))
+        .plugin_factory("counter", |_: CounterSettings| {
+            Ok::<_, BoxError>(|_: &World<'_>| Ok(()))
+        })
         .build()
         .unwrap_err();
     assert!(
@@ -308,14 +371,12 @@ fn speeds(builder: PlatformBuilder) -> (f64, f64, i64) {
     let result = Rc::new(RefCell::new((0.0, 0.0, 0)));
     let out = Rc::clone(&result);
     builder
-        .backend("mock", |_, _| Ok(Box::new(MockBackend::new(0.01, false))))
+        .backend::<Sim, Infallible>(|_, _| Ok(MockBackend::new(0.01, false)))
         .behaviour_default("laps", 1)
         .behaviour(move |pl| async move {
             let (left, right): (Motor, Motor) = (pl.get("/car/left")?, pl.get("/car/right")?);
-            let Some(Value::Int(laps)) = pl.config().get("laps") else {
-                return Err("laps".into());
-            };
-            *out.borrow_mut() = (left.speed, right.speed, *laps);
+            let laps = pl.config().get("laps").and_then(|laps| laps.as_i64());
+            *out.borrow_mut() = (left.speed, right.speed, laps.ok_or("laps")?);
             Ok(())
         })
         .run()
@@ -361,7 +422,7 @@ fn configuration_layers_defaults_file_environment_and_command_line() {
 fn unknown_names_in_the_configuration_are_errors_with_the_nearest_name() {
     let error = |toml: &str| {
         platform()
-            .backend("mock", |_, _| Ok(Box::new(MockBackend::new(0.01, false))))
+            .backend::<Sim, Infallible>(|_, _| Ok(MockBackend::new(0.01, false)))
             .config(RunConfig::from_toml(toml, "run.toml").unwrap())
             .build()
             .unwrap_err()
@@ -408,7 +469,7 @@ fn unknown_names_in_the_configuration_are_errors_with_the_nearest_name() {
 fn config_value_errors_name_where_the_value_was_set() {
     let error = |config: RunConfig| {
         platform()
-            .backend("mock", |_, _| Ok(Box::new(MockBackend::new(0.01, false))))
+            .backend::<Sim, Infallible>(|_, _| Ok(MockBackend::new(0.01, false)))
             .config(config)
             .build()
             .unwrap_err()
@@ -454,7 +515,7 @@ fn config_files_are_read_from_the_command_line() {
     let bad = dir.join("bad.toml");
     std::fs::write(&bad, "[platform]\nrealtime = \"yes\"\n").unwrap();
     let error = platform()
-        .backend("mock", |_, _| Ok(Box::new(MockBackend::new(0.01, false))))
+        .backend::<Sim, Infallible>(|_, _| Ok(MockBackend::new(0.01, false)))
         .args(["--config", bad.to_str().unwrap()].map(String::from))
         .unwrap()
         .build()

@@ -3,8 +3,12 @@
 use std::cell::{Cell, RefCell};
 use std::rc::Rc;
 
-use yarok_core::compose::{Component, Declaration};
-use yarok_core::runtime::{MockBackend, Platform, PlatformBuilder, RuntimeError, WaitError};
+use std::convert::Infallible;
+use yarok_core::component::{Component, Declaration};
+use yarok_core::runtime::{Platform, PlatformBuilder, RuntimeError};
+
+use yarok_core::component::{Mock, MockBackend};
+use yarok_core::time::WaitError;
 
 struct Empty;
 impl Component for Empty {
@@ -17,7 +21,8 @@ impl Component for Empty {
 fn platform() -> PlatformBuilder {
     Platform::builder()
         .world::<Empty>()
-        .backend("sim", |_, _| Ok(Box::new(MockBackend::new(0.01, false))))
+        .environment("mock")
+        .backend::<Mock, Infallible>(|_, _| Ok(MockBackend::new(0.01, false)))
 }
 
 #[test]

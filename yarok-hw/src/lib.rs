@@ -8,4 +8,4 @@
 
 mod backend;
 
-pub use backend::{DEFAULT_TICK_HZ, HardwareBackend};
+pub use backend::{DEFAULT_TICK_HZ, HardwareBackend, InvalidTickRate, Real};

@@ -3,9 +3,9 @@
 use std::cell::Cell;
 use std::rc::Rc;
 
-use yarok_core::compose::{Component, Declaration};
-use yarok_core::runtime::{Platform, RuntimeError};
-use yarok_hw::HardwareBackend;
+use yarok_core::component::{Component, Declaration};
+use yarok_core::runtime::{Platform, RuntimeError, World};
+use yarok_hw::{HardwareBackend, InvalidTickRate, Real};
 
 struct Bench;
 impl Component for Bench {
@@ -24,8 +24,8 @@ async fn ten_seconds_at_100_hz_are_exactly_1000_ticks_and_take_no_wall_time() {
         .environment("real")
         .set("platform/tick_hz=100")
         .unwrap()
-        .backend("real", HardwareBackend::from_settings)
-        .plugin(move |_: &yarok_core::runtime::Pl| {
+        .backend::<Real, _>(HardwareBackend::from_settings)
+        .plugin(move |_: &World<'_>| {
             counted.set(counted.get() + 1);
             Ok(())
         })
@@ -59,11 +59,20 @@ fn a_bad_rate_is_refused() {
         .environment("real")
         .set("platform/tick_hz=0")
         .unwrap()
-        .backend("real", HardwareBackend::from_settings)
+        .backend::<Real, _>(HardwareBackend::from_settings)
         .build()
         .unwrap_err();
     assert!(
-        matches!(error, RuntimeError::Backend(ref m) if m.contains("positive")),
+        matches!(
+            &error,
+            RuntimeError::Backend { source, .. } if source.downcast_ref::<InvalidTickRate>() == Some(&InvalidTickRate(0.0))
+        ),
+        "{error}"
+    );
+    assert!(
+        error
+            .to_string()
+            .contains("tick_hz must be a positive rate"),
         "{error}"
     );
 }

@@ -29,7 +29,8 @@ impl Model {
     /// # Examples
     ///
     /// ```
-    /// use yarok_core::compose::{Component, Declaration, compose};
+    /// use yarok_core::compose::compose;
+    /// use yarok_core::component::{Component, Declaration};
     /// use yarok_mjc::Model;
     ///
     /// struct Pendulum;

@@ -54,6 +54,7 @@ mod composition;
 mod data;
 mod error;
 mod guard;
+mod handles;
 mod library;
 mod locate;
 mod model;
@@ -74,11 +75,12 @@ mod vfs;
 )]
 pub mod sys;
 
-#[cfg(feature = "render")]
-pub use backend::SharedRenderer;
-pub use backend::{SimBackend, SimBind};
+pub use backend::{Sim, SimBackend};
 pub use data::{Data, Pose};
 pub use error::{LibraryError, ModelError};
+#[cfg(feature = "render")]
+pub use handles::Camera;
+pub use handles::{Actuator, Body, Joint, Sensor, SimBind, Site};
 pub use library::mujoco_version;
 /// The MuJoCo version yarok is written against.
 pub const MUJOCO_VERSION: &str = locate::MUJOCO_VERSION;

@@ -265,6 +265,36 @@ impl Model {
         unsafe { std::slice::from_raw_parts(array, len) }
     }
 
+    /// Every joint, in MuJoCo's order.
+    pub fn joints(&self) -> impl Iterator<Item = JointId> + '_ {
+        (0..self.count(ObjectKind::Joint)).map(|index| JointId {
+            index,
+            signature: self.signature(),
+        })
+    }
+
+    /// A joint's name in the model (`arm/shoulder`), or `None` when it has none.
+    ///
+    /// # Panics
+    ///
+    /// When `joint` was resolved in a different model.
+    #[track_caller]
+    pub fn joint_name(&self, joint: JointId) -> Option<String> {
+        let index = self.index_of(joint);
+        let index = i32::try_from(index).ok()?;
+        // SAFETY: the model pointer is valid and `index` is one of its joints.
+        let name = unsafe {
+            self.mj
+                .mj_id2name(self.raw.as_ptr(), ObjectKind::Joint.mj_obj(), index)
+        };
+        if name.is_null() {
+            return None;
+        }
+        // SAFETY: MuJoCo returns a NUL-terminated name owned by the model, alive while it is.
+        let name = unsafe { std::ffi::CStr::from_ptr(name) };
+        Some(name.to_string_lossy().into_owned())
+    }
+
     fn id(&self, kind: ObjectKind, name: &str) -> Result<usize, ModelError> {
         let c_name = CString::new(name).map_err(|_| ModelError::InteriorNul {
             what: format!("{kind} name {name:?}"),

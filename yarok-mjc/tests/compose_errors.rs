@@ -1,7 +1,8 @@
 //! MuJoCo's errors about a composed world name the component, template, line:column and element
 //! the user wrote, not a line of the composed document.
 
-use yarok_core::compose::{Component, Declaration, compose};
+use yarok_core::component::{Component, Declaration};
+use yarok_core::compose::compose;
 use yarok_mjc::{Model, ModelError};
 
 struct Limb;

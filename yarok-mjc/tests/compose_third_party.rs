@@ -3,7 +3,8 @@
 
 use std::path::PathBuf;
 
-use yarok_core::compose::{Component, Declaration, compose};
+use yarok_core::component::{Component, Declaration};
+use yarok_core::compose::compose;
 use yarok_mjc::{Model, Pose};
 
 fn fixture(name: &str) -> PathBuf {

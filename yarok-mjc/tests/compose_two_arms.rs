@@ -5,7 +5,8 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use yarok_core::compose::{Component, Declaration, NameKind, compose};
+use yarok_core::component::{Component, Declaration, NameKind};
+use yarok_core::compose::compose;
 use yarok_mjc::{Data, Model, ObjectKind};
 
 fn fixtures() -> PathBuf {

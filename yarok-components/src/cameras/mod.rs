@@ -1,12 +1,8 @@
 //! Cameras.
 
-use std::cell::RefCell;
-use std::rc::Rc;
-
 use image::RgbImage;
-use yarok_core::compose::{Component, Declaration, Value};
-use yarok_core::runtime::{Bind, RuntimeError};
-use yarok_mjc::{CameraId, Data, DepthImage, RenderError, SharedRenderer, SimBind};
+use yarok_core::component::{Bind, BindError, Component, Declaration, Interface, Interfaces, Mock};
+use yarok_mjc::{Camera, DepthImage, RenderError, Sim, SimBind};
 
 /// A camera: `read()` gives a colour image, `read_depth()` distances in metres.
 ///
@@ -16,20 +12,15 @@ use yarok_mjc::{CameraId, Data, DepthImage, RenderError, SharedRenderer, SimBind
 ///
 /// Environments: `sim` renders offscreen with MuJoCo; `mock` returns black images of the
 /// configured size.
-#[derive(Clone)]
+#[derive(Clone, Debug)]
 pub struct Cam {
-    interface: Rc<dyn CamInterface>,
+    source: Source,
 }
 
-impl std::fmt::Debug for Cam {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Cam").finish_non_exhaustive()
-    }
-}
-
-trait CamInterface {
-    fn read(&self) -> Result<RgbImage, RenderError>;
-    fn read_depth(&self) -> Result<DepthImage, RenderError>;
+#[derive(Clone, Debug)]
+enum Source {
+    Sim(Camera),
+    Mock { width: u32, height: u32 },
 }
 
 impl Cam {
@@ -39,7 +30,10 @@ impl Cam {
     ///
     /// When rendering fails.
     pub fn read(&self) -> Result<RgbImage, RenderError> {
-        self.interface.read()
+        match &self.source {
+            Source::Sim(camera) => camera.rgb(),
+            Source::Mock { width, height } => Ok(RgbImage::new(*width, *height)),
+        }
     }
 
     /// The current depth image in metres (planar distance along the camera axis).
@@ -48,7 +42,10 @@ impl Cam {
     ///
     /// When rendering fails.
     pub fn read_depth(&self) -> Result<DepthImage, RenderError> {
-        self.interface.read_depth()
+        match &self.source {
+            Source::Sim(camera) => camera.depth(),
+            Source::Mock { width, height } => Ok(DepthImage::new(*width, *height)),
+        }
     }
 }
 
@@ -66,66 +63,36 @@ impl Component for Cam {
         )
     }
 
-    fn bind(bind: &mut Bind<'_>) -> Result<Self, RuntimeError> {
-        let size = |key: &str| match bind.config().get(key) {
-            Some(Value::Int(n)) if *n > 0 => {
-                u32::try_from(*n).map_err(|_| bind.error(format!("{key} is too large")))
-            }
-            other => Err(bind.error(format!(
-                "{key} must be a positive number of pixels, got {other:?}"
-            ))),
-        };
-        let (width, height) = (size("width")?, size("height")?);
-        let interface: Rc<dyn CamInterface> = match bind.environment() {
-            "sim" => {
-                let sim = bind.sim()?;
-                let renderer = sim
-                    .renderer(width, height)
-                    .map_err(|e| bind.error(e.to_string()))?;
-                Rc::new(SimCam {
-                    renderer,
-                    data: sim.data(),
-                    camera: bind.camera_id("camera")?,
-                })
-            }
-            "mock" => Rc::new(MockCam { width, height }),
-            _ => return Err(bind.no_interface()),
-        };
-        Ok(Cam { interface })
+    fn interfaces(interfaces: &mut Interfaces<Self>) {
+        interfaces.add::<Sim>().add::<Mock>();
     }
 }
 
-struct SimCam {
-    renderer: SharedRenderer,
-    data: Rc<RefCell<Data>>,
-    camera: CameraId,
+/// The configured image size, each side at least one pixel.
+fn size<E: yarok_core::component::Environment>(bind: &Bind<E>) -> Result<(u32, u32), BindError> {
+    let side = |key: &str| -> Result<u32, BindError> {
+        match bind.config_value::<u32>(key)? {
+            0 => Err(bind.error(format!("{key} must be at least one pixel"))),
+            pixels => Ok(pixels),
+        }
+    };
+    Ok((side("width")?, side("height")?))
 }
 
-impl CamInterface for SimCam {
-    fn read(&self) -> Result<RgbImage, RenderError> {
-        self.renderer
-            .borrow_mut()
-            .render_rgb(&mut self.data.borrow_mut(), self.camera)
-    }
-
-    fn read_depth(&self) -> Result<DepthImage, RenderError> {
-        self.renderer
-            .borrow_mut()
-            .render_depth(&mut self.data.borrow_mut(), self.camera)
+impl Interface<Sim> for Cam {
+    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
+        let (width, height) = size(bind)?;
+        Ok(Cam {
+            source: Source::Sim(bind.camera("camera", width, height)?),
+        })
     }
 }
 
-struct MockCam {
-    width: u32,
-    height: u32,
-}
-
-impl CamInterface for MockCam {
-    fn read(&self) -> Result<RgbImage, RenderError> {
-        Ok(RgbImage::new(self.width, self.height))
-    }
-
-    fn read_depth(&self) -> Result<DepthImage, RenderError> {
-        Ok(DepthImage::new(self.width, self.height))
+impl Interface<Mock> for Cam {
+    async fn bind(bind: &mut Bind<Mock>) -> Result<Self, BindError> {
+        let (width, height) = size(bind)?;
+        Ok(Cam {
+            source: Source::Mock { width, height },
+        })
     }
 }

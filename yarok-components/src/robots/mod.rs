@@ -1,11 +1,10 @@
 //! Robots.
 
-use std::cell::RefCell;
+use std::cell::Cell;
 use std::rc::Rc;
 
-use yarok_core::compose::{Component, Declaration};
-use yarok_core::runtime::{Bind, RuntimeError};
-use yarok_mjc::{ActuatorId, Data, SensorId, SimBind};
+use yarok_core::component::{Bind, BindError, Component, Declaration, Interface, Interfaces, Mock};
+use yarok_mjc::{Actuator, Sensor, Sim, SimBind};
 
 /// The work volume of the [`AnetA30`], in millimetres.
 pub const WORK_VOLUME_MM: [f64; 3] = [320.0, 320.0, 420.0];
@@ -22,18 +21,22 @@ pub const ARRIVED_MM: f64 = 0.25;
 /// Environments: `sim` drives three position servos in MuJoCo; `mock` moves instantly.
 #[derive(Clone)]
 pub struct AnetA30 {
-    interface: Rc<RefCell<dyn PrinterInterface>>,
+    axes: Axes,
+}
+
+#[derive(Clone)]
+enum Axes {
+    Sim {
+        servos: [Actuator; 3],
+        positions: [Sensor; 3],
+    },
+    Mock(Rc<Cell<[f64; 3]>>),
 }
 
 impl std::fmt::Debug for AnetA30 {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("AnetA30").field("at", &self.at()).finish()
     }
-}
-
-trait PrinterInterface {
-    fn move_to(&mut self, target_mm: [f64; 3]);
-    fn at(&self) -> [f64; 3];
 }
 
 impl AnetA30 {
@@ -47,13 +50,23 @@ impl AnetA30 {
             tracing::warn!("printer: move_to({target:?}) has a NaN coordinate; it goes to 0");
         }
         let clamped = clamp(target);
-        self.interface.borrow_mut().move_to(clamped);
+        match &self.axes {
+            Axes::Sim { servos, .. } => {
+                for (servo, mm) in servos.iter().zip(clamped) {
+                    servo.set(mm / 1000.0);
+                }
+            }
+            Axes::Mock(at) => at.set(clamped),
+        }
         clamped
     }
 
     /// Where the head is, in millimetres.
     pub fn at(&self) -> [f64; 3] {
-        self.interface.borrow().at()
+        match &self.axes {
+            Axes::Sim { positions, .. } => positions.each_ref().map(|axis| axis.value() * 1000.0),
+            Axes::Mock(at) => at.get(),
+        }
     }
 
     /// Whether the head is at `target` (clamped to the work volume) within [`ARRIVED_MM`].
@@ -83,57 +96,27 @@ impl Component for AnetA30 {
             .template(include_str!("anet_a30.xml"))
     }
 
-    fn bind(bind: &mut Bind<'_>) -> Result<Self, RuntimeError> {
-        let interface: Rc<RefCell<dyn PrinterInterface>> = match bind.environment() {
-            "sim" => {
-                let [x, y, z] = ["x", "y", "z"];
-                Rc::new(RefCell::new(SimPrinter {
-                    data: bind.sim()?.data(),
-                    actuators: [
-                        bind.actuator_id(x)?,
-                        bind.actuator_id(y)?,
-                        bind.actuator_id(z)?,
-                    ],
-                    sensors: [bind.sensor_id(x)?, bind.sensor_id(y)?, bind.sensor_id(z)?],
-                }))
-            }
-            "mock" => Rc::new(RefCell::new(MockPrinter { at: [0.0; 3] })),
-            _ => return Err(bind.no_interface()),
-        };
-        Ok(AnetA30 { interface })
+    fn interfaces(interfaces: &mut Interfaces<Self>) {
+        interfaces.add::<Sim>().add::<Mock>();
     }
 }
 
-struct SimPrinter {
-    data: Rc<RefCell<Data>>,
-    actuators: [ActuatorId; 3],
-    sensors: [SensorId; 3],
-}
-
-impl PrinterInterface for SimPrinter {
-    fn move_to(&mut self, target_mm: [f64; 3]) {
-        let mut data = self.data.borrow_mut();
-        for (actuator, mm) in self.actuators.iter().zip(target_mm) {
-            data.set_ctrl(*actuator, mm / 1000.0);
-        }
-    }
-
-    fn at(&self) -> [f64; 3] {
-        let data = self.data.borrow();
-        self.sensors.map(|sensor| data.sensor(sensor)[0] * 1000.0)
+impl Interface<Sim> for AnetA30 {
+    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
+        let [x, y, z] = ["x", "y", "z"];
+        Ok(AnetA30 {
+            axes: Axes::Sim {
+                servos: [bind.actuator(x)?, bind.actuator(y)?, bind.actuator(z)?],
+                positions: [bind.sensor(x)?, bind.sensor(y)?, bind.sensor(z)?],
+            },
+        })
     }
 }
 
-struct MockPrinter {
-    at: [f64; 3],
-}
-
-impl PrinterInterface for MockPrinter {
-    fn move_to(&mut self, target_mm: [f64; 3]) {
-        self.at = target_mm;
-    }
-
-    fn at(&self) -> [f64; 3] {
-        self.at
+impl Interface<Mock> for AnetA30 {
+    async fn bind(_: &mut Bind<Mock>) -> Result<Self, BindError> {
+        Ok(AnetA30 {
+            axes: Axes::Mock(Rc::default()),
+        })
     }
 }

@@ -1,6 +1,6 @@
 //! Toys: props to push, grasp and knock over.
 
-use yarok_core::compose::{Component, Declaration};
+use yarok_core::component::{Component, Declaration};
 
 /// A tumble tower of `rows` layers (default 8) of three 0.08 × 0.24 × 0.056 m wooden blocks of
 /// 0.1 kg, alternate layers turned a quarter turn, centred on (0.58, 0.48) with layers 0.061 m

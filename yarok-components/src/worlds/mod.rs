@@ -1,6 +1,6 @@
 //! Worlds: roots to build environments on.
 
-use yarok_core::compose::{Component, Declaration};
+use yarok_core::component::{Component, Declaration};
 
 use crate::cameras::Cam;
 use crate::robots::AnetA30;

@@ -3,24 +3,20 @@
 use std::collections::{BTreeSet, HashMap, HashSet};
 use std::path::PathBuf;
 
-use evalexpr::Value;
-
 use super::angles;
 use super::error::{ErrorDetails, Problem};
 use super::files::{self, Origin};
 use super::mount::{collect_mounts, mount};
-use super::names::{self, CLASSED, NameMap};
+use super::namespace::{self as names, CLASSED};
 use super::sections::World;
 use super::segments::{Segment, segments, whole_expression};
-use super::typed::typed;
-use super::{
-    ComponentKeyframe, ComponentType, ComposeError, Composition, Config, Instance, Overrides,
-    Source, layout,
-};
+use super::{ComponentKeyframe, ComposeError, Composition, Instance, layout};
+use crate::component::{ComponentType, NameKind, NameMap, Source};
 use crate::config::ConfigOrigins;
 use crate::suggest::did_you_mean;
-use crate::template::expr::{Expr, Variables, format_value, truthy};
+use crate::template::expr::{Expr, Variables, truthy};
 use crate::template::xml::{Attribute, Element, Position};
+use crate::value::{Config, IntoValue, Overrides, Value, typed};
 
 /// Loops may not expand a world beyond this many elements, so that no template exhausts memory.
 const MAX_ELEMENTS: usize = 1_000_000;
@@ -197,7 +193,7 @@ impl<'o> Composer<'o> {
                     .attribute("name")
                     .map_or_else(|| format!("key{n}"), str::to_owned);
                 let name = format!("{}{local}", prefixes[owner]);
-                maps[owner].insert(names::NameKind::Keyframe, &local, &name);
+                maps[owner].insert(NameKind::Keyframe, &local, &name);
                 let attributes = key
                     .attributes
                     .into_iter()
@@ -214,13 +210,13 @@ impl<'o> Composer<'o> {
     }
 
     fn load(&mut self, component: ComponentType, path: &str) -> Result<Loaded, ComposeError> {
-        if let Some(loaded) = self.loaded.get(&component.type_id) {
+        if let Some(loaded) = self.loaded.get(&component.type_id()) {
             return Ok(loaded.clone());
         }
         let declaration = self
             .runtime_world
             .take()
-            .unwrap_or_else(component.declaration);
+            .unwrap_or_else(|| component.declaration());
         let origin = self.origins.len();
         let (text, label, file_dir) = match &declaration.source {
             Some(Source::Inline(text)) => (
@@ -254,7 +250,7 @@ impl<'o> Composer<'o> {
                     element: None,
                     attribute: None,
                     expression: None,
-                    message: format!("{} declares no template", component.type_name),
+                    message: format!("{} declares no template", component.type_name()),
                 }));
             }
         };
@@ -291,15 +287,15 @@ impl<'o> Composer<'o> {
         };
         if let Some(base) = declaration.extends {
             self.loading.push(component);
-            if self.loading.iter().any(|c| c.type_id == base.type_id) {
-                let chain: Vec<&str> = self.loading.iter().map(|c| c.type_name).collect();
+            if self.loading.iter().any(|c| c.type_id() == base.type_id()) {
+                let chain: Vec<&str> = self.loading.iter().map(|c| c.type_name()).collect();
                 return Err(template_error(
                     None,
                     format!(
                         "{} extends itself: {} → {}",
-                        base.type_name,
+                        base.type_name(),
                         chain.join(" → "),
-                        base.type_name
+                        base.type_name()
                     ),
                 ));
             }
@@ -307,7 +303,7 @@ impl<'o> Composer<'o> {
             self.loading.pop();
             loaded = extend(base?, loaded);
         }
-        self.loaded.insert(component.type_id, loaded.clone());
+        self.loaded.insert(component.type_id(), loaded.clone());
         Ok(loaded)
     }
 
@@ -446,7 +442,7 @@ impl<'o> Composer<'o> {
         for mut element in elements {
             if let Some(condition) = element.take_attribute("if") {
                 let value = self.eval(&condition.value, &element, Some(&condition), scope)?;
-                if !truthy(&value) {
+                if !truthy(&value.0) {
                     continue;
                 }
             }
@@ -456,17 +452,16 @@ impl<'o> Composer<'o> {
                         .map_err(|m| self.error(&element, None, None, m))?;
                     let name = required(&element, "as")
                         .map_err(|m| self.error(&element, None, None, m))?;
-                    let items = match self.eval(&each.value, &element, Some(&each), scope)? {
-                        Value::Tuple(items) => items,
-                        Value::String(s) => {
-                            s.chars().map(|c| Value::String(c.to_string())).collect()
-                        }
-                        other => {
+                    let value = self.eval(&each.value, &element, Some(&each), scope)?;
+                    let items = match (value.to_list(), value.as_str()) {
+                        (Some(items), _) => items,
+                        (_, Some(s)) => s.chars().map(|c| c.to_string().into_value()).collect(),
+                        _ => {
                             return Err(self.error(
                                 &element,
                                 Some(&each),
                                 Some(&each.value),
-                                format!("cannot loop over {}", format_value(&other)),
+                                format!("cannot loop over {value}"),
                             ));
                         }
                     };
@@ -481,7 +476,7 @@ impl<'o> Composer<'o> {
                 "if" => {
                     let the = required(&element, "the")
                         .map_err(|m| self.error(&element, None, None, m))?;
-                    if truthy(&self.eval(&the.value, &element, Some(&the), scope)?) {
+                    if truthy(&self.eval(&the.value, &element, Some(&the), scope)?.0) {
                         out.extend(self.expand(element.children, ctx, scope)?);
                     }
                 }
@@ -565,8 +560,8 @@ impl<'o> Composer<'o> {
     /// A component type's tag, from its loaded template when there is one.
     fn tag_of(&self, component: ComponentType) -> String {
         self.loaded
-            .get(&component.type_id)
-            .map_or_else(|| (component.declaration)().tag, |l| l.tag.clone())
+            .get(&component.type_id())
+            .map_or_else(|| component.declaration().tag, |l| l.tag.clone())
     }
 
     fn instantiate(
@@ -579,7 +574,9 @@ impl<'o> Composer<'o> {
         let name_attribute = tag
             .take_attribute("name")
             .ok_or_else(|| self.error(&tag, None, None, "a component tag needs a `name`".into()))?;
-        let name = format_value(&self.attribute_value(&name_attribute, &tag, scope)?);
+        let name = self
+            .attribute_value(&name_attribute, &tag, scope)?
+            .to_string();
         if name.is_empty() || name.contains('/') || name.contains(char::is_whitespace) {
             return Err(self.error(
                 &tag,
@@ -645,7 +642,7 @@ impl<'o> Composer<'o> {
             .expanding
             .iter()
             .map(|&id| &self.instances[id])
-            .find(|instance| instance.component.type_id == component.type_id);
+            .find(|instance| instance.component.type_id() == component.type_id());
         if let Some(outer) = outer {
             let message = format!(
                 "component <{}> uses itself: {path} is inside {}, another <{}>",
@@ -700,7 +697,7 @@ impl<'o> Composer<'o> {
     ) -> Result<Value, ComposeError> {
         match whole_expression(&attribute.value) {
             Some(source) => self.eval(source, element, Some(attribute), scope),
-            None => Ok(Value::String(self.interpolated(attribute, element, scope)?)),
+            None => Ok(self.interpolated(attribute, element, scope)?.into_value()),
         }
     }
 
@@ -732,7 +729,7 @@ impl<'o> Composer<'o> {
                 Segment::Text(text) => out.push_str(text),
                 Segment::Expression(source) => {
                     let value = self.eval(source, element, Some(attribute), scope)?;
-                    out.push_str(&format_value(&value));
+                    out.push_str(&value.to_string());
                 }
             }
         }

@@ -1,16 +1,18 @@
 //! The runtime: a [`Platform`] composes the world, binds each component to the selected
-//! environment's [`Backend`], then ticks — backend step, interfaces' steps (children before
-//! parents), plugins' steps, then every behaviour woken by the tick runs until it waits again.
+//! environment's backend, then ticks — backend step, components' per-tick steps (children before
+//! parents), plugins' steps, then every behaviour and task woken by the tick runs until it waits
+//! again.
 //!
 //! Behaviours are `async` functions that receive a [`Pl`]: `pl.wait(cond)`, `pl.wait_seconds(s)`,
-//! `pl.tick()` and `pl.wait_forever()` resolve on ticks, in platform time (simulation time in
-//! `sim`), so a simulated run is deterministic and as fast as the machine allows.
+//! `pl.tick()`, `pl.timeout(s, future)` and `pl.wait_forever()` resolve on ticks, in platform
+//! time (simulation time in `sim`), so a simulated run is deterministic and as fast as the
+//! machine allows.
 //!
 //! # Examples
 //!
 //! ```
-//! use yarok_core::compose::{Component, Declaration};
-//! use yarok_core::runtime::{MockBackend, Platform};
+//! use yarok_core::component::{Component, Declaration, Mock, MockBackend};
+//! use yarok_core::runtime::Platform;
 //!
 //! struct Empty;
 //! impl Component for Empty {
@@ -21,7 +23,8 @@
 //!
 //! Platform::builder()
 //!     .world::<Empty>()
-//!     .backend("sim", |_, _| Ok(Box::new(MockBackend::new(0.01, false))))
+//!     .environment("mock")
+//!     .backend::<Mock>(|_, _| Ok::<_, std::convert::Infallible>(MockBackend::new(0.01, false)))
 //!     .behaviour(|pl| async move {
 //!         pl.wait_seconds(1.0).await?;
 //!         assert_eq!(pl.ticks(), 100);
@@ -31,26 +34,27 @@
 //! # Ok::<(), yarok_core::runtime::RuntimeError>(())
 //! ```
 
-mod backend;
-mod bind;
+mod builder;
+mod executor;
 mod interrupt;
+mod pl;
 mod platform;
 mod plugin;
 mod thread;
-mod wait;
 
-pub use backend::{Backend, BackendFactory, MockBackend};
-pub use bind::Bind;
-pub use platform::{BehaviourResult, Pl, Platform, PlatformBuilder};
-pub use plugin::Plugin;
+pub use builder::PlatformBuilder;
+pub use pl::Pl;
+pub use platform::Platform;
+pub use plugin::{Plugin, World};
 pub use thread::PlatformThread;
-pub use wait::{Wait, WaitError};
 
+use crate::BoxError;
+use crate::component::BindError;
 use crate::compose::ComposeError;
 use crate::config::ConfigError;
 
-/// Errors of behaviours, plugins and interfaces: anything that can be sent across threads.
-pub type BoxError = Box<dyn std::error::Error + Send + Sync>;
+/// What a behaviour returns.
+pub type BehaviourResult = Result<(), BoxError>;
 
 crate::debug_as_report!(RuntimeError);
 
@@ -75,54 +79,35 @@ pub enum RuntimeError {
         /// The registered ones.
         available: String,
     },
-    /// A component has no interface for the selected environment.
-    #[error("component {component} has no `{environment}` interface")]
-    NoInterface {
-        /// The component's path.
-        component: String,
+    /// Components of the world have no interface for the selected environment; nothing was
+    /// started.
+    #[error("{} cannot run in `{environment}`: {}", if .components.len() == 1 { "a component" } else { "components" }, unsupported(.components))]
+    Unsupported {
         /// The selected environment.
         environment: String,
+        /// Each component that cannot run in it (path and Rust type), with the environments it
+        /// supports.
+        components: Vec<Unsupported>,
     },
-    /// A component has no run-time interface at all (a world, a prop).
-    #[error("component {path} has no run-time interface")]
-    NoHandle {
-        /// The component's path.
-        path: String,
+    /// The selected environment's backend could not be made.
+    #[error("the `{environment}` backend could not start: {source}")]
+    Backend {
+        /// The selected environment.
+        environment: String,
+        /// Why.
+        source: BoxError,
     },
-    /// A component could not bind to the backend.
-    #[error("component {component}: {message}")]
-    Bind {
-        /// The component's path.
-        component: String,
-        /// What went wrong.
-        message: String,
+    /// The backend failed while stepping.
+    #[error("the `{environment}` backend failed: {source}")]
+    Step {
+        /// The selected environment.
+        environment: String,
+        /// Why.
+        source: BoxError,
     },
-    /// No component has this path.
-    #[error("no component at {path}{hint}")]
-    NoComponent {
-        /// The path asked for.
-        path: String,
-        /// A "did you mean" suggestion, or nothing.
-        hint: String,
-    },
-    /// A component name matches several paths.
-    #[error("`{name}` names several components ({paths}); use a path")]
-    Ambiguous {
-        /// The name asked for.
-        name: String,
-        /// The paths it matches.
-        paths: String,
-    },
-    /// The component at a path is another type than asked for.
-    #[error("{path} is a {found}, not a {expected}")]
-    WrongType {
-        /// The path asked for.
-        path: String,
-        /// The type asked for.
-        expected: &'static str,
-        /// The component's type.
-        found: &'static str,
-    },
+    /// A component could not bind.
+    #[error(transparent)]
+    Bind(#[from] BindError),
     /// A behaviour returned an error.
     #[error("behaviour {name} failed: {source}")]
     Behaviour {
@@ -141,7 +126,7 @@ pub enum RuntimeError {
         /// Its error.
         source: BoxError,
     },
-    /// An interface's per-tick step failed.
+    /// A component's per-tick step or task failed.
     #[error("component {component}: {source}")]
     Interface {
         /// The component's path.
@@ -149,10 +134,43 @@ pub enum RuntimeError {
         /// Its error.
         source: BoxError,
     },
-    /// The backend failed.
-    #[error("backend: {0}")]
-    Backend(String),
+    /// A component's stop action failed or ran out of time (the others still ran).
+    #[error("component {component} did not stop cleanly: {source}")]
+    Stop {
+        /// The component's path.
+        component: String,
+        /// Its error.
+        source: BoxError,
+    },
+    /// The tokio runtime could not start.
+    #[error("cannot start the platform's tokio runtime: {0}")]
+    Start(#[source] std::io::Error),
+    /// The platform's thread ended without a result (it panicked).
+    #[error("the platform thread died without a result")]
+    ThreadDied,
     /// Ctrl-C.
     #[error("interrupted")]
     Interrupted,
+}
+
+/// A component that cannot run in the selected environment.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Unsupported {
+    /// Its path.
+    pub path: String,
+    /// Its Rust type.
+    pub type_name: &'static str,
+    /// The environments it supports.
+    pub supports: Vec<&'static str>,
+}
+
+fn unsupported(components: &[Unsupported]) -> String {
+    components
+        .iter()
+        .map(|c| {
+            let short = c.type_name.rsplit("::").next().unwrap_or(c.type_name);
+            format!("{} ({short}) supports {}", c.path, c.supports.join(", "))
+        })
+        .collect::<Vec<_>>()
+        .join("; ")
 }

@@ -1,15 +1,83 @@
-//! [`Plugin`]: code that runs every tick beside the behaviours (viewers, loggers, recorders).
+//! [`Plugin`]: code that runs beside the behaviours and sees the world (viewers, loggers,
+//! recorders).
 
-use super::{BoxError, Pl};
+use super::Pl;
+use crate::BoxError;
+use crate::component::Backend;
+use crate::compose::Composition;
+use crate::config::Settings;
 
-/// A plugin: stepped every tick after the components' interfaces, in the order plugins were
-/// added; told when the run ends.
+/// What a plugin sees: the backend (for `sim`: MuJoCo's model, data and renderers), the composed
+/// world (component tree, names), the run's settings, and through [`World::pl`] platform time
+/// and the components' handles.
+#[derive(Clone, Copy)]
+pub struct World<'a> {
+    pub(crate) pl: &'a Pl,
+    pub(crate) backend: &'a dyn Backend,
+    pub(crate) composition: &'a Composition,
+    pub(crate) settings: &'a Settings,
+}
+
+impl std::fmt::Debug for World<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("World").field("pl", self.pl).finish()
+    }
+}
+
+impl<'a> World<'a> {
+    /// Platform time, waits and the components' handles.
+    pub fn pl(&self) -> &'a Pl {
+        self.pl
+    }
+
+    /// The backend as its concrete type (`SimBackend` in `sim`), or `None` in another
+    /// environment.
+    pub fn backend<B: Backend>(&self) -> Option<&'a B> {
+        let backend: &'a dyn std::any::Any = self.backend;
+        backend.downcast_ref()
+    }
+
+    /// The composed world: every component's path, type, config and names.
+    pub fn composition(&self) -> &'a Composition {
+        self.composition
+    }
+
+    /// The run's settings.
+    pub fn settings(&self) -> &'a Settings {
+        self.settings
+    }
+}
+
+/// A plugin: started before the first tick, stepped after every tick's backend and component
+/// steps (in the order plugins were added), ended at shutdown.
 ///
 /// # Lifecycle
 ///
-/// 1. [`Plugin::start`] once, after components are bound and before the first tick;
-/// 2. [`Plugin::step`] after every tick's backend and interface steps;
-/// 3. [`Plugin::on_end`] once at shutdown, whatever ended the run (in the same order).
+/// 1. [`Plugin::start`] once, after components are bound and before behaviours start;
+/// 2. [`Plugin::step`] after every tick's backend and component steps, before behaviours see it;
+/// 3. [`Plugin::end`] once at shutdown, whatever ended the run, before the components' stop
+///    actions.
+///
+/// # Examples
+///
+/// ```
+/// use yarok_core::runtime::{Plugin, World};
+///
+/// /// Counts ticks and says how many at the end.
+/// #[derive(Default)]
+/// struct TickCounter(u64);
+///
+/// impl Plugin for TickCounter {
+///     fn step(&mut self, _: &World<'_>) -> Result<(), yarok_core::BoxError> {
+///         self.0 += 1;
+///         Ok(())
+///     }
+///     fn end(&mut self, world: &World<'_>) -> Result<(), yarok_core::BoxError> {
+///         println!("{} ticks, {} s", self.0, world.pl().time());
+///         Ok(())
+///     }
+/// }
+/// ```
 pub trait Plugin: 'static {
     /// The plugin's name, for messages.
     fn name(&self) -> String {
@@ -20,8 +88,8 @@ pub trait Plugin: 'static {
     ///
     /// # Errors
     ///
-    /// An error stops the platform before it runs.
-    fn start(&mut self, _pl: &Pl) -> Result<(), BoxError> {
+    /// An error stops the platform before behaviours run.
+    fn start(&mut self, _world: &World<'_>) -> Result<(), BoxError> {
         Ok(())
     }
 
@@ -30,14 +98,20 @@ pub trait Plugin: 'static {
     /// # Errors
     ///
     /// An error shuts the platform down and is returned from `run`.
-    fn step(&mut self, pl: &Pl) -> Result<(), BoxError>;
+    fn step(&mut self, world: &World<'_>) -> Result<(), BoxError>;
 
-    /// Called once when the run ends.
-    fn on_end(&mut self, _pl: &Pl) {}
+    /// Called once when the run ends (flush files, close windows).
+    ///
+    /// # Errors
+    ///
+    /// Returned from `run` when nothing else failed first.
+    fn end(&mut self, _world: &World<'_>) -> Result<(), BoxError> {
+        Ok(())
+    }
 }
 
-impl<F: FnMut(&Pl) -> Result<(), BoxError> + 'static> Plugin for F {
-    fn step(&mut self, pl: &Pl) -> Result<(), BoxError> {
-        self(pl)
+impl<F: FnMut(&World<'_>) -> Result<(), BoxError> + 'static> Plugin for F {
+    fn step(&mut self, world: &World<'_>) -> Result<(), BoxError> {
+        self(world)
     }
 }

@@ -13,8 +13,8 @@ use super::{PlatformBuilder, RuntimeError};
 /// # Examples
 ///
 /// ```
-/// use yarok_core::compose::{Component, Declaration};
-/// use yarok_core::runtime::{MockBackend, Platform, PlatformThread};
+/// use yarok_core::component::{Component, Declaration, Mock, MockBackend};
+/// use yarok_core::runtime::{Platform, PlatformThread};
 ///
 /// struct Empty;
 /// impl Component for Empty {
@@ -26,7 +26,8 @@ use super::{PlatformBuilder, RuntimeError};
 /// let running = PlatformThread::spawn(|| {
 ///     Platform::builder()
 ///         .world::<Empty>()
-///         .backend("sim", |_, _| Ok(Box::new(MockBackend::new(0.01, false))))
+///         .environment("mock")
+///         .backend::<Mock>(|_, _| Ok::<_, std::convert::Infallible>(MockBackend::new(0.01, false)))
 ///         .behaviour(|pl| async move {
 ///             pl.wait_forever().await?;
 ///             Ok(())
@@ -74,15 +75,13 @@ impl PlatformThread {
     ///
     /// # Errors
     ///
-    /// The platform's error, or [`RuntimeError::Backend`] if its thread died.
+    /// The platform's error, or [`RuntimeError::ThreadDied`] if its thread panicked.
     ///
     /// # Cancel safety
     ///
     /// Not cancel safe: the result is lost if the future is dropped (the platform runs on).
     pub async fn finished(self) -> Result<(), RuntimeError> {
-        self.done
-            .await
-            .unwrap_or_else(|_| Err(RuntimeError::Backend("the platform thread died".into())))
+        self.done.await.unwrap_or(Err(RuntimeError::ThreadDied))
     }
 
     /// Blocks until the platform ends; for code outside async contexts.
@@ -93,6 +92,6 @@ impl PlatformThread {
     pub fn join(self) -> Result<(), RuntimeError> {
         self.done
             .blocking_recv()
-            .unwrap_or_else(|_| Err(RuntimeError::Backend("the platform thread died".into())))
+            .unwrap_or(Err(RuntimeError::ThreadDied))
     }
 }

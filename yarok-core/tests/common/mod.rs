@@ -4,8 +4,8 @@
 macro_rules! component {
     ($name:ident, $declaration:expr) => {
         struct $name;
-        impl yarok_core::compose::Component for $name {
-            fn declaration() -> yarok_core::compose::Declaration {
+        impl yarok_core::component::Component for $name {
+            fn declaration() -> yarok_core::component::Declaration {
                 $declaration
             }
         }

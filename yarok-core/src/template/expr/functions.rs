@@ -80,7 +80,7 @@ pub(super) fn comparison(op: &str) -> &'static str {
 }
 
 /// Python truthiness: `0`, `0.0`, `""`, `[]`, `False` and `None` are false.
-pub fn truthy(value: &Value) -> bool {
+pub(crate) fn truthy(value: &Value) -> bool {
     match value {
         Value::Boolean(b) => *b,
         Value::Int(n) => *n != 0,

@@ -14,9 +14,12 @@ mod parser;
 
 use std::fmt;
 
-use evalexpr::{Context, EvalexprResult, Node, Value};
-pub use functions::{FUNCTIONS, truthy};
+use evalexpr::{Context, EvalexprResult, Node, Value as Inner};
+pub use functions::FUNCTIONS;
+pub(crate) use functions::truthy;
 use parser::Ast;
+
+use crate::value::Value;
 
 /// Names visible to an expression: config values and loop variables.
 pub trait Variables {
@@ -114,12 +117,12 @@ impl Expr {
             variables,
             temporaries: Vec::new(),
         };
-        self.plan.eval(&mut scope)
+        self.plan.eval(&mut scope).map(Value)
     }
 }
 
 impl Plan {
-    fn eval(&self, scope: &mut Scope<'_>) -> Result<Value, ExprError> {
+    fn eval(&self, scope: &mut Scope<'_>) -> Result<Inner, ExprError> {
         for conditional in &self.conditionals {
             let condition = conditional.condition.eval(scope)?;
             let branch = if functions::truthy(&condition) {
@@ -271,11 +274,11 @@ fn float_literal(x: f64) -> String {
 
 struct Scope<'a> {
     variables: &'a dyn Variables,
-    temporaries: Vec<(String, Value)>,
+    temporaries: Vec<(String, Inner)>,
 }
 
 impl Context for Scope<'_> {
-    fn get_value(&self, identifier: &str) -> Option<&Value> {
+    fn get_value(&self, identifier: &str) -> Option<&Inner> {
         if identifier.starts_with("py::") {
             return self
                 .temporaries
@@ -284,10 +287,10 @@ impl Context for Scope<'_> {
                 .find(|(name, _)| name == identifier)
                 .map(|(_, v)| v);
         }
-        self.variables.get(identifier)
+        self.variables.get(identifier).map(|value| &value.0)
     }
 
-    fn call_function(&self, identifier: &str, argument: &Value) -> EvalexprResult<Value> {
+    fn call_function(&self, identifier: &str, argument: &Inner) -> EvalexprResult<Inner> {
         functions::call(identifier, argument)
     }
 
@@ -303,19 +306,19 @@ impl Context for Scope<'_> {
 /// Formats a value the way templates print it: integers as integers, floats with the shortest
 /// representation that reads back to the same number, booleans as `true`/`false`, lists and
 /// tuples as space-separated items.
-pub fn format_value(value: &Value) -> String {
+pub(crate) fn format_value(value: &Inner) -> String {
     let mut out = String::new();
     write_value(value, &mut out);
     out
 }
 
-fn write_value(value: &Value, out: &mut String) {
+fn write_value(value: &Inner, out: &mut String) {
     match value {
-        Value::String(s) => out.push_str(s),
-        Value::Float(x) => out.push_str(&format!("{x}")),
-        Value::Int(n) => out.push_str(&n.to_string()),
-        Value::Boolean(b) => out.push_str(if *b { "true" } else { "false" }),
-        Value::Tuple(items) => {
+        Inner::String(s) => out.push_str(s),
+        Inner::Float(x) => out.push_str(&format!("{x}")),
+        Inner::Int(n) => out.push_str(&n.to_string()),
+        Inner::Boolean(b) => out.push_str(if *b { "true" } else { "false" }),
+        Inner::Tuple(items) => {
             for (i, item) in items.iter().enumerate() {
                 if i > 0 {
                     out.push(' ');
@@ -323,7 +326,7 @@ fn write_value(value: &Value, out: &mut String) {
                 write_value(item, out);
             }
         }
-        Value::Empty => {}
+        Inner::Empty => {}
     }
 }
 

@@ -4,30 +4,33 @@ use evalexpr::Value;
 
 use super::{Expr, Variables, format_value};
 
-struct Vars(HashMap<&'static str, Value>);
+struct Vars(HashMap<&'static str, crate::value::Value>);
 
 impl Variables for Vars {
-    fn get(&self, name: &str) -> Option<&Value> {
+    fn get(&self, name: &str) -> Option<&crate::value::Value> {
         self.0.get(name)
     }
 }
 
 fn vars() -> Vars {
-    Vars(HashMap::from([
-        ("x", Value::Int(2)),
-        ("z", Value::Int(3)),
-        ("n", Value::Int(4)),
-        (
-            "lst",
-            Value::Tuple(vec![
-                Value::Float(0.1),
-                Value::Float(0.2),
-                Value::Float(0.3),
-            ]),
-        ),
-        ("name", Value::String("arm".into())),
-        ("flag", Value::Boolean(true)),
-    ]))
+    Vars(HashMap::from_iter(
+        [
+            ("x", Value::Int(2)),
+            ("z", Value::Int(3)),
+            ("n", Value::Int(4)),
+            (
+                "lst",
+                Value::Tuple(vec![
+                    Value::Float(0.1),
+                    Value::Float(0.2),
+                    Value::Float(0.3),
+                ]),
+            ),
+            ("name", Value::String("arm".into())),
+            ("flag", Value::Boolean(true)),
+        ]
+        .map(|(name, value)| (name, crate::value::Value(value))),
+    ))
 }
 
 fn eval(source: &str) -> Value {
@@ -35,6 +38,7 @@ fn eval(source: &str) -> Value {
         .unwrap_or_else(|e| panic!("{source}: {e}"))
         .eval(&vars())
         .unwrap_or_else(|e| panic!("{source}: {e}"))
+        .0
 }
 
 fn show(source: &str) -> String {

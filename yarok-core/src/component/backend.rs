@@ -1,22 +1,24 @@
 //! [`Backend`]: what the platform steps each tick — a simulator or devices.
 
 use std::any::Any;
+use std::cell::Cell;
 
-use super::RuntimeError;
-use crate::compose::Composition;
-use crate::config::Settings;
+use crate::BoxError;
 
 /// The world a platform runs in: MuJoCo in `sim`, devices in `real`, nothing in `mock`.
 ///
-/// The platform calls [`Backend::step`] once per tick, then the components' interfaces, then the
-/// plugins. Interfaces reach their backend through [`Bind::backend`](super::Bind::backend).
+/// The platform calls [`Backend::step`] once per tick, then the components' per-tick steps, then
+/// the plugins. Interfaces reach their environment's backend, typed, through
+/// [`Bind::backend`](super::Bind::backend); plugins through
+/// [`World::backend`](crate::runtime::World::backend). Backends are shared (`&self`), so state
+/// that changes lives in cells.
 pub trait Backend: Any {
     /// Advances one tick: one simulation step, or one round of device I/O.
     ///
     /// # Errors
     ///
     /// Whatever stops the world from advancing; the platform shuts down with it.
-    fn step(&mut self) -> Result<(), RuntimeError>;
+    fn step(&self) -> Result<(), BoxError>;
 
     /// Platform time in seconds: simulation time, or time since start on hardware.
     fn time(&self) -> f64;
@@ -27,22 +29,15 @@ pub trait Backend: Any {
     /// Whether ticks should be paced to wall-clock time (always on hardware; optional in sim).
     fn paced(&self) -> bool;
 
-    /// Leaves the world safe at shutdown (stop motion, close devices).
-    fn stop(&mut self) {}
-
-    /// The backend as `Any`, for interfaces to reach their concrete backend.
-    fn as_any(&self) -> &dyn Any;
+    /// Called once at shutdown, after the components' stop actions.
+    fn stop(&self) {}
 }
-
-/// Makes the backend of one environment from the composed world and the run settings.
-pub type BackendFactory =
-    Box<dyn FnOnce(&Composition, &Settings) -> Result<Box<dyn Backend>, RuntimeError>>;
 
 /// A backend with nothing behind it: time advances by a fixed timestep per tick. For tests of
 /// behaviours and plugins, and for components' `mock` interfaces.
 #[derive(Debug, Clone)]
 pub struct MockBackend {
-    time: f64,
+    time: Cell<f64>,
     timestep: f64,
     paced: bool,
 }
@@ -51,7 +46,7 @@ impl MockBackend {
     /// A mock ticking `timestep` seconds per tick; `paced` ties ticks to (tokio) time.
     pub fn new(timestep: f64, paced: bool) -> Self {
         Self {
-            time: 0.0,
+            time: Cell::new(0.0),
             timestep,
             paced,
         }
@@ -59,13 +54,13 @@ impl MockBackend {
 }
 
 impl Backend for MockBackend {
-    fn step(&mut self) -> Result<(), RuntimeError> {
-        self.time += self.timestep;
+    fn step(&self) -> Result<(), BoxError> {
+        self.time.set(self.time.get() + self.timestep);
         Ok(())
     }
 
     fn time(&self) -> f64 {
-        self.time
+        self.time.get()
     }
 
     fn timestep(&self) -> f64 {
@@ -74,9 +69,5 @@ impl Backend for MockBackend {
 
     fn paced(&self) -> bool {
         self.paced
-    }
-
-    fn as_any(&self) -> &dyn Any {
-        self
     }
 }

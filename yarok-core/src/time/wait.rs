@@ -1,53 +1,12 @@
 //! [`Wait`]: the future behind every `pl.wait…`, resolved on platform ticks.
 
-use std::cell::{Cell, RefCell};
 use std::fmt;
 use std::future::Future;
 use std::panic::Location;
 use std::pin::Pin;
-use std::task::{Context, Poll, Waker};
+use std::task::{Context, Poll};
 
-/// Tick state shared by the platform loop and every wait.
-#[derive(Debug)]
-pub(crate) struct Clock {
-    pub(crate) ticks: Cell<u64>,
-    pub(crate) time: Cell<f64>,
-    pub(crate) timestep: f64,
-    pub(crate) stopped: Cell<bool>,
-    waiters: RefCell<Vec<Waker>>,
-}
-
-impl Clock {
-    pub(crate) fn new(time: f64, timestep: f64) -> Self {
-        Self {
-            ticks: Cell::new(0),
-            time: Cell::new(time),
-            timestep,
-            stopped: Cell::new(false),
-            waiters: RefCell::new(Vec::new()),
-        }
-    }
-
-    /// Records a tick and wakes every wait.
-    pub(crate) fn tick(&self, time: f64) {
-        self.ticks.set(self.ticks.get() + 1);
-        self.time.set(time);
-        self.wake_all();
-    }
-
-    pub(crate) fn wake_all(&self) {
-        for waker in self.waiters.borrow_mut().drain(..) {
-            waker.wake();
-        }
-    }
-
-    fn register(&self, waker: &Waker) {
-        let mut waiters = self.waiters.borrow_mut();
-        if !waiters.iter().any(|w| w.will_wake(waker)) {
-            waiters.push(waker.clone());
-        }
-    }
-}
+use super::ClockState;
 
 /// Why a wait ended without its condition holding.
 #[derive(Clone, Copy, PartialEq, thiserror::Error)]
@@ -94,7 +53,7 @@ impl WaitError {
 /// A wait for a condition, checked once after every platform tick (the first check after the
 /// next tick: at least one tick always passes).
 ///
-/// Build it with [`Pl::wait`](crate::runtime::Pl::wait) and friends; refine it with
+/// Build it with [`Clock::wait`](super::Clock::wait) and friends; refine it with
 /// [`Wait::timeout`] and [`Wait::on_tick`]; `.await` it. A wait remembers where it was made, and
 /// its errors say so.
 ///
@@ -103,7 +62,7 @@ impl WaitError {
 /// Dropping a `Wait` cancels it; nothing else changes.
 #[must_use = "a wait does nothing unless awaited"]
 pub struct Wait<'a, C> {
-    clock: &'a Clock,
+    clock: &'a ClockState,
     condition: C,
     started_tick: u64,
     started_time: f64,
@@ -117,7 +76,7 @@ pub struct Wait<'a, C> {
 
 impl<'a, C: FnMut() -> bool + Unpin> Wait<'a, C> {
     #[track_caller]
-    pub(crate) fn new(clock: &'a Clock, condition: C) -> Self {
+    pub(crate) fn new(clock: &'a ClockState, condition: C) -> Self {
         let ticks = clock.ticks.get();
         Self {
             clock,

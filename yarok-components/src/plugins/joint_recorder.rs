@@ -1,0 +1,148 @@
+//! [`JointRecorder`]: every joint's position and velocity, one CSV row per tick.
+
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::PathBuf;
+
+use yarok_core::BoxError;
+use yarok_core::runtime::{Plugin, World};
+use yarok_mjc::{Data, JointId, SimBackend};
+
+/// Where and how often a [`JointRecorder`] writes (`[plugins.joints_csv]`).
+#[derive(Debug, Clone, PartialEq, serde::Deserialize)]
+#[serde(default)]
+pub struct JointRecorderSettings {
+    /// The CSV file (created or truncated at start).
+    pub path: PathBuf,
+    /// Write a row every this many ticks.
+    pub every: u64,
+}
+
+impl Default for JointRecorderSettings {
+    fn default() -> Self {
+        Self {
+            path: PathBuf::from("joints.csv"),
+            every: 1,
+        }
+    }
+}
+
+/// Records every joint's position and velocity in `sim`, one CSV row per tick (or every
+/// `every` ticks): `time`, then for each joint in the model's order `<name>.pos`, `<name>.vel`
+/// (`<name>.pos[k]` for joints with several coordinates), numbers in their shortest exact form.
+///
+/// Registered by `yarok::platform()` as `joints_csv`:
+///
+/// ```toml
+/// [plugins.joints_csv]
+/// path = "run.csv"
+/// ```
+#[derive(Debug)]
+pub struct JointRecorder {
+    settings: JointRecorderSettings,
+    file: Option<BufWriter<File>>,
+    joints: Vec<JointId>,
+    row: String,
+}
+
+impl JointRecorder {
+    /// A recorder with these settings; the file is created when the run starts.
+    ///
+    /// # Errors
+    ///
+    /// When `every` is 0.
+    pub fn new(settings: JointRecorderSettings) -> Result<Self, BoxError> {
+        if settings.every == 0 {
+            return Err("`every` must be at least 1 tick".into());
+        }
+        Ok(Self {
+            settings,
+            file: None,
+            joints: Vec::new(),
+            row: String::new(),
+        })
+    }
+
+    fn sim<'a>(world: &World<'a>) -> Result<&'a SimBackend, BoxError> {
+        world.backend::<SimBackend>().ok_or_else(|| {
+            format!(
+                "records joints of the `sim` environment, not of `{}`",
+                world.pl().environment()
+            )
+            .into()
+        })
+    }
+
+    fn header(&self, data: &Data) -> String {
+        let model = data.model();
+        let mut header = String::from("time");
+        for (index, joint) in self.joints.iter().enumerate() {
+            let name = model
+                .joint_name(*joint)
+                .unwrap_or_else(|| format!("joint{index}"));
+            for (what, count) in [
+                ("pos", data.qpos(*joint).len()),
+                ("vel", data.qvel(*joint).len()),
+            ] {
+                for k in 0..count {
+                    header.push(',');
+                    header.push_str(&name);
+                    header.push('.');
+                    header.push_str(what);
+                    if count > 1 {
+                        header.push_str(&format!("[{k}]"));
+                    }
+                }
+            }
+        }
+        header
+    }
+}
+
+impl Plugin for JointRecorder {
+    fn name(&self) -> String {
+        format!("joints_csv ({})", self.settings.path.display())
+    }
+
+    fn start(&mut self, world: &World<'_>) -> Result<(), BoxError> {
+        let sim = Self::sim(world)?;
+        self.joints = sim.model().joints().collect();
+        let path = &self.settings.path;
+        let file =
+            File::create(path).map_err(|e| format!("cannot create {}: {e}", path.display()))?;
+        let mut file = BufWriter::new(file);
+        writeln!(file, "{}", self.header(&sim.data()))?;
+        self.file = Some(file);
+        Ok(())
+    }
+
+    fn step(&mut self, world: &World<'_>) -> Result<(), BoxError> {
+        // The platform steps plugins before it counts the tick.
+        let tick = world.pl().ticks() + 1;
+        let Some(file) = &mut self.file else {
+            return Ok(());
+        };
+        if !tick.is_multiple_of(self.settings.every) {
+            return Ok(());
+        }
+        let data = Self::sim(world)?.data();
+        self.row.clear();
+        self.row.push_str(&data.time().to_string());
+        for joint in &self.joints {
+            for value in data.qpos(*joint).iter().chain(data.qvel(*joint)) {
+                self.row.push(',');
+                self.row.push_str(&value.to_string());
+            }
+        }
+        writeln!(file, "{}", self.row)?;
+        Ok(())
+    }
+
+    fn end(&mut self, _: &World<'_>) -> Result<(), BoxError> {
+        if let Some(mut file) = self.file.take() {
+            file.flush()
+                .map_err(|e| format!("cannot write {}: {e}", self.settings.path.display()))?;
+        }
+        Ok(())
+    }
+}

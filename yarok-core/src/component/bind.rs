@@ -1,0 +1,331 @@
+//! [`Bind`]: what a component's interface sees while it makes its handle at start-up.
+
+use std::cell::RefCell;
+use std::future::Future;
+use std::rc::Rc;
+
+use serde::de::DeserializeOwned;
+
+use super::{Backend, Environment, HandleError, Handles, Lifecycle, NameKind, NameMap, StopAction};
+use crate::BoxError;
+use crate::config::ConfigOrigins;
+use crate::suggest::did_you_mean;
+use crate::time::Clock;
+use crate::value::{Config, SettingsError};
+
+/// Seconds a stop action registered with [`Bind::on_stop`] may take before it is abandoned.
+pub const DEFAULT_STOP_SECONDS: f64 = 5.0;
+
+/// A component could not bind.
+#[derive(thiserror::Error)]
+#[non_exhaustive]
+pub enum BindError {
+    /// The component's template defines no such name.
+    #[error("component {component}: its template has no {kind} named {local:?}{hint}")]
+    NoName {
+        /// The component's path.
+        component: String,
+        /// The kind of name looked up.
+        kind: NameKind,
+        /// The local name asked for.
+        local: String,
+        /// A "did you mean" suggestion, or nothing.
+        hint: String,
+    },
+    /// A setting or config value does not fit.
+    #[error("component {component}: {origin}: {source}")]
+    Settings {
+        /// The component's path.
+        component: String,
+        /// Where the value was set (file and key, `--set` argument, or the component's config).
+        origin: String,
+        /// What is wrong.
+        source: SettingsError,
+    },
+    /// A child component's handle could not be had.
+    #[error("component {component}: {source}")]
+    Handle {
+        /// The component's path.
+        component: String,
+        /// Why.
+        source: HandleError,
+    },
+    /// Something the interface awaited did not finish in time.
+    #[error("component {component}: {what} did not finish within {seconds} s")]
+    Timeout {
+        /// The component's path.
+        component: String,
+        /// What was awaited.
+        what: String,
+        /// The bound.
+        seconds: f64,
+    },
+    /// The interface failed.
+    #[error("component {component}: {source}")]
+    Failed {
+        /// The component's path.
+        component: String,
+        /// Its error.
+        source: BoxError,
+    },
+}
+
+crate::debug_as_report!(BindError);
+
+/// What the platform hands an interface to bind, whatever its environment.
+pub(crate) struct BindContext {
+    pub(crate) environment: &'static str,
+    pub(crate) path: String,
+    pub(crate) config: Config,
+    pub(crate) names: NameMap,
+    pub(crate) settings: Config,
+    pub(crate) origins: Rc<ConfigOrigins>,
+    pub(crate) backend: Rc<dyn Backend>,
+    pub(crate) handles: Rc<RefCell<Handles>>,
+    pub(crate) clock: Clock,
+    pub(crate) seed: u64,
+    pub(crate) lifecycle: Rc<RefCell<Lifecycle>>,
+}
+
+/// The context in which a component's [`Interface`](super::Interface) for environment `E` makes
+/// its handle: its path, config and settings, its template's names, `E`'s backend (typed), its
+/// bound children, platform time, and the hooks of its life.
+///
+/// # When each hook runs
+///
+/// - [`Bind::on_tick`]: after every backend step, before plugins and behaviours see the tick;
+///   children's before their parents'.
+/// - [`Bind::spawn`]: polled on the platform's thread whenever woken (by a tick it awaits or by
+///   I/O, at once) until the run ends; an error ends the run.
+/// - [`Bind::on_stop`]: once at shutdown — after behaviours end, fail, or Ctrl-C, and also when
+///   a later component fails to bind — in reverse binding order, each bounded in time, whatever
+///   the others do.
+pub struct Bind<E: Environment> {
+    context: BindContext,
+    backend: Rc<E::Backend>,
+}
+
+impl<E: Environment> std::fmt::Debug for Bind<E> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Bind")
+            .field("environment", &E::NAME)
+            .field("path", &self.context.path)
+            .finish()
+    }
+}
+
+impl<E: Environment> Bind<E> {
+    pub(crate) fn new(context: BindContext) -> Result<Self, BindError> {
+        let backend: Rc<dyn std::any::Any> = context.backend.clone();
+        let backend = backend
+            .downcast::<E::Backend>()
+            .map_err(|_| BindError::Failed {
+                component: context.path.clone(),
+                source: format!(
+                    "the `{}` backend is not the {} its interface needs",
+                    context.environment,
+                    std::any::type_name::<E::Backend>()
+                )
+                .into(),
+            })?;
+        Ok(Self { context, backend })
+    }
+
+    /// The environment's backend.
+    pub fn backend(&self) -> &E::Backend {
+        &self.backend
+    }
+
+    /// The component's path (`/printer`).
+    pub fn path(&self) -> &str {
+        &self.context.path
+    }
+
+    /// The component's config: defaults, tag attributes and run settings applied.
+    pub fn config(&self) -> &Config {
+        &self.context.config
+    }
+
+    /// One value of the component's config, as `T`.
+    ///
+    /// # Errors
+    ///
+    /// [`BindError::Settings`] when the key is missing or its value does not fit `T`.
+    pub fn config_value<T: DeserializeOwned>(&self, key: &str) -> Result<T, BindError> {
+        let value = self.context.config.get(key).ok_or_else(|| SettingsError {
+            key: Some(key.to_owned()),
+            message: "no such config key".into(),
+        });
+        value
+            .and_then(|value| {
+                value.deserialize().map_err(|e| SettingsError {
+                    key: Some(key.to_owned()),
+                    message: e.message,
+                })
+            })
+            .map_err(|source| self.settings_error("its config".into(), source))
+    }
+
+    /// The interface's settings (`[interfaces."/path"]` in the run configuration), read into
+    /// `T`: a serde struct, usually `#[serde(default)]` so that every key is optional.
+    ///
+    /// # Errors
+    ///
+    /// [`BindError::Settings`] naming where the bad value was set: an unknown key (with the
+    /// nearest one), or a value of the wrong type.
+    pub fn settings<T: DeserializeOwned>(&self) -> Result<T, BindError> {
+        self.context
+            .settings
+            .deserialize()
+            .map_err(|source: SettingsError| {
+                let origin = match &source.key {
+                    Some(key) => self.context.origins.describe(
+                        "interfaces",
+                        &self.context.path,
+                        key.split('.').next().unwrap_or(key),
+                    ),
+                    None => "run configuration".into(),
+                };
+                self.settings_error(origin, source)
+            })
+    }
+
+    fn settings_error(&self, origin: String, source: SettingsError) -> BindError {
+        BindError::Settings {
+            component: self.context.path.clone(),
+            origin,
+            source,
+        }
+    }
+
+    /// The composed-model name of something the component's template calls `local`.
+    ///
+    /// # Errors
+    ///
+    /// [`BindError::NoName`] when the template defines no such name.
+    pub fn name(&self, kind: NameKind, local: &str) -> Result<&str, BindError> {
+        self.context
+            .names
+            .get(kind, local)
+            .ok_or_else(|| BindError::NoName {
+                component: self.context.path.clone(),
+                kind,
+                local: local.to_owned(),
+                hint: did_you_mean(
+                    local,
+                    self.context
+                        .names
+                        .iter()
+                        .filter(|(k, _, _)| *k == kind)
+                        .map(|(_, local, _)| local),
+                ),
+            })
+    }
+
+    /// The handle of a child component (bound before its parent), by name.
+    ///
+    /// # Errors
+    ///
+    /// [`BindError::Handle`] when there is no such child or it is another type.
+    pub fn child<C: Clone + 'static>(&self, name: &str) -> Result<C, BindError> {
+        let path = if self.context.path == "/" {
+            format!("/{name}")
+        } else {
+            format!("{}/{name}", self.context.path)
+        };
+        self.context
+            .handles
+            .borrow()
+            .get::<C>(&path)
+            .map_err(|source| BindError::Handle {
+                component: self.context.path.clone(),
+                source,
+            })
+    }
+
+    /// Platform time, for tasks the interface spawns (`clock.tick().await` each tick).
+    pub fn clock(&self) -> Clock {
+        self.context.clock.clone()
+    }
+
+    /// A seed for this component's random numbers, derived from `[platform] seed` and its path:
+    /// the same run configuration gives the same numbers, and two components differ.
+    pub fn seed(&self) -> u64 {
+        self.context.seed
+    }
+
+    /// Registers work to do after every backend step (children's before their parents').
+    pub fn on_tick(&mut self, step: impl FnMut() -> Result<(), BoxError> + 'static) {
+        let span = tracing::info_span!("component", path = %self.context.path);
+        self.context.lifecycle.borrow_mut().ticks.push((
+            self.context.path.clone(),
+            span,
+            Box::new(step),
+        ));
+    }
+
+    /// Spawns a task on the platform's thread that lives as long as the run: a device reader, a
+    /// heartbeat, a per-tick loop that awaits (`loop { clock.tick().await?; … }`). It is polled
+    /// whenever woken, by I/O at once; it is dropped at shutdown, before the stop actions run.
+    /// An error it returns ends the run, naming the component.
+    pub fn spawn(&mut self, task: impl Future<Output = Result<(), BoxError>> + 'static) {
+        let span = tracing::info_span!("component", path = %self.context.path);
+        self.context.lifecycle.borrow_mut().tasks.push((
+            self.context.path.clone(),
+            Box::pin(tracing::Instrument::instrument(task, span)),
+        ));
+    }
+
+    /// Registers an action that leaves the component safe at shutdown (stop motion, close the
+    /// port), abandoned after [`DEFAULT_STOP_SECONDS`]; see [`Bind::on_stop_within`].
+    pub fn on_stop(&mut self, action: impl Future<Output = Result<(), BoxError>> + 'static) {
+        self.on_stop_within(DEFAULT_STOP_SECONDS, action);
+    }
+
+    /// Registers a stop action abandoned after `seconds` (of the wall clock, which is platform
+    /// time on hardware). Stop actions run in reverse binding order, each whatever the others
+    /// did; a failure or timeout is reported and the next one still runs.
+    pub fn on_stop_within(
+        &mut self,
+        seconds: f64,
+        action: impl Future<Output = Result<(), BoxError>> + 'static,
+    ) {
+        let span = tracing::info_span!("component", path = %self.context.path);
+        self.context.lifecycle.borrow_mut().stops.push(StopAction {
+            component: self.context.path.clone(),
+            seconds,
+            action: Box::pin(tracing::Instrument::instrument(action, span)),
+        });
+    }
+
+    /// Awaits `future` for at most `seconds` of the wall clock (no tick runs while components
+    /// bind; on hardware the wall clock is platform time); `what` names it in the error.
+    ///
+    /// # Errors
+    ///
+    /// [`BindError::Timeout`] when the time runs out first.
+    pub async fn within<T>(
+        &self,
+        seconds: f64,
+        what: &str,
+        future: impl Future<Output = T>,
+    ) -> Result<T, BindError> {
+        let timeout = |seconds| BindError::Timeout {
+            component: self.context.path.clone(),
+            what: what.to_owned(),
+            seconds,
+        };
+        let duration = std::time::Duration::try_from_secs_f64(seconds).map_err(|_| timeout(0.0))?;
+        tokio::time::timeout(duration, future)
+            .await
+            .map_err(|_| timeout(seconds))
+    }
+
+    /// A binding error naming this component.
+    pub fn error(&self, source: impl Into<BoxError>) -> BindError {
+        BindError::Failed {
+            component: self.context.path.clone(),
+            source: source.into(),
+        }
+    }
+}

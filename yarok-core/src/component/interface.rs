@@ -1,0 +1,78 @@
+//! [`Interface`]: how a component binds in one environment; [`Interfaces`]: the ones it has.
+
+use std::any::Any;
+use std::future::Future;
+use std::marker::PhantomData;
+use std::pin::Pin;
+
+use super::{Bind, BindContext, BindError, Component, Environment};
+
+/// A component's interface in the environment `E`: how it makes its handle from what `E`'s
+/// backend offers.
+///
+/// `bind` runs once at start-up, inside the platform's runtime, children before parents. It may
+/// await (connect, handshake — bound each wait with [`Bind::within`]), register per-tick work
+/// ([`Bind::on_tick`]), spawn tasks that live as long as the run ([`Bind::spawn`]) and register
+/// a stop action that leaves the device safe at shutdown ([`Bind::on_stop`]).
+///
+/// See the [module documentation](super) for an example.
+pub trait Interface<E: Environment>: Component {
+    /// Makes the component's handle in environment `E`.
+    ///
+    /// # Errors
+    ///
+    /// [`BindError`] naming the component: an unknown name in its template, bad settings, a
+    /// device that does not answer; the platform then stops without running behaviours.
+    fn bind(bind: &mut Bind<E>) -> impl Future<Output = Result<Self, BindError>>;
+}
+
+/// A type-erased [`Interface::bind`].
+pub(crate) type BindFn =
+    fn(BindContext) -> Pin<Box<dyn Future<Output = Result<Box<dyn Any>, BindError>>>>;
+
+/// The environments a component runs in; filled in [`Component::interfaces`].
+pub struct Interfaces<C> {
+    entries: Vec<(&'static str, BindFn)>,
+    component: PhantomData<fn() -> C>,
+}
+
+impl<C: Component> Interfaces<C> {
+    pub(crate) fn new() -> Self {
+        Self {
+            entries: Vec::new(),
+            component: PhantomData,
+        }
+    }
+
+    /// Adds the interface for environment `E`; the compiler checks that `C` implements it.
+    pub fn add<E: Environment>(&mut self) -> &mut Self
+    where
+        C: Interface<E>,
+    {
+        self.entries.push((E::NAME, bind_erased::<C, E>));
+        self
+    }
+
+    pub(crate) fn into_entries(self) -> Vec<(&'static str, BindFn)> {
+        self.entries
+    }
+}
+
+impl<C> std::fmt::Debug for Interfaces<C> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_list()
+            .entries(self.entries.iter().map(|(name, _)| name))
+            .finish()
+    }
+}
+
+fn bind_erased<C: Interface<E>, E: Environment>(
+    context: BindContext,
+) -> Pin<Box<dyn Future<Output = Result<Box<dyn Any>, BindError>>>> {
+    Box::pin(async move {
+        let mut bind = Bind::<E>::new(context)?;
+        let span = tracing::info_span!("component", path = %bind.path());
+        let handle = tracing::Instrument::instrument(C::bind(&mut bind), span).await?;
+        Ok(Box::new(handle) as Box<dyn Any>)
+    })
+}

@@ -1,0 +1,154 @@
+//! Platform time: the tick clock every wait resolves on.
+//!
+//! Platform time is simulation time in `sim` and time since start on hardware. A [`Clock`] is
+//! shared by the platform (which advances it once per tick) and by everything that waits on it:
+//! behaviours through [`Pl`](crate::runtime::Pl), interfaces' tasks through
+//! [`Bind::clock`](crate::component::Bind::clock).
+
+mod timeout;
+mod wait;
+
+use std::cell::{Cell, RefCell};
+use std::future::Future;
+use std::rc::Rc;
+use std::task::Waker;
+
+pub use timeout::Timeout;
+pub use wait::{Wait, WaitError};
+
+/// The platform's tick clock: cheap to clone, lives on the platform's thread.
+#[derive(Clone, Debug)]
+pub struct Clock {
+    state: Rc<ClockState>,
+}
+
+/// Tick state shared by the platform loop and every wait.
+#[derive(Debug)]
+pub(crate) struct ClockState {
+    pub(crate) ticks: Cell<u64>,
+    pub(crate) time: Cell<f64>,
+    pub(crate) timestep: f64,
+    pub(crate) stopped: Cell<bool>,
+    waiters: RefCell<Vec<Waker>>,
+}
+
+impl ClockState {
+    pub(crate) fn register(&self, waker: &Waker) {
+        let mut waiters = self.waiters.borrow_mut();
+        // A task polling several waits registers them one after the other; one wake is enough.
+        if !waiters.last().is_some_and(|last| last.will_wake(waker)) {
+            waiters.push(waker.clone());
+        }
+    }
+}
+
+impl Clock {
+    pub(crate) fn new(time: f64, timestep: f64) -> Self {
+        Self {
+            state: Rc::new(ClockState {
+                ticks: Cell::new(0),
+                time: Cell::new(time),
+                timestep,
+                stopped: Cell::new(false),
+                waiters: RefCell::new(Vec::new()),
+            }),
+        }
+    }
+
+    /// Records a tick and wakes every wait.
+    pub(crate) fn advance(&self, time: f64) {
+        self.state.ticks.set(self.state.ticks.get() + 1);
+        self.state.time.set(time);
+        self.wake_all();
+    }
+
+    /// Makes every pending and future wait fail with [`WaitError::Stopped`].
+    pub(crate) fn stop(&self) {
+        self.state.stopped.set(true);
+        self.wake_all();
+    }
+
+    fn wake_all(&self) {
+        let waiters = std::mem::take(&mut *self.state.waiters.borrow_mut());
+        for waker in waiters {
+            waker.wake();
+        }
+    }
+
+    /// Platform time in seconds: simulation time in `sim`, time since start on hardware.
+    pub fn time(&self) -> f64 {
+        self.state.time.get()
+    }
+
+    /// Ticks since start.
+    pub fn ticks(&self) -> u64 {
+        self.state.ticks.get()
+    }
+
+    /// Seconds per tick.
+    pub fn timestep(&self) -> f64 {
+        self.state.timestep
+    }
+
+    /// Resolves on the first tick after which `condition` holds; it is checked after every
+    /// tick, and at least one tick passes.
+    ///
+    /// # Cancel safety
+    ///
+    /// Cancel safe: dropping the wait changes nothing.
+    #[track_caller]
+    pub fn wait<C: FnMut() -> bool + Unpin>(&self, condition: C) -> Wait<'_, C> {
+        Wait::new(&self.state, condition)
+    }
+
+    /// Resolves once `seconds` of platform time have passed (to the nearest tick).
+    /// `f64::INFINITY` waits forever; NaN or a negative number makes the wait fail at once with
+    /// [`WaitError::InvalidDuration`].
+    ///
+    /// # Cancel safety
+    ///
+    /// Cancel safe.
+    #[track_caller]
+    pub fn wait_seconds(&self, seconds: f64) -> Wait<'_, impl FnMut() -> bool + Unpin + '_> {
+        let state = &*self.state;
+        let target = state.time.get() + seconds - state.timestep / 2.0;
+        Wait::new(state, move || state.time.get() >= target)
+            .invalid(WaitError::check_duration("wait_seconds", seconds))
+    }
+
+    /// Resolves after the next tick.
+    ///
+    /// # Cancel safety
+    ///
+    /// Cancel safe.
+    #[track_caller]
+    pub fn tick(&self) -> Wait<'_, impl FnMut() -> bool + Unpin> {
+        Wait::new(&self.state, || true)
+    }
+
+    /// Never resolves on its own; ends with an error when the platform stops (or its timeout).
+    ///
+    /// # Cancel safety
+    ///
+    /// Cancel safe.
+    #[track_caller]
+    pub fn wait_forever(&self) -> Wait<'_, impl FnMut() -> bool + Unpin> {
+        Wait::new(&self.state, || false)
+    }
+
+    /// Runs `future` with a deadline `seconds` of platform time away: its output, or
+    /// [`WaitError::Timeout`] if the deadline passes first (the future is then dropped).
+    /// NaN or a negative number fails at once with [`WaitError::InvalidDuration`].
+    ///
+    /// Any future works — a channel receive, a socket read, several waits joined — and, unlike
+    /// `tokio::time::timeout`, its deadline is in platform time, so it means the same in `sim`
+    /// (simulated seconds) as on hardware.
+    ///
+    /// # Cancel safety
+    ///
+    /// As cancel safe as `future`.
+    #[track_caller]
+    pub fn timeout<F: Future>(&self, seconds: f64, future: F) -> Timeout<'_, F> {
+        Timeout::new(&self.state, seconds, future)
+    }
+}

@@ -1,0 +1,274 @@
+//! Typed handles on the simulation: what `Interface<Sim>` implementations hold. Each carries the
+//! shared simulation state inside and borrows it only within its own methods, so no component
+//! code touches a `RefCell` or holds a borrow across an `.await`.
+
+use std::cell::RefCell;
+use std::rc::Rc;
+
+use yarok_core::component::{Bind, BindError, NameKind};
+
+use crate::{ActuatorId, BodyId, Data, JointId, Pose, SensorId, Sim, SiteId};
+
+/// A renderer shared by the cameras that render at its size.
+#[cfg(feature = "render")]
+pub(crate) type SharedRenderer = Rc<RefCell<crate::Renderer>>;
+
+macro_rules! handle {
+    ($(#[$doc:meta])* $name:ident($id:ty)) => {
+        $(#[$doc])*
+        #[derive(Clone)]
+        pub struct $name {
+            data: Rc<RefCell<Data>>,
+            id: $id,
+        }
+
+        impl $name {
+            /// The object's id in the model.
+            pub fn id(&self) -> $id {
+                self.id
+            }
+        }
+
+        impl std::fmt::Debug for $name {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.debug_tuple(stringify!($name)).field(&self.id).finish()
+            }
+        }
+    };
+}
+
+handle! {
+    /// An actuator: its control input.
+    Actuator(ActuatorId)
+}
+
+impl Actuator {
+    /// Sets the control input (a position servo's target, a motor's torque).
+    pub fn set(&self, value: f64) {
+        self.data.borrow_mut().set_ctrl(self.id, value);
+    }
+
+    /// The control input.
+    pub fn get(&self) -> f64 {
+        self.data.borrow().ctrl()[self.id.index()]
+    }
+}
+
+handle! {
+    /// A sensor: its reading after the last step.
+    Sensor(SensorId)
+}
+
+impl Sensor {
+    /// The reading's first (for most sensors, only) number.
+    pub fn value(&self) -> f64 {
+        self.data.borrow().sensor(self.id)[0]
+    }
+
+    /// Every number of the reading (3 for a force sensor, 4 for a quaternion, …).
+    pub fn values(&self) -> Vec<f64> {
+        self.data.borrow().sensor(self.id).to_vec()
+    }
+}
+
+handle! {
+    /// A joint: its position and velocity.
+    Joint(JointId)
+}
+
+impl Joint {
+    /// The position of a hinge (radians) or slide (metres) joint: its first coordinate.
+    pub fn position(&self) -> f64 {
+        self.data.borrow().qpos(self.id)[0]
+    }
+
+    /// The velocity of a hinge or slide joint: its first degree of freedom.
+    pub fn velocity(&self) -> f64 {
+        self.data.borrow().qvel(self.id)[0]
+    }
+
+    /// Every position coordinate (7 for a free joint, 4 for a ball).
+    pub fn qpos(&self) -> Vec<f64> {
+        self.data.borrow().qpos(self.id).to_vec()
+    }
+
+    /// Every velocity (6 for a free joint, 3 for a ball).
+    pub fn qvel(&self) -> Vec<f64> {
+        self.data.borrow().qvel(self.id).to_vec()
+    }
+}
+
+handle! {
+    /// A body: its pose in the world.
+    Body(BodyId)
+}
+
+impl Body {
+    /// The pose in world coordinates after the last step (see [`Data::body_pose`]).
+    pub fn pose(&self) -> Pose {
+        self.data.borrow().body_pose(self.id)
+    }
+}
+
+handle! {
+    /// A site: its pose in the world (a tool centre point, a mounting point).
+    Site(SiteId)
+}
+
+impl Site {
+    /// The pose in world coordinates after the last step (see [`Data::site_pose`]).
+    pub fn pose(&self) -> Pose {
+        self.data.borrow().site_pose(self.id)
+    }
+}
+
+/// A camera with its renderer: colour and depth images of the current state.
+#[cfg(feature = "render")]
+#[derive(Clone)]
+pub struct Camera {
+    data: Rc<RefCell<Data>>,
+    renderer: SharedRenderer,
+    id: crate::CameraId,
+}
+
+#[cfg(feature = "render")]
+impl std::fmt::Debug for Camera {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_tuple("Camera").field(&self.id).finish()
+    }
+}
+
+#[cfg(feature = "render")]
+impl Camera {
+    /// The current colour image, top row first.
+    ///
+    /// # Errors
+    ///
+    /// When rendering fails.
+    pub fn rgb(&self) -> Result<image::RgbImage, crate::RenderError> {
+        self.renderer
+            .borrow_mut()
+            .render_rgb(&mut self.data.borrow_mut(), self.id)
+    }
+
+    /// The current depth image in metres (planar distance along the camera axis).
+    ///
+    /// # Errors
+    ///
+    /// When rendering fails.
+    pub fn depth(&self) -> Result<crate::DepthImage, crate::RenderError> {
+        self.renderer
+            .borrow_mut()
+            .render_depth(&mut self.data.borrow_mut(), self.id)
+    }
+}
+
+/// Typed handles on what a component's template names, for its `Interface<Sim>`.
+///
+/// # Examples
+///
+/// ```
+/// use yarok_core::component::{Bind, BindError, Component, Declaration, Interface, Interfaces};
+/// use yarok_mjc::{Actuator, Sensor, Sim, SimBind};
+///
+/// #[derive(Clone)]
+/// struct Hinge { motor: Actuator, angle: Sensor }
+///
+/// impl Component for Hinge {
+///     fn declaration() -> Declaration {
+///         Declaration::new("hinge").template(r#"<mujoco>
+///             <worldbody><body name="arm"><joint name="j"/><geom size="0.1"/></body></worldbody>
+///             <actuator><position name="motor" joint="j" kp="10"/></actuator>
+///             <sensor><jointpos name="angle" joint="j"/></sensor>
+///         </mujoco>"#)
+///     }
+///     fn interfaces(interfaces: &mut Interfaces<Self>) {
+///         interfaces.add::<Sim>();
+///     }
+/// }
+///
+/// impl Interface<Sim> for Hinge {
+///     async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
+///         Ok(Hinge { motor: bind.actuator("motor")?, angle: bind.sensor("angle")? })
+///     }
+/// }
+/// ```
+pub trait SimBind {
+    /// The actuator the component's template names `local`.
+    ///
+    /// # Errors
+    ///
+    /// [`BindError`] when the template or the model has no such actuator.
+    fn actuator(&self, local: &str) -> Result<Actuator, BindError>;
+
+    /// The sensor the template names `local`.
+    ///
+    /// # Errors
+    ///
+    /// As [`SimBind::actuator`].
+    fn sensor(&self, local: &str) -> Result<Sensor, BindError>;
+
+    /// The joint the template names `local`.
+    ///
+    /// # Errors
+    ///
+    /// As [`SimBind::actuator`].
+    fn joint(&self, local: &str) -> Result<Joint, BindError>;
+
+    /// The body the template names `local`.
+    ///
+    /// # Errors
+    ///
+    /// As [`SimBind::actuator`].
+    fn body(&self, local: &str) -> Result<Body, BindError>;
+
+    /// The site the template names `local`.
+    ///
+    /// # Errors
+    ///
+    /// As [`SimBind::actuator`].
+    fn site(&self, local: &str) -> Result<Site, BindError>;
+
+    /// The camera the template names `local`, rendering `width` × `height` pixels (cameras of
+    /// one size share a renderer).
+    ///
+    /// # Errors
+    ///
+    /// As [`SimBind::actuator`], or when no renderer can be made.
+    #[cfg(feature = "render")]
+    fn camera(&self, local: &str, width: u32, height: u32) -> Result<Camera, BindError>;
+}
+
+macro_rules! lookups {
+    ($($method:ident: $kind:ident => $lookup:ident -> $handle:ident;)*) => {$(
+        fn $method(&self, local: &str) -> Result<$handle, BindError> {
+            let name = self.name(NameKind::$kind, local)?;
+            let backend = self.backend();
+            let id = backend.model().$lookup(name).map_err(|e| self.error(e))?;
+            Ok($handle { data: backend.shared_data(), id })
+        }
+    )*};
+}
+
+impl SimBind for Bind<Sim> {
+    lookups! {
+        actuator: Actuator => actuator -> Actuator;
+        sensor: Sensor => sensor -> Sensor;
+        joint: Joint => joint -> Joint;
+        body: Body => body -> Body;
+        site: Site => site -> Site;
+    }
+
+    #[cfg(feature = "render")]
+    fn camera(&self, local: &str, width: u32, height: u32) -> Result<Camera, BindError> {
+        let name = self.name(NameKind::Camera, local)?;
+        let backend = self.backend();
+        let id = backend.model().camera(name).map_err(|e| self.error(e))?;
+        let renderer = backend.renderer(width, height).map_err(|e| self.error(e))?;
+        Ok(Camera {
+            data: backend.shared_data(),
+            renderer,
+            id,
+        })
+    }
+}
