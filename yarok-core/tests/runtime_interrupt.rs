@@ -1,20 +1,32 @@
 //! Ctrl-C ends a run cleanly. Alone in its file, so that the signal reaches no other test's
 //! platform (each test file is its own process).
 
+#[allow(dead_code, reason = "each test file uses part of the shared device")]
+mod device;
+
 use std::cell::Cell;
+use std::convert::Infallible;
 use std::rc::Rc;
 
-use std::convert::Infallible;
+use device::{Device, Lab, Server};
 use yarok_core::BoxError;
-use yarok_core::component::{Component, Declaration};
+use yarok_core::component::{Component, Declaration, Mock, MockBackend};
 use yarok_core::runtime::{Platform, Plugin, RuntimeError, World};
-
-use yarok_core::component::{Mock, MockBackend};
 
 struct Empty;
 impl Component for Empty {
     fn declaration() -> Declaration {
         Declaration::new("empty").template("<mujoco><worldbody/></mujoco>")
+    }
+}
+
+/// One device, at `/arm`.
+struct Cell1;
+impl Component for Cell1 {
+    fn declaration() -> Declaration {
+        Declaration::new("cell")
+            .uses::<Device>()
+            .template(r#"<mujoco><worldbody><device name="arm"/></worldbody></mujoco>"#)
     }
 }
 
@@ -32,13 +44,16 @@ impl Plugin for Watch {
 }
 
 #[test]
-fn ctrl_c_stops_the_run_and_plugins_see_the_end() {
+fn ctrl_c_stops_the_run_plugins_see_the_end_and_devices_are_stopped() {
     let ended = Rc::new(Cell::new(false));
+    let server = Server::start(None);
     let error = Platform::builder()
-        .world::<Empty>()
+        .world::<Cell1>()
         // Paced, so that ticks take real time and the signal has time to arrive.
-        .environment("mock")
-        .backend::<Mock, Infallible>(|_, _| Ok(MockBackend::new(0.01, true)))
+        .environment("lab")
+        .backend::<Lab, Infallible>(|_, _| Ok(MockBackend::new(0.01, true)))
+        .set(&format!("interfaces/arm/port={}", server.port()))
+        .unwrap()
         .plugin(Watch(Rc::clone(&ended)))
         .behaviour(|pl| async move {
             pl.wait_seconds(0.1).await?;
@@ -53,6 +68,7 @@ fn ctrl_c_stops_the_run_and_plugins_see_the_end() {
         .unwrap_err();
     assert!(matches!(error, RuntimeError::Interrupted), "{error}");
     assert!(ended.get());
+    assert_eq!(server.received(1), ["STOP"], "the device was left safe");
 }
 
 /// Set in the child process of [`ctrl_c_ends_the_process_again_after_run`].

@@ -139,7 +139,8 @@ impl Executor {
         Ok(())
     }
 
-    /// Serves wake-ups (I/O reaching tasks at once) until `due`.
+    /// Serves wake-ups (I/O reaching tasks at once) until `due`, or until the behaviours are
+    /// done.
     ///
     /// # Errors
     ///
@@ -147,7 +148,7 @@ impl Executor {
     pub(crate) async fn serve_until(&mut self, due: Instant) -> Result<(), RuntimeError> {
         loop {
             self.poll()?;
-            if Instant::now() >= due {
+            if Instant::now() >= due || self.behaviours_done() {
                 return Ok(());
             }
             self.wake.sleeping.store(true, Ordering::SeqCst);

@@ -329,6 +329,9 @@ impl Platform {
             let due =
                 started + std::time::Duration::from_secs_f64(ticks as f64 * self.clock.timestep());
             self.executor.serve_until(due).await?;
+            if self.executor.behaviours_done() {
+                return Ok(false);
+            }
         } else if ticks.is_multiple_of(YIELD_EVERY) {
             tokio::task::yield_now().await;
         }

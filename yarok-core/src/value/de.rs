@@ -120,11 +120,7 @@ struct ValueDeserializer<'a>(&'a Value);
 
 impl ValueDeserializer<'_> {
     fn mismatch(&self, expected: &str) -> SettingsError {
-        de::Error::custom(format!(
-            "expected {expected}, got {} ({:?})",
-            self.0.kind(),
-            self.0
-        ))
+        de::Error::custom(format!("expects {expected}, got {:?}", self.0))
     }
 
     /// The number the value holds or, for text, spells.
