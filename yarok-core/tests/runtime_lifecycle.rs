@@ -14,9 +14,9 @@ use yarok_core::runtime::{Platform, PlatformBuilder, RuntimeError};
 struct Bench;
 impl Component for Bench {
     fn declaration() -> Declaration {
-        Declaration::new("bench")
-            .uses::<Device>()
-            .template(r#"<mujoco><worldbody><device name="a"/><device name="b"/></worldbody></mujoco>"#)
+        Declaration::new("bench").uses::<Device>().template(
+            r#"<mujoco><worldbody><device name="a"/><device name="b"/></worldbody></mujoco>"#,
+        )
     }
 }
 

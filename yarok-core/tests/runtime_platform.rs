@@ -6,8 +6,8 @@ use std::rc::Rc;
 
 use yarok_core::BoxError;
 use yarok_core::component::{
-    Bind, BindError, Component, Declaration, Environment, Interface, Interfaces, Mock,
-    MockBackend, NameKind,
+    Bind, BindError, Component, Declaration, Environment, Interface, Interfaces, Mock, MockBackend,
+    NameKind,
 };
 use yarok_core::config::RunConfig;
 use yarok_core::runtime::{Platform, PlatformBuilder, Plugin, RuntimeError, World};

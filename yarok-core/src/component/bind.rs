@@ -154,15 +154,10 @@ impl<E: Environment> Bind<E> {
     pub fn config_value<T: DeserializeOwned>(&self, key: &str) -> Result<T, BindError> {
         let value = self.context.config.get(key).ok_or_else(|| SettingsError {
             key: Some(key.to_owned()),
-            message: "no such config key".into(),
+            message: format!("no config key `{key}`"),
         });
         value
-            .and_then(|value| {
-                value.deserialize().map_err(|e| SettingsError {
-                    key: Some(key.to_owned()),
-                    message: e.message,
-                })
-            })
+            .and_then(|value| value.deserialize().map_err(|e: SettingsError| e.at(key)))
             .map_err(|source| self.settings_error("its config".into(), source))
     }
 

@@ -217,7 +217,7 @@ impl Platform {
     ///     .build()?;
     /// assert!(platform.step()?);
     /// assert_eq!(platform.pl().time(), 0.5);
-    /// assert!(!platform.step()?, "the behaviour returned after the second tick");
+    /// assert!(!platform.step()?, "the behaviour returned on the second tick");
     /// assert_eq!(platform.pl().ticks(), 2);
     /// # Ok::<(), yarok_core::runtime::RuntimeError>(())
     /// ```
@@ -363,7 +363,7 @@ impl Platform {
         if self.interrupt.as_ref().is_some_and(Interrupt::happened) {
             return Err(RuntimeError::Interrupted);
         }
-        Ok(true)
+        Ok(!self.executor.behaviours_done() && !self.pl.stop_requested())
     }
 
     /// Ends the run: behaviours' last poll, plugins' end, stop actions, the backend's stop.

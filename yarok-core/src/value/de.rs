@@ -7,11 +7,11 @@ use crate::suggest::did_you_mean;
 
 /// A setting that a settings struct cannot take.
 #[derive(Clone, PartialEq, Eq, thiserror::Error)]
-#[error("{}{message}", key.as_ref().map(|k| format!("`{k}` ")).unwrap_or_default())]
+#[error("{message}")]
 pub struct SettingsError {
     /// The key at fault, when one is.
     pub key: Option<String>,
-    /// What is wrong.
+    /// What is wrong, naming the key.
     pub message: String,
 }
 
@@ -31,6 +31,16 @@ impl de::Error for SettingsError {
             expected.join(", "),
             did_you_mean(variant, expected.iter().copied())
         ))
+    }
+}
+
+impl SettingsError {
+    /// The error, as the value of `key`'s.
+    pub(crate) fn at(self, key: &str) -> Self {
+        SettingsError {
+            message: format!("`{key}` {}", self.message),
+            key: Some(key.to_owned()),
+        }
     }
 }
 
@@ -62,10 +72,13 @@ impl<'de> de::Deserializer<'de> for ConfigDeserializer<'_> {
             } else {
                 format!("it has {}", fields.join(", "))
             };
-            return Err(de::Error::custom(format!(
-                "no setting `{key}` ({known}){}",
-                did_you_mean(key, fields.iter().copied())
-            )));
+            return Err(SettingsError {
+                key: Some(key.to_owned()),
+                message: format!(
+                    "no setting `{key}` ({known}){}",
+                    did_you_mean(key, fields.iter().copied())
+                ),
+            });
         }
         self.deserialize_any(visitor)
     }
@@ -105,14 +118,7 @@ impl<'de, 'a, I: Iterator<Item = (&'a str, &'a Value)>> de::MapAccess<'de> for E
             .take()
             .ok_or_else(|| de::Error::custom("a value without its key"))?;
         seed.deserialize(ValueDeserializer(value))
-            .map_err(|error| SettingsError {
-                key: Some(
-                    error
-                        .key
-                        .map_or_else(|| key.to_owned(), |k| format!("{key}.{k}")),
-                ),
-                message: error.message,
-            })
+            .map_err(|error| error.at(key))
     }
 }
 
