@@ -70,8 +70,8 @@ pub const MOCK_TIMESTEP: f64 = 0.002;
 /// ```
 pub fn platform() -> PlatformBuilder {
     Platform::builder()
-        .backend::<mjc::Sim, _>(mjc::SimBackend::from_settings)
-        .backend::<hw::Real, _>(hw::HardwareBackend::from_settings)
-        .backend::<Mock, _>(|_, _| Ok::<_, BoxError>(MockBackend::new(MOCK_TIMESTEP, false)))
+        .backend::<mjc::Sim>(mjc::SimBackend::from_settings)
+        .backend::<hw::Real>(hw::HardwareBackend::from_settings)
+        .backend::<Mock>(|_, _| Ok(MockBackend::new(MOCK_TIMESTEP, false)))
         .plugin_factory("joints_csv", components::plugins::JointRecorder::new)
 }

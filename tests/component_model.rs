@@ -3,7 +3,6 @@
 //! read the simulation; stepping tick by tick; typed interface settings; the platform seed.
 
 use std::cell::RefCell;
-use std::convert::Infallible;
 use std::rc::Rc;
 
 use yarok::components::tactile::default_background;
@@ -119,7 +118,7 @@ impl Component for Desk {
 fn desk() -> yarok::core::runtime::PlatformBuilder {
     yarok::platform()
         .world::<Desk>()
-        .backend::<Replay, Infallible>(|_, _| Ok(MockBackend::new(0.01, false)))
+        .backend::<Replay>(|_, _| Ok(MockBackend::new(0.01, false)))
 }
 
 /// The lamp's angle after 0.5 s in `environment`.

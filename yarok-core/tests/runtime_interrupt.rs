@@ -5,7 +5,6 @@
 mod device;
 
 use std::cell::Cell;
-use std::convert::Infallible;
 use std::rc::Rc;
 
 use device::{Device, Lab, Server};
@@ -51,7 +50,7 @@ fn ctrl_c_stops_the_run_plugins_see_the_end_and_devices_are_stopped() {
         .world::<Cell1>()
         // Paced, so that ticks take real time and the signal has time to arrive.
         .environment("lab")
-        .backend::<Lab, Infallible>(|_, _| Ok(MockBackend::new(0.01, true)))
+        .backend::<Lab>(|_, _| Ok(MockBackend::new(0.01, true)))
         .set(&format!("interfaces/arm/port={}", server.port()))
         .unwrap()
         .plugin(Watch(Rc::clone(&ended)))
@@ -83,7 +82,7 @@ fn ctrl_c_child() {
     Platform::builder()
         .world::<Empty>()
         .environment("mock")
-        .backend::<Mock, Infallible>(|_, _| Ok(MockBackend::new(0.01, false)))
+        .backend::<Mock>(|_, _| Ok(MockBackend::new(0.01, false)))
         .behaviour(|pl| async move {
             pl.wait_seconds(0.05).await?;
             Ok(())

@@ -3,7 +3,6 @@
 
 mod device;
 
-use std::convert::Infallible;
 use std::time::Duration;
 
 use device::{Device, Lab, Server};
@@ -25,7 +24,7 @@ fn lab(a: u16, b: u16, tick: f64) -> PlatformBuilder {
     Platform::builder()
         .world::<Bench>()
         .environment("lab")
-        .backend::<Lab, Infallible>(move |_, _| Ok(MockBackend::new(tick, true)))
+        .backend::<Lab>(move |_, _| Ok(MockBackend::new(tick, true)))
         .set(&format!("interfaces/a/port={a}"))
         .unwrap()
         .set(&format!("interfaces/b/port={b}"))

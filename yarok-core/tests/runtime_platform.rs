@@ -1,7 +1,6 @@
 //! Components bound per environment, injection, plugins, and layered configuration.
 
 use std::cell::{Cell, RefCell};
-use std::convert::Infallible;
 use std::rc::Rc;
 
 use yarok_core::BoxError;
@@ -143,7 +142,7 @@ fn platform() -> PlatformBuilder {
     Platform::builder()
         .world::<Garage>()
         .environment("mock")
-        .backend::<Mock, Infallible>(|_, _| Ok(MockBackend::new(0.01, false)))
+        .backend::<Mock>(|_, _| Ok(MockBackend::new(0.01, false)))
 }
 
 #[test]
@@ -208,7 +207,7 @@ fn behaviours_get_typed_handles_by_path_or_name() {
 #[test]
 fn environments_that_components_do_not_support_fail_before_anything_binds() {
     let error = platform()
-        .backend::<Real, Infallible>(|_, _| Ok(MockBackend::new(0.01, true)))
+        .backend::<Real>(|_, _| Ok(MockBackend::new(0.01, true)))
         .environment("real")
         .build()
         .unwrap_err();
@@ -371,7 +370,7 @@ fn speeds(builder: PlatformBuilder) -> (f64, f64, i64) {
     let result = Rc::new(RefCell::new((0.0, 0.0, 0)));
     let out = Rc::clone(&result);
     builder
-        .backend::<Sim, Infallible>(|_, _| Ok(MockBackend::new(0.01, false)))
+        .backend::<Sim>(|_, _| Ok(MockBackend::new(0.01, false)))
         .behaviour_default("laps", 1)
         .behaviour(move |pl| async move {
             let (left, right): (Motor, Motor) = (pl.get("/car/left")?, pl.get("/car/right")?);
@@ -422,7 +421,7 @@ fn configuration_layers_defaults_file_environment_and_command_line() {
 fn unknown_names_in_the_configuration_are_errors_with_the_nearest_name() {
     let error = |toml: &str| {
         platform()
-            .backend::<Sim, Infallible>(|_, _| Ok(MockBackend::new(0.01, false)))
+            .backend::<Sim>(|_, _| Ok(MockBackend::new(0.01, false)))
             .config(RunConfig::from_toml(toml, "run.toml").unwrap())
             .build()
             .unwrap_err()
@@ -469,7 +468,7 @@ fn unknown_names_in_the_configuration_are_errors_with_the_nearest_name() {
 fn config_value_errors_name_where_the_value_was_set() {
     let error = |config: RunConfig| {
         platform()
-            .backend::<Sim, Infallible>(|_, _| Ok(MockBackend::new(0.01, false)))
+            .backend::<Sim>(|_, _| Ok(MockBackend::new(0.01, false)))
             .config(config)
             .build()
             .unwrap_err()
@@ -515,7 +514,7 @@ fn config_files_are_read_from_the_command_line() {
     let bad = dir.join("bad.toml");
     std::fs::write(&bad, "[platform]\nrealtime = \"yes\"\n").unwrap();
     let error = platform()
-        .backend::<Sim, Infallible>(|_, _| Ok(MockBackend::new(0.01, false)))
+        .backend::<Sim>(|_, _| Ok(MockBackend::new(0.01, false)))
         .args(["--config", bad.to_str().unwrap()].map(String::from))
         .unwrap()
         .build()

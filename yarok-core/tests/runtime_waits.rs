@@ -3,11 +3,8 @@
 use std::cell::{Cell, RefCell};
 use std::rc::Rc;
 
-use std::convert::Infallible;
-use yarok_core::component::{Component, Declaration};
+use yarok_core::component::{Component, Declaration, Mock, MockBackend};
 use yarok_core::runtime::{Platform, PlatformBuilder, RuntimeError};
-
-use yarok_core::component::{Mock, MockBackend};
 use yarok_core::time::WaitError;
 
 struct Empty;
@@ -22,7 +19,7 @@ fn platform() -> PlatformBuilder {
     Platform::builder()
         .world::<Empty>()
         .environment("mock")
-        .backend::<Mock, Infallible>(|_, _| Ok(MockBackend::new(0.01, false)))
+        .backend::<Mock>(|_, _| Ok(MockBackend::new(0.01, false)))
 }
 
 #[test]
@@ -275,4 +272,56 @@ fn nan_and_negative_durations_are_errors() {
         })
         .run()
         .unwrap();
+}
+
+/// `pl.timeout` bounds any future in platform time: under tokio's paused clock a paced platform
+/// runs hours of platform time instantly, and the deadline is counted in ticks, not wall time.
+#[tokio::test(start_paused = true)]
+async fn pl_timeout_bounds_any_future_in_platform_time() {
+    let started = tokio::time::Instant::now();
+    let platform = Platform::builder()
+        .world::<Empty>()
+        .environment("mock")
+        .backend::<Mock>(|_, _| Ok(MockBackend::new(0.5, true)))
+        .behaviour(|pl| async move {
+            let (sender, receiver) = tokio::sync::oneshot::channel::<u32>();
+            let never = pl.timeout(3600.0, receiver).await;
+            assert_eq!(pl.time(), 3600.0, "an hour of platform time");
+            assert!(matches!(never, Err(WaitError::Timeout { seconds, .. }) if seconds == 3600.0));
+            drop(sender);
+
+            let (sender, receiver) = tokio::sync::oneshot::channel();
+            let send_later = async {
+                pl.wait_seconds(2.0).await?;
+                sender.send(7).map_err(|_| "receiver gone")?;
+                Ok::<_, yarok_core::BoxError>(())
+            };
+            let (sent, received) = tokio::join!(send_later, pl.timeout(5.0, receiver));
+            sent?;
+            assert_eq!(received??, 7);
+            assert_eq!(pl.time(), 3602.0, "it resolved as soon as the value came");
+
+            let joined = pl.timeout(1.0, async {
+                pl.wait_seconds(0.5).await?;
+                pl.wait_seconds(0.5).await
+            });
+            assert!(
+                joined.await.is_ok(),
+                "a deadline on the tick it finishes still lets it"
+            );
+            let invalid = pl.timeout(f64::NAN, std::future::pending::<()>()).await;
+            assert!(matches!(invalid, Err(WaitError::InvalidDuration { .. })));
+            Ok(())
+        })
+        .build()
+        .unwrap();
+    tokio::task::LocalSet::new()
+        .run_until(platform.run_local())
+        .await
+        .unwrap();
+    assert_eq!(
+        started.elapsed(),
+        std::time::Duration::from_secs(3603),
+        "paused tokio time advanced with the ticks"
+    );
 }

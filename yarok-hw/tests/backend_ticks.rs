@@ -24,7 +24,7 @@ async fn ten_seconds_at_100_hz_are_exactly_1000_ticks_and_take_no_wall_time() {
         .environment("real")
         .set("platform/tick_hz=100")
         .unwrap()
-        .backend::<Real, _>(HardwareBackend::from_settings)
+        .backend::<Real>(HardwareBackend::from_settings)
         .plugin(move |_: &World<'_>| {
             counted.set(counted.get() + 1);
             Ok(())
@@ -59,7 +59,7 @@ fn a_bad_rate_is_refused() {
         .environment("real")
         .set("platform/tick_hz=0")
         .unwrap()
-        .backend::<Real, _>(HardwareBackend::from_settings)
+        .backend::<Real>(HardwareBackend::from_settings)
         .build()
         .unwrap_err();
     assert!(

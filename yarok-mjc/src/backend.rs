@@ -66,8 +66,8 @@ impl SimBackend {
     /// # Errors
     ///
     /// As [`SimBackend::new`].
-    pub fn from_settings(composition: &Composition, _: &Settings) -> Result<Self, ModelError> {
-        Self::new(composition)
+    pub fn from_settings(composition: &Composition, _: &Settings) -> Result<Self, BoxError> {
+        Ok(Self::new(composition)?)
     }
 
     /// The compiled model.

@@ -26,9 +26,11 @@ pub trait Interface<E: Environment>: Component {
     fn bind(bind: &mut Bind<E>) -> impl Future<Output = Result<Self, BindError>>;
 }
 
+/// What a type-erased [`Interface::bind`] returns: the component's handle, boxed.
+type Binding = Pin<Box<dyn Future<Output = Result<Box<dyn Any>, BindError>>>>;
+
 /// A type-erased [`Interface::bind`].
-pub(crate) type BindFn =
-    fn(BindContext) -> Pin<Box<dyn Future<Output = Result<Box<dyn Any>, BindError>>>>;
+pub(crate) type BindFn = fn(BindContext) -> Binding;
 
 /// The environments a component runs in; filled in [`Component::interfaces`].
 pub struct Interfaces<C> {
@@ -66,9 +68,7 @@ impl<C> std::fmt::Debug for Interfaces<C> {
     }
 }
 
-fn bind_erased<C: Interface<E>, E: Environment>(
-    context: BindContext,
-) -> Pin<Box<dyn Future<Output = Result<Box<dyn Any>, BindError>>>> {
+fn bind_erased<C: Interface<E>, E: Environment>(context: BindContext) -> Binding {
     Box::pin(async move {
         let mut bind = Bind::<E>::new(context)?;
         let span = tracing::info_span!("component", path = %bind.path());

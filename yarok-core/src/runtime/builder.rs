@@ -137,16 +137,14 @@ impl PlatformBuilder {
 
     /// Registers environment `E`: the factory makes its backend from the composed world and the
     /// run settings when `E` is selected.
-    pub fn backend<E: Environment, Error: Into<BoxError>>(
+    pub fn backend<E: Environment>(
         mut self,
-        factory: impl FnOnce(&Composition, &Settings) -> Result<E::Backend, Error> + 'static,
+        factory: impl FnOnce(&Composition, &Settings) -> Result<E::Backend, BoxError> + 'static,
     ) -> Self {
         self.backends.insert(
             E::NAME,
             Box::new(move |composition, settings| {
-                factory(composition, settings)
-                    .map(|backend| Rc::new(backend) as Rc<dyn Backend>)
-                    .map_err(Into::into)
+                factory(composition, settings).map(|backend| Rc::new(backend) as Rc<dyn Backend>)
             }),
         );
         self

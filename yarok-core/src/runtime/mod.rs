@@ -24,7 +24,7 @@
 //! Platform::builder()
 //!     .world::<Empty>()
 //!     .environment("mock")
-//!     .backend::<Mock>(|_, _| Ok::<_, std::convert::Infallible>(MockBackend::new(0.01, false)))
+//!     .backend::<Mock>(|_, _| Ok(MockBackend::new(0.01, false)))
 //!     .behaviour(|pl| async move {
 //!         pl.wait_seconds(1.0).await?;
 //!         assert_eq!(pl.ticks(), 100);

@@ -202,14 +202,14 @@ impl Platform {
     /// struct Empty;
     /// impl Component for Empty {
     ///     fn declaration() -> Declaration {
-    ///         Declaration::new("empty")
+    ///         Declaration::new("empty").template("<mujoco/>")
     ///     }
     /// }
     ///
     /// let mut platform = Platform::builder()
     ///     .world::<Empty>()
     ///     .environment("mock")
-    ///     .backend::<Mock>(|_, _| Ok::<_, std::convert::Infallible>(MockBackend::new(0.5, false)))
+    ///     .backend::<Mock>(|_, _| Ok(MockBackend::new(0.5, false)))
     ///     .behaviour(|pl| async move {
     ///         pl.wait_seconds(1.0).await?;
     ///         Ok(())

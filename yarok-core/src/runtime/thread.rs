@@ -27,7 +27,7 @@ use super::{PlatformBuilder, RuntimeError};
 ///     Platform::builder()
 ///         .world::<Empty>()
 ///         .environment("mock")
-///         .backend::<Mock>(|_, _| Ok::<_, std::convert::Infallible>(MockBackend::new(0.01, false)))
+///         .backend::<Mock>(|_, _| Ok(MockBackend::new(0.01, false)))
 ///         .behaviour(|pl| async move {
 ///             pl.wait_forever().await?;
 ///             Ok(())
