@@ -178,7 +178,7 @@ impl Camera {
 ///     fn declaration() -> Declaration {
 ///         Declaration::new("hinge").template(r#"<mujoco>
 ///             <worldbody><body name="arm"><joint name="j"/><geom size="0.1"/></body></worldbody>
-///             <actuator><position name="motor" joint="j" kp="10"/></actuator>
+///             <actuator><position name="motor" joint="j" kp="10" dampratio="1"/></actuator>
 ///             <sensor><jointpos name="angle" joint="j"/></sensor>
 ///         </mujoco>"#)
 ///     }
@@ -192,6 +192,19 @@ impl Camera {
 ///         Ok(Hinge { motor: bind.actuator("motor")?, angle: bind.sensor("angle")? })
 ///     }
 /// }
+///
+/// yarok_core::runtime::Platform::builder()
+///     .world::<Hinge>()
+///     .backend::<Sim>(yarok_mjc::SimBackend::from_settings)
+///     .behaviour(|pl| async move {
+///         let hinge: Hinge = pl.get("/")?;
+///         hinge.motor.set(0.5);
+///         pl.wait_seconds(3.0).await?;
+///         assert!((hinge.angle.value() - 0.5).abs() < 0.05);
+///         Ok(())
+///     })
+///     .run()?;
+/// # Ok::<(), yarok_core::runtime::RuntimeError>(())
 /// ```
 pub trait SimBind {
     /// The actuator the component's template names `local`.
