@@ -3,20 +3,24 @@
 use std::collections::{BTreeSet, HashMap, HashSet};
 use std::path::PathBuf;
 
+mod evaluate;
+
+use evaluate::Scope;
+
 use super::angles;
 use super::error::{ErrorDetails, Problem};
-use super::files::{self, Origin};
+use super::files;
+use super::loader::{Loaded, Loader};
 use super::mount::{collect_mounts, mount};
 use super::namespace::{self as names, CLASSED};
 use super::sections::World;
-use super::segments::{Segment, segments, whole_expression};
 use super::{ComponentKeyframe, ComposeError, Composition, Instance, layout};
-use crate::component::{ComponentType, NameKind, NameMap, Source};
+use crate::component::{ComponentType, NameKind, NameMap};
 use crate::config::ConfigOrigins;
 use crate::suggest::did_you_mean;
-use crate::template::expr::{Expr, Variables, truthy};
-use crate::template::xml::{Attribute, Element, Position};
-use crate::value::{Config, IntoValue, Overrides, Value, typed};
+use crate::template::expr::{Expr, truthy};
+use crate::template::xml::{Attribute, Element};
+use crate::value::{Config, IntoValue, Overrides};
 
 /// Loops may not expand a world beyond this many elements, so that no template exhausts memory.
 const MAX_ELEMENTS: usize = 1_000_000;
@@ -25,16 +29,6 @@ const MAX_COMPONENT_DEPTH: usize = 32;
 /// Elements of the composed world may not nest deeper than this, so that no chain of templates
 /// can exhaust the stack of the composer, the MJCF writer or MuJoCo's parser.
 pub(super) const MAX_WORLD_DEPTH: usize = 512;
-
-/// A loaded (and, for `extends`, merged) template with what its component declares.
-#[derive(Clone)]
-struct Loaded {
-    tree: Element,
-    tag: String,
-    components: Vec<ComponentType>,
-    defaults: Config,
-    verbatim: bool,
-}
 
 struct InstanceState {
     path: String,
@@ -58,28 +52,12 @@ struct Ctx<'p> {
     depth: usize,
 }
 
-/// Config values and loop variables, innermost last.
-struct Scope<'a> {
-    parent: Option<&'a Scope<'a>>,
-    vars: Vec<(String, Value)>,
-}
-
-impl Variables for Scope<'_> {
-    fn get(&self, name: &str) -> Option<&Value> {
-        match self.vars.iter().rev().find(|(n, _)| n == name) {
-            Some((_, value)) => Some(value),
-            None => self.parent.and_then(|p| p.get(name)),
-        }
-    }
-}
-
 pub(super) struct Composer<'o> {
     overrides: &'o Overrides,
     /// Where each override was set (a file and key, a `--set`), when known.
     config_origins: Option<&'o ConfigOrigins>,
     used_overrides: HashSet<String>,
-    origins: Vec<Origin>,
-    loaded: HashMap<std::any::TypeId, Loaded>,
+    loader: Loader,
     instances: Vec<InstanceState>,
     expressions: HashMap<String, Expr>,
     world: World,
@@ -87,12 +65,8 @@ pub(super) struct Composer<'o> {
     keyframes: Vec<(usize, Element)>,
     /// Elements produced so far, bounded by [`MAX_ELEMENTS`].
     produced: usize,
-    /// The declaration of a world declared at run time, used for the first component loaded.
-    runtime_world: Option<super::Declaration>,
     /// The instances whose templates are being expanded, outermost first.
     expanding: Vec<usize>,
-    /// The component types whose templates are being loaded (`extends` chains), outermost first.
-    loading: Vec<ComponentType>,
     /// The world's `compiler/@angle`, to which every component's angles are converted.
     angle_unit: String,
 }
@@ -105,25 +79,22 @@ impl<'o> Composer<'o> {
     ) -> Self {
         Self {
             config_origins: origins,
-            runtime_world,
+            loader: Loader::new(runtime_world),
             produced: 0,
             overrides,
             used_overrides: HashSet::new(),
-            origins: Vec::new(),
-            loaded: HashMap::new(),
             instances: Vec::new(),
             expressions: HashMap::new(),
             world: World::default(),
             assets: BTreeSet::new(),
             keyframes: Vec::new(),
             expanding: Vec::new(),
-            loading: Vec::new(),
             angle_unit: angles::DEFAULT_UNIT.to_owned(),
         }
     }
 
     pub(super) fn compose(mut self, world: ComponentType) -> Result<Composition, ComposeError> {
-        let loaded = self.load(world, "/")?;
+        let loaded = self.loader.load(world, "/")?;
         let config = self.configure(&loaded, "/", Vec::new(), None)?;
         let root_attributes = loaded.tree.attributes.clone();
         let body = self.instance(world, loaded, "/", config, 0)?;
@@ -176,7 +147,7 @@ impl<'o> Composer<'o> {
             assets: self.assets.into_iter().collect(),
             keyframes,
             layout_known: layout.known,
-            templates: self.origins.into_iter().map(|o| o.label).collect(),
+            templates: self.loader.origins.into_iter().map(|o| o.label).collect(),
         })
     }
 
@@ -207,104 +178,6 @@ impl<'o> Composer<'o> {
                 }
             })
             .collect()
-    }
-
-    fn load(&mut self, component: ComponentType, path: &str) -> Result<Loaded, ComposeError> {
-        if let Some(loaded) = self.loaded.get(&component.type_id()) {
-            return Ok(loaded.clone());
-        }
-        let declaration = self
-            .runtime_world
-            .take()
-            .unwrap_or_else(|| component.declaration());
-        let origin = self.origins.len();
-        let (text, label, file_dir) = match &declaration.source {
-            Some(Source::Inline(text)) => (
-                text.clone(),
-                format!("<{}> (inline template)", declaration.tag),
-                None,
-            ),
-            Some(Source::File(file)) => {
-                let text = std::fs::read_to_string(file).map_err(|e| {
-                    ComposeError::from(ErrorDetails {
-                        component: path.to_owned(),
-                        template: file.display().to_string(),
-                        position: None,
-                        element: None,
-                        attribute: None,
-                        expression: None,
-                        message: format!("cannot read the template: {e}"),
-                    })
-                })?;
-                (
-                    text,
-                    file.display().to_string(),
-                    file.parent().map(PathBuf::from),
-                )
-            }
-            None => {
-                return Err(ComposeError::from(ErrorDetails {
-                    component: path.to_owned(),
-                    template: format!("<{}>", declaration.tag),
-                    position: None,
-                    element: None,
-                    attribute: None,
-                    expression: None,
-                    message: format!("{} declares no template", component.type_name()),
-                }));
-            }
-        };
-        let template_error = |position: Option<Position>, message: String| {
-            ComposeError::from(ErrorDetails {
-                component: path.to_owned(),
-                template: label.clone(),
-                position,
-                element: None,
-                attribute: None,
-                expression: None,
-                message,
-            })
-        };
-        let mut tree =
-            Element::parse(&text).map_err(|e| template_error(Some(e.position), e.message))?;
-        if tree.name != "mujoco" {
-            return Err(template_error(
-                Some(tree.position),
-                format!("the root element is <{}>, not <mujoco>", tree.name),
-            ));
-        }
-        let dir = declaration.asset_dir.clone().or(file_dir);
-        files::inline_includes(&mut tree, dir.as_deref())
-            .map_err(|(position, message)| template_error(position, message))?;
-        set_origin(&mut tree, origin);
-        self.origins.push(Origin::new(label.clone(), dir, &tree));
-        let mut loaded = Loaded {
-            tree,
-            tag: declaration.tag.clone(),
-            components: declaration.components.clone(),
-            defaults: declaration.defaults.clone(),
-            verbatim: declaration.verbatim,
-        };
-        if let Some(base) = declaration.extends {
-            self.loading.push(component);
-            if self.loading.iter().any(|c| c.type_id() == base.type_id()) {
-                let chain: Vec<&str> = self.loading.iter().map(|c| c.type_name()).collect();
-                return Err(template_error(
-                    None,
-                    format!(
-                        "{} extends itself: {} → {}",
-                        base.type_name(),
-                        chain.join(" → "),
-                        base.type_name()
-                    ),
-                ));
-            }
-            let base = self.load(base, path);
-            self.loading.pop();
-            loaded = extend(base?, loaded);
-        }
-        self.loaded.insert(component.type_id(), loaded.clone());
-        Ok(loaded)
     }
 
     /// Composes one component instance from its loaded template; returns its worldbody
@@ -365,7 +238,7 @@ impl<'o> Composer<'o> {
             .into_iter()
             .partition(|section| section.name == "worldbody");
         let mut sections = self.expand(sections, &ctx, &scope)?;
-        files::resolve(&mut sections, &self.origins, &mut self.assets)
+        files::resolve(&mut sections, &self.loader.origins, &mut self.assets)
             .map_err(|e| self.located(&e))?;
         super::sections::merge_top_level_defaults(&mut sections);
         let has_defaults = sections.iter().any(|s| s.name == "default");
@@ -419,7 +292,7 @@ impl<'o> Composer<'o> {
         for worldbody in worldbodies {
             body.extend(self.expand(worldbody.children, &body_ctx, &scope)?);
         }
-        files::resolve(&mut body, &self.origins, &mut self.assets).map_err(|e| self.located(&e))?;
+        files::resolve(&mut body, &self.loader.origins, &mut self.assets).map_err(|e| self.located(&e))?;
         if let Some(conversion) = &conversion {
             conversion.body(&mut body);
         }
@@ -559,9 +432,7 @@ impl<'o> Composer<'o> {
 
     /// A component type's tag, from its loaded template when there is one.
     fn tag_of(&self, component: ComponentType) -> String {
-        self.loaded
-            .get(&component.type_id())
-            .map_or_else(|| component.declaration().tag, |l| l.tag.clone())
+        self.loader.tag_of(component)
     }
 
     fn instantiate(
@@ -599,7 +470,7 @@ impl<'o> Composer<'o> {
             ));
         }
         self.check_nesting(component, &tag, &name_attribute, &path)?;
-        let loaded = self.load(component, &path)?;
+        let loaded = self.loader.load(component, &path)?;
         let mut assigned = Vec::new();
         for attribute in std::mem::take(&mut tag.attributes) {
             let value = self.attribute_value(&attribute, &tag, scope)?;
@@ -663,95 +534,6 @@ impl<'o> Composer<'o> {
         Ok(())
     }
 
-    /// Config of a new instance: defaults < tag attributes < overrides for its path.
-    fn configure(
-        &mut self,
-        loaded: &Loaded,
-        path: &str,
-        assigned: Vec<(Attribute, Value)>,
-        tag: Option<&Element>,
-    ) -> Result<Config, ComposeError> {
-        let mut config = loaded.defaults.clone();
-        for (attribute, value) in assigned {
-            let typed = typed(&loaded.defaults, &attribute.name, value);
-            let element = tag.cloned().unwrap_or_else(|| Element::new(&loaded.tag));
-            let typed = typed.map_err(|m| self.error(&element, Some(&attribute), None, m))?;
-            config.set(&attribute.name, typed);
-        }
-        if let Some(overrides) = self.overrides.get(path) {
-            self.used_overrides.insert(path.to_owned());
-            for (key, value) in overrides.iter() {
-                let typed = typed(&loaded.defaults, key, value.clone())
-                    .map_err(|m| self.override_error(path, key, m))?;
-                config.set(key, typed);
-            }
-        }
-        Ok(config)
-    }
-
-    fn attribute_value(
-        &mut self,
-        attribute: &Attribute,
-        element: &Element,
-        scope: &Scope<'_>,
-    ) -> Result<Value, ComposeError> {
-        match whole_expression(&attribute.value) {
-            Some(source) => self.eval(source, element, Some(attribute), scope),
-            None => Ok(self.interpolated(attribute, element, scope)?.into_value()),
-        }
-    }
-
-    fn interpolate(
-        &mut self,
-        element: &mut Element,
-        scope: &Scope<'_>,
-    ) -> Result<(), ComposeError> {
-        for index in 0..element.attributes.len() {
-            if element.attributes[index].value.contains(['{', '}']) {
-                let value = self.interpolated(&element.attributes[index], element, scope)?;
-                element.attributes[index].value = value;
-            }
-        }
-        Ok(())
-    }
-
-    fn interpolated(
-        &mut self,
-        attribute: &Attribute,
-        element: &Element,
-        scope: &Scope<'_>,
-    ) -> Result<String, ComposeError> {
-        let mut out = String::with_capacity(attribute.value.len());
-        for segment in
-            segments(&attribute.value).map_err(|m| self.error(element, Some(attribute), None, m))?
-        {
-            match segment {
-                Segment::Text(text) => out.push_str(text),
-                Segment::Expression(source) => {
-                    let value = self.eval(source, element, Some(attribute), scope)?;
-                    out.push_str(&value.to_string());
-                }
-            }
-        }
-        Ok(out)
-    }
-
-    fn eval(
-        &mut self,
-        source: &str,
-        element: &Element,
-        attribute: Option<&Attribute>,
-        scope: &Scope<'_>,
-    ) -> Result<Value, ComposeError> {
-        if !self.expressions.contains_key(source) {
-            let parsed = Expr::parse(source)
-                .map_err(|e| self.error(element, attribute, Some(source), e.to_string()))?;
-            self.expressions.insert(source.to_owned(), parsed);
-        }
-        self.expressions[source]
-            .eval(scope)
-            .map_err(|e| self.error(element, attribute, Some(source), e.to_string()))
-    }
 
     fn error(
         &self,
@@ -766,6 +548,7 @@ impl<'o> Composer<'o> {
                 .get(element.owner)
                 .map_or_else(|| "/".to_owned(), |i| i.path.clone()),
             template: self
+                .loader
                 .origins
                 .get(element.origin)
                 .map_or_else(String::new, |o| o.label.clone()),
@@ -798,43 +581,6 @@ impl<'o> Composer<'o> {
     fn located(&self, problem: &Problem) -> ComposeError {
         let (element, attribute, message) = &**problem;
         self.error(element, attribute.as_ref(), None, message.clone())
-    }
-}
-
-/// The base's tree with the extending template's content added; one instance, one prefix.
-fn extend(base: Loaded, child: Loaded) -> Loaded {
-    let mut tree = base.tree;
-    for section in child.tree.children {
-        match tree.children.iter_mut().find(|s| s.name == section.name) {
-            Some(existing) if super::sections::SETTINGS.contains(&section.name.as_str()) => {
-                super::sections::overlay(existing, section);
-            }
-            Some(existing) => existing.children.extend(section.children),
-            None => tree.children.push(section),
-        }
-    }
-    for attribute in child.tree.attributes {
-        tree.set_attribute(&attribute.name, attribute.value);
-    }
-    let mut defaults = base.defaults;
-    for (key, value) in child.defaults.iter() {
-        defaults.set(key, value.clone());
-    }
-    let mut components = base.components;
-    components.extend(child.components);
-    Loaded {
-        tree,
-        tag: child.tag,
-        components,
-        defaults,
-        verbatim: child.verbatim,
-    }
-}
-
-fn set_origin(element: &mut Element, origin: usize) {
-    element.origin = origin;
-    for child in &mut element.children {
-        set_origin(child, origin);
     }
 }
 

@@ -1,0 +1,187 @@
+//! The template loader: reads a component's template (inline or from a file), parses it,
+//! inlines its `<include>`s, and merges it onto the template it `extends`; once per component type.
+
+use std::collections::HashMap;
+use std::path::PathBuf;
+
+use super::error::ErrorDetails;
+use super::files::{self, Origin};
+use super::ComposeError;
+use crate::component::{ComponentType, Declaration, Source};
+use crate::template::xml::{Element, Position};
+use crate::value::Config;
+
+/// A loaded (and, for `extends`, merged) template with what its component declares.
+#[derive(Clone)]
+pub(super) struct Loaded {
+    pub(super) tree: Element,
+    pub(super) tag: String,
+    pub(super) components: Vec<ComponentType>,
+    pub(super) defaults: Config,
+    pub(super) verbatim: bool,
+}
+
+/// Loads templates, once per component type, remembering where each came from.
+pub(super) struct Loader {
+    /// Where each template came from, by the elements' `origin`.
+    pub(super) origins: Vec<Origin>,
+    loaded: HashMap<std::any::TypeId, Loaded>,
+    /// The declaration of a world declared at run time, used for the first component loaded.
+    runtime_world: Option<Declaration>,
+    /// The component types whose templates are being loaded (`extends` chains), outermost first.
+    loading: Vec<ComponentType>,
+}
+
+impl Loader {
+    pub(super) fn new(runtime_world: Option<Declaration>) -> Self {
+        Self {
+            origins: Vec::new(),
+            loaded: HashMap::new(),
+            runtime_world,
+            loading: Vec::new(),
+        }
+    }
+
+    /// A component type's tag, from its loaded template when there is one.
+    pub(super) fn tag_of(&self, component: ComponentType) -> String {
+        self.loaded
+            .get(&component.type_id())
+            .map_or_else(|| component.declaration().tag, |l| l.tag.clone())
+    }
+
+    pub(super) fn load(&mut self, component: ComponentType, path: &str) -> Result<Loaded, ComposeError> {
+        if let Some(loaded) = self.loaded.get(&component.type_id()) {
+            return Ok(loaded.clone());
+        }
+        let declaration = self
+            .runtime_world
+            .take()
+            .unwrap_or_else(|| component.declaration());
+        let origin = self.origins.len();
+        let (text, label, file_dir) = match &declaration.source {
+            Some(Source::Inline(text)) => (
+                text.clone(),
+                format!("<{}> (inline template)", declaration.tag),
+                None,
+            ),
+            Some(Source::File(file)) => {
+                let text = std::fs::read_to_string(file).map_err(|e| {
+                    ComposeError::from(ErrorDetails {
+                        component: path.to_owned(),
+                        template: file.display().to_string(),
+                        position: None,
+                        element: None,
+                        attribute: None,
+                        expression: None,
+                        message: format!("cannot read the template: {e}"),
+                    })
+                })?;
+                (
+                    text,
+                    file.display().to_string(),
+                    file.parent().map(PathBuf::from),
+                )
+            }
+            None => {
+                return Err(ComposeError::from(ErrorDetails {
+                    component: path.to_owned(),
+                    template: format!("<{}>", declaration.tag),
+                    position: None,
+                    element: None,
+                    attribute: None,
+                    expression: None,
+                    message: format!("{} declares no template", component.type_name()),
+                }));
+            }
+        };
+        let template_error = |position: Option<Position>, message: String| {
+            ComposeError::from(ErrorDetails {
+                component: path.to_owned(),
+                template: label.clone(),
+                position,
+                element: None,
+                attribute: None,
+                expression: None,
+                message,
+            })
+        };
+        let mut tree =
+            Element::parse(&text).map_err(|e| template_error(Some(e.position), e.message))?;
+        if tree.name != "mujoco" {
+            return Err(template_error(
+                Some(tree.position),
+                format!("the root element is <{}>, not <mujoco>", tree.name),
+            ));
+        }
+        let dir = declaration.asset_dir.clone().or(file_dir);
+        files::inline_includes(&mut tree, dir.as_deref())
+            .map_err(|(position, message)| template_error(position, message))?;
+        set_origin(&mut tree, origin);
+        self.origins.push(Origin::new(label.clone(), dir, &tree));
+        let mut loaded = Loaded {
+            tree,
+            tag: declaration.tag.clone(),
+            components: declaration.components.clone(),
+            defaults: declaration.defaults.clone(),
+            verbatim: declaration.verbatim,
+        };
+        if let Some(base) = declaration.extends {
+            self.loading.push(component);
+            if self.loading.iter().any(|c| c.type_id() == base.type_id()) {
+                let chain: Vec<&str> = self.loading.iter().map(|c| c.type_name()).collect();
+                return Err(template_error(
+                    None,
+                    format!(
+                        "{} extends itself: {} → {}",
+                        base.type_name(),
+                        chain.join(" → "),
+                        base.type_name()
+                    ),
+                ));
+            }
+            let base = self.load(base, path);
+            self.loading.pop();
+            loaded = extend(base?, loaded);
+        }
+        self.loaded.insert(component.type_id(), loaded.clone());
+        Ok(loaded)
+    }
+}
+
+/// The base's tree with the extending template's content added; one instance, one prefix.
+fn extend(base: Loaded, child: Loaded) -> Loaded {
+    let mut tree = base.tree;
+    for section in child.tree.children {
+        match tree.children.iter_mut().find(|s| s.name == section.name) {
+            Some(existing) if super::sections::SETTINGS.contains(&section.name.as_str()) => {
+                super::sections::overlay(existing, section);
+            }
+            Some(existing) => existing.children.extend(section.children),
+            None => tree.children.push(section),
+        }
+    }
+    for attribute in child.tree.attributes {
+        tree.set_attribute(&attribute.name, attribute.value);
+    }
+    let mut defaults = base.defaults;
+    for (key, value) in child.defaults.iter() {
+        defaults.set(key, value.clone());
+    }
+    let mut components = base.components;
+    components.extend(child.components);
+    Loaded {
+        tree,
+        tag: child.tag,
+        components,
+        defaults,
+        verbatim: child.verbatim,
+    }
+}
+
+fn set_origin(element: &mut Element, origin: usize) {
+    element.origin = origin;
+    for child in &mut element.children {
+        set_origin(child, origin);
+    }
+}
+
