@@ -11,6 +11,8 @@ cargo fmt --all --check
 echo "== licences"
 cargo fetch --locked
 python3 .ci/check-licences.py
+echo "== import circles"
+python3 .ci/check-import-circles.py
 echo "== clippy"
 cargo clippy --workspace --all-targets --locked -- -D warnings
 echo "== tests"

@@ -58,6 +58,7 @@ mod handles;
 mod library;
 mod locate;
 mod model;
+mod pose;
 #[cfg(feature = "render")]
 mod render;
 mod vfs;
@@ -76,12 +77,13 @@ mod vfs;
 pub mod sys;
 
 pub use backend::{Sim, SimBackend};
-pub use data::{Data, Pose};
+pub use data::Data;
 pub use error::{LibraryError, ModelError};
 #[cfg(feature = "render")]
 pub use handles::Camera;
 pub use handles::{Actuator, Body, Joint, Sensor, SimBind, Site};
 pub use library::mujoco_version;
+pub use pose::Pose;
 /// The MuJoCo version yarok is written against.
 pub const MUJOCO_VERSION: &str = locate::MUJOCO_VERSION;
 #[cfg(feature = "render")]

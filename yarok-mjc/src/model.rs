@@ -5,10 +5,10 @@ use std::fmt;
 use std::path::Path;
 use std::ptr::NonNull;
 
-use crate::data::Pose;
 use crate::error::ModelError;
 use crate::guard;
 use crate::library::mujoco;
+use crate::pose::Pose;
 use crate::sys;
 use crate::vfs::Vfs;
 

@@ -5,7 +5,7 @@ use std::collections::BTreeSet;
 use std::path::{Component, Path, PathBuf};
 
 use super::error::Problem;
-use super::expand::MAX_WORLD_DEPTH;
+use super::limits::MAX_WORLD_DEPTH;
 use crate::template::xml::{Element, Position};
 
 /// Nested `<include>`s deeper than this are refused (a file including itself).

@@ -4,9 +4,9 @@
 use std::collections::HashMap;
 use std::path::PathBuf;
 
+use super::ComposeError;
 use super::error::ErrorDetails;
 use super::files::{self, Origin};
-use super::ComposeError;
 use crate::component::{ComponentType, Declaration, Source};
 use crate::template::xml::{Element, Position};
 use crate::value::Config;
@@ -49,7 +49,11 @@ impl Loader {
             .map_or_else(|| component.declaration().tag, |l| l.tag.clone())
     }
 
-    pub(super) fn load(&mut self, component: ComponentType, path: &str) -> Result<Loaded, ComposeError> {
+    pub(super) fn load(
+        &mut self,
+        component: ComponentType,
+        path: &str,
+    ) -> Result<Loaded, ComposeError> {
         if let Some(loaded) = self.loaded.get(&component.type_id()) {
             return Ok(loaded.clone());
         }
@@ -184,4 +188,3 @@ fn set_origin(element: &mut Element, origin: usize) {
         set_origin(child, origin);
     }
 }
-

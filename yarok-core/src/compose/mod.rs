@@ -36,6 +36,7 @@ mod error;
 mod expand;
 mod files;
 mod layout;
+mod limits;
 mod loader;
 mod mount;
 mod namespace;

@@ -10,6 +10,7 @@ use tokio::time::Instant;
 
 use super::RuntimeError;
 use crate::component::LocalFuture;
+use crate::time::Clock;
 
 /// Polling rounds per poll after which tasks that keep waking themselves are left for the next
 /// tick.
@@ -21,21 +22,26 @@ pub(crate) enum Owner {
     Component(String),
 }
 
+/// What is read at every poll comes first, so that it shares a cache line.
+#[repr(C)]
 struct Task {
-    owner: Owner,
     future: LocalFuture,
-    woken: Arc<TaskWake>,
     waker: Waker,
     done: bool,
+    woken: Arc<TaskWake>,
+    owner: Owner,
 }
 
-/// Set when a task is woken; wakes the platform loop too when it sleeps between paced ticks.
+/// Set when a task is woken by anything but a tick (I/O, a channel, another task); wakes the
+/// platform loop too when it sleeps between paced ticks.
 struct TaskWake {
     woken: AtomicBool,
     platform: Arc<PlatformWake>,
 }
 
 struct PlatformWake {
+    /// Some task's `woken` was set since the executor last looked.
+    any_woken: AtomicBool,
     sleeping: AtomicBool,
     notify: Notify,
 }
@@ -46,8 +52,12 @@ impl Wake for TaskWake {
     }
 
     fn wake_by_ref(self: &Arc<Self>) {
-        self.woken.store(true, Ordering::SeqCst);
-        if self.platform.sleeping.load(Ordering::SeqCst) {
+        // Ticks and tokio's I/O wake tasks on the platform's thread, in program order with its
+        // `sleeping`. A wake from another thread racing the platform's falling asleep is seen at
+        // the next tick at the latest: no stronger (and costlier) ordering is needed for that.
+        self.woken.store(true, Ordering::Release);
+        self.platform.any_woken.store(true, Ordering::Release);
+        if self.platform.sleeping.load(Ordering::Acquire) {
             self.platform.notify.notify_one();
         }
     }
@@ -57,17 +67,29 @@ pub(crate) struct Executor {
     tasks: Vec<Task>,
     wake: Arc<PlatformWake>,
     behaviours: usize,
+    clock: Clock,
+    /// The tasks that wait for the next tick, by index.
+    ticked: Vec<usize>,
+    /// The tasks being woken by this tick (a buffer kept between ticks).
+    waking: Vec<usize>,
+    /// The error a task ended with, until [`Executor::failure`] returns it.
+    failed: Option<RuntimeError>,
 }
 
 impl Executor {
-    pub(crate) fn new() -> Self {
+    pub(crate) fn new(clock: Clock) -> Self {
         Self {
             tasks: Vec::new(),
             wake: Arc::new(PlatformWake {
+                any_woken: AtomicBool::new(false),
                 sleeping: AtomicBool::new(false),
                 notify: Notify::new(),
             }),
             behaviours: 0,
+            clock,
+            ticked: Vec::new(),
+            waking: Vec::new(),
+            failed: None,
         }
     }
 
@@ -79,6 +101,7 @@ impl Executor {
             woken: AtomicBool::new(true),
             platform: Arc::clone(&self.wake),
         });
+        self.wake.any_woken.store(true, Ordering::Release);
         let waker = Waker::from(Arc::clone(&woken));
         self.tasks.push(Task {
             owner,
@@ -94,49 +117,101 @@ impl Executor {
         self.behaviours == 0
     }
 
-    /// Polls woken tasks until none is woken (or `MAX_ROUNDS`).
+    /// After a tick: polls the tasks that waited for it (in the order they were spawned), then
+    /// the others woken (see [`Executor::poll`]).
+    ///
+    /// # Errors
+    ///
+    /// The first error a behaviour or a component's task returns.
+    pub(crate) fn tick(&mut self) -> Result<(), RuntimeError> {
+        std::mem::swap(&mut self.waking, &mut self.ticked);
+        if !self.waking.is_sorted() {
+            self.waking.sort_unstable();
+            self.waking.dedup();
+        }
+        for position in 0..self.waking.len() {
+            if !self.poll_task(self.waking[position]) {
+                break;
+            }
+        }
+        self.waking.clear();
+        self.failure()?;
+        self.poll()
+    }
+
+    /// Polls the tasks woken by anything but a tick until none is (or `MAX_ROUNDS`).
     ///
     /// # Errors
     ///
     /// The first error a behaviour or a component's task returns.
     pub(crate) fn poll(&mut self) -> Result<(), RuntimeError> {
         for _ in 0..MAX_ROUNDS {
-            let mut progressed = false;
-            for task in &mut self.tasks {
-                if task.done || !task.woken.woken.swap(false, Ordering::SeqCst) {
-                    continue;
-                }
-                progressed = true;
-                let mut context = Context::from_waker(&task.waker);
-                if let Poll::Ready(result) = task.future.as_mut().poll(&mut context) {
-                    task.done = true;
-                    if let Owner::Behaviour { .. } = task.owner {
-                        self.behaviours -= 1;
-                    }
-                    if let Err(source) = result {
-                        return Err(
-                            match std::mem::replace(
-                                &mut task.owner,
-                                Owner::Component(String::new()),
-                            ) {
-                                Owner::Behaviour { index, name } => RuntimeError::Behaviour {
-                                    index,
-                                    name,
-                                    source,
-                                },
-                                Owner::Component(component) => {
-                                    RuntimeError::Interface { component, source }
-                                }
-                            },
-                        );
-                    }
-                }
-            }
-            if !progressed {
+            // A plain load first: most ticks wake nothing but tick waits.
+            if !self.wake.any_woken.load(Ordering::Relaxed)
+                || !self.wake.any_woken.swap(false, Ordering::Acquire)
+            {
                 break;
+            }
+            for index in 0..self.tasks.len() {
+                // The only consumer clears the flag before polling, so no wake is lost.
+                if self.tasks[index].woken.woken.swap(false, Ordering::Acquire)
+                    && !self.poll_task(index)
+                {
+                    return self.failure();
+                }
             }
         }
         Ok(())
+    }
+
+    /// The error a task ended with, once.
+    fn failure(&mut self) -> Result<(), RuntimeError> {
+        self.failed.take().map_or(Ok(()), Err)
+    }
+
+    /// Polls one task; `false` when it failed (its error is kept for [`Executor::failure`]).
+    #[inline(always)]
+    fn poll_task(&mut self, index: usize) -> bool {
+        let Some(task) = self.tasks.get_mut(index) else {
+            return true;
+        };
+        if task.done {
+            return true;
+        }
+        let mut context = Context::from_waker(&task.waker);
+        self.clock.begin_polling(&task.waker);
+        let poll = task.future.as_mut().poll(&mut context);
+        if self.clock.end_polling() {
+            self.ticked.push(index);
+        }
+        match poll {
+            Poll::Pending => true,
+            Poll::Ready(result) => self.ended(index, result),
+        }
+    }
+
+    /// A task returned; `false` when with an error.
+    #[cold]
+    fn ended(&mut self, index: usize, result: Result<(), crate::BoxError>) -> bool {
+        let task = &mut self.tasks[index];
+        task.done = true;
+        if let Owner::Behaviour { .. } = task.owner {
+            self.behaviours -= 1;
+        }
+        let Err(source) = result else {
+            return true;
+        };
+        self.failed = Some(
+            match std::mem::replace(&mut task.owner, Owner::Component(String::new())) {
+                Owner::Behaviour { index, name } => RuntimeError::Behaviour {
+                    index,
+                    name,
+                    source,
+                },
+                Owner::Component(component) => RuntimeError::Interface { component, source },
+            },
+        );
+        false
     }
 
     /// Serves wake-ups (I/O reaching tasks at once) until `due`, or until the behaviours are
@@ -151,26 +226,22 @@ impl Executor {
             if Instant::now() >= due || self.behaviours_done() {
                 return Ok(());
             }
-            self.wake.sleeping.store(true, Ordering::SeqCst);
+            self.wake.sleeping.store(true, Ordering::Release);
             // A wake between this check and the await leaves a permit in `notify`.
-            let woken = self
-                .tasks
-                .iter()
-                .any(|t| !t.done && t.woken.woken.load(Ordering::SeqCst));
-            if !woken {
+            if !self.wake.any_woken.load(Ordering::Acquire) {
                 tokio::select! {
                     () = tokio::time::sleep_until(due) => {}
                     () = self.wake.notify.notified() => {}
                 }
             }
-            self.wake.sleeping.store(false, Ordering::SeqCst);
+            self.wake.sleeping.store(false, Ordering::Release);
         }
     }
 
-    /// Gives every task one last poll (their waits now fail with `Stopped`, so they can clean
-    /// up), then drops them all.
+    /// Gives every waiting task one last poll (call it once the clock has stopped: their waits
+    /// then fail with `Stopped`, so they can clean up), then drops them all.
     pub(crate) fn finish(&mut self) {
-        let _results_after_the_end = self.poll();
+        let _results_after_the_end = self.tick();
         self.tasks.clear();
         self.behaviours = 0;
     }

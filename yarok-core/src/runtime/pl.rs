@@ -17,11 +17,12 @@ use crate::value::Config;
 /// Cheap to clone; lives on the platform's thread (it is not `Send`).
 #[derive(Clone)]
 pub struct Pl {
+    /// Outside `inner`, so that reading time in a wait's condition is one indirection less.
+    clock: Clock,
     inner: Rc<Shared>,
 }
 
 struct Shared {
-    clock: Clock,
     environment: String,
     handles: Rc<RefCell<Handles>>,
     behaviour: Config,
@@ -41,7 +42,7 @@ impl Deref for Pl {
     type Target = Clock;
 
     fn deref(&self) -> &Clock {
-        &self.inner.clock
+        &self.clock
     }
 }
 
@@ -54,8 +55,8 @@ impl Pl {
         stop: Arc<AtomicBool>,
     ) -> Self {
         Self {
+            clock,
             inner: Rc::new(Shared {
-                clock,
                 environment,
                 handles,
                 behaviour,

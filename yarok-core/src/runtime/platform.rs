@@ -98,6 +98,7 @@ impl Platform {
                 .iter()
                 .map(|i| (i.path.clone(), i.component)),
         )));
+        let executor = Executor::new(clock.clone());
         let pl = Pl::new(
             clock.clone(),
             prepared.environment.to_owned(),
@@ -118,7 +119,7 @@ impl Platform {
             handles,
             lifecycle: Rc::default(),
             ticks: Vec::new(),
-            executor: Executor::new(),
+            executor,
             phase: Phase::Built,
             ctrl_c: prepared.ctrl_c,
             interrupt: None,
@@ -359,7 +360,7 @@ impl Platform {
             })?;
         }
         self.clock.advance(self.backend.time());
-        self.executor.poll()?;
+        self.executor.tick()?;
         if self.interrupt.as_ref().is_some_and(Interrupt::happened) {
             return Err(RuntimeError::Interrupted);
         }

@@ -11,7 +11,7 @@ mod wait;
 use std::cell::{Cell, RefCell};
 use std::future::Future;
 use std::rc::Rc;
-use std::task::Waker;
+use std::task::{RawWakerVTable, Waker};
 
 pub use timeout::Timeout;
 pub use wait::{Wait, WaitError};
@@ -30,10 +30,31 @@ pub(crate) struct ClockState {
     pub(crate) timestep: f64,
     pub(crate) stopped: Cell<bool>,
     waiters: RefCell<Vec<Waker>>,
+    /// The other buffer of `waiters`: swapped in at each tick so that neither allocates.
+    spare: RefCell<Vec<Waker>>,
+    /// The waker identity of the platform's task being polled, so that its waits register by
+    /// setting `registered` instead of storing a waker (no reference counting per tick). A wait
+    /// polled with another waker registers that waker.
+    polling: Cell<Option<(*const (), &'static RawWakerVTable)>>,
+    /// Whether the task being polled waits for the next tick.
+    registered: Cell<bool>,
 }
 
 impl ClockState {
+    #[inline]
     pub(crate) fn register(&self, waker: &Waker) {
+        if let Some((data, vtable)) = self.polling.get()
+            && waker.data() == data
+            && std::ptr::eq(waker.vtable(), vtable)
+        {
+            self.registered.set(true);
+        } else {
+            self.register_waker(waker);
+        }
+    }
+
+    #[cold]
+    fn register_waker(&self, waker: &Waker) {
         let mut waiters = self.waiters.borrow_mut();
         // A task polling several waits registers them one after the other; one wake is enough.
         if !waiters.last().is_some_and(|last| last.will_wake(waker)) {
@@ -51,6 +72,9 @@ impl Clock {
                 timestep,
                 stopped: Cell::new(false),
                 waiters: RefCell::new(Vec::new()),
+                spare: RefCell::new(Vec::new()),
+                polling: Cell::new(None),
+                registered: Cell::new(false),
             }),
         }
     }
@@ -62,6 +86,20 @@ impl Clock {
         self.wake_all();
     }
 
+    /// Says that the platform's task whose waker is `waker` is being polled.
+    #[inline(always)]
+    pub(crate) fn begin_polling(&self, waker: &Waker) {
+        self.state.registered.set(false);
+        self.state.polling.set(Some((waker.data(), waker.vtable())));
+    }
+
+    /// Says that the poll is over; returns whether the task waits for the next tick.
+    #[inline(always)]
+    pub(crate) fn end_polling(&self) -> bool {
+        self.state.polling.set(None);
+        self.state.registered.get()
+    }
+
     /// Makes every pending and future wait fail with [`WaitError::Stopped`].
     pub(crate) fn stop(&self) {
         self.state.stopped.set(true);
@@ -69,10 +107,16 @@ impl Clock {
     }
 
     fn wake_all(&self) {
-        let waiters = std::mem::take(&mut *self.state.waiters.borrow_mut());
-        for waker in waiters {
+        if self.state.waiters.borrow().is_empty() {
+            return;
+        }
+        // Waking may register new waits: wake from the other buffer.
+        let mut waking = self.state.spare.take();
+        std::mem::swap(&mut waking, &mut *self.state.waiters.borrow_mut());
+        for waker in waking.drain(..) {
             waker.wake();
         }
+        *self.state.spare.borrow_mut() = waking;
     }
 
     /// Platform time in seconds: simulation time in `sim`, time since start on hardware.

@@ -116,6 +116,7 @@ impl<'a, C: FnMut() -> bool + Unpin> Wait<'a, C> {
 impl<C: FnMut() -> bool + Unpin> Future for Wait<'_, C> {
     type Output = Result<(), WaitError>;
 
+    #[inline]
     fn poll(self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<Self::Output> {
         let this = self.get_mut();
         if let Some(error) = this.invalid {

@@ -133,7 +133,7 @@ impl Value {
 /// as `true`/`false`, lists as space-separated items.
 impl fmt::Display for Value {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&crate::template::expr::format_value(&self.0))
+        f.write_str(&format_value(&self.0))
     }
 }
 
@@ -291,5 +291,32 @@ impl<T: IntoValue> IntoValue for Vec<T> {
 impl<T: IntoValue, const N: usize> IntoValue for [T; N] {
     fn into_value(self) -> Value {
         Vec::from(self).into_value()
+    }
+}
+
+/// Formats a value the way templates print it: integers as integers, floats with the shortest
+/// representation that reads back to the same number, booleans as `true`/`false`, lists and
+/// tuples as space-separated items.
+pub(crate) fn format_value(value: &evalexpr::Value) -> String {
+    let mut out = String::new();
+    write_value(value, &mut out);
+    out
+}
+
+fn write_value(value: &evalexpr::Value, out: &mut String) {
+    match value {
+        evalexpr::Value::String(s) => out.push_str(s),
+        evalexpr::Value::Float(x) => out.push_str(&format!("{x}")),
+        evalexpr::Value::Int(n) => out.push_str(&n.to_string()),
+        evalexpr::Value::Boolean(b) => out.push_str(if *b { "true" } else { "false" }),
+        evalexpr::Value::Tuple(items) => {
+            for (i, item) in items.iter().enumerate() {
+                if i > 0 {
+                    out.push(' ');
+                }
+                write_value(item, out);
+            }
+        }
+        evalexpr::Value::Empty => {}
     }
 }

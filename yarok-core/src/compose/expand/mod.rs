@@ -10,6 +10,7 @@ use evaluate::Scope;
 use super::angles;
 use super::error::{ErrorDetails, Problem};
 use super::files;
+use super::limits::{MAX_COMPONENT_DEPTH, MAX_ELEMENTS, MAX_WORLD_DEPTH};
 use super::loader::{Loaded, Loader};
 use super::mount::{collect_mounts, mount};
 use super::namespace::{self as names, CLASSED};
@@ -21,14 +22,6 @@ use crate::suggest::did_you_mean;
 use crate::template::expr::{Expr, truthy};
 use crate::template::xml::{Attribute, Element};
 use crate::value::{Config, IntoValue, Overrides};
-
-/// Loops may not expand a world beyond this many elements, so that no template exhausts memory.
-const MAX_ELEMENTS: usize = 1_000_000;
-/// Components may not nest deeper than this (a world is rarely deeper than 5).
-const MAX_COMPONENT_DEPTH: usize = 32;
-/// Elements of the composed world may not nest deeper than this, so that no chain of templates
-/// can exhaust the stack of the composer, the MJCF writer or MuJoCo's parser.
-pub(super) const MAX_WORLD_DEPTH: usize = 512;
 
 struct InstanceState {
     path: String,
@@ -292,7 +285,8 @@ impl<'o> Composer<'o> {
         for worldbody in worldbodies {
             body.extend(self.expand(worldbody.children, &body_ctx, &scope)?);
         }
-        files::resolve(&mut body, &self.loader.origins, &mut self.assets).map_err(|e| self.located(&e))?;
+        files::resolve(&mut body, &self.loader.origins, &mut self.assets)
+            .map_err(|e| self.located(&e))?;
         if let Some(conversion) = &conversion {
             conversion.body(&mut body);
         }
@@ -533,7 +527,6 @@ impl<'o> Composer<'o> {
         }
         Ok(())
     }
-
 
     fn error(
         &self,

@@ -19,7 +19,7 @@ pub use functions::FUNCTIONS;
 pub(crate) use functions::truthy;
 use parser::Ast;
 
-use crate::value::Value;
+use crate::value::{Value, format_value};
 
 /// Names visible to an expression: config values and loop variables.
 pub trait Variables {
@@ -300,33 +300,6 @@ impl Context for Scope<'_> {
 
     fn set_builtin_functions_disabled(&mut self, _disabled: bool) -> EvalexprResult<()> {
         Ok(())
-    }
-}
-
-/// Formats a value the way templates print it: integers as integers, floats with the shortest
-/// representation that reads back to the same number, booleans as `true`/`false`, lists and
-/// tuples as space-separated items.
-pub(crate) fn format_value(value: &Inner) -> String {
-    let mut out = String::new();
-    write_value(value, &mut out);
-    out
-}
-
-fn write_value(value: &Inner, out: &mut String) {
-    match value {
-        Inner::String(s) => out.push_str(s),
-        Inner::Float(x) => out.push_str(&format!("{x}")),
-        Inner::Int(n) => out.push_str(&n.to_string()),
-        Inner::Boolean(b) => out.push_str(if *b { "true" } else { "false" }),
-        Inner::Tuple(items) => {
-            for (i, item) in items.iter().enumerate() {
-                if i > 0 {
-                    out.push(' ');
-                }
-                write_value(item, out);
-            }
-        }
-        Inner::Empty => {}
     }
 }
 
