@@ -22,14 +22,17 @@ pub(crate) enum Owner {
     Component(String),
 }
 
-/// What is read at every poll comes first, so that it shares a cache line.
-#[repr(C)]
+/// A task that is polled: its future, until it is done, and its waker. Kept apart from what
+/// polls do not read ([`TaskInfo`]), so that a tick touches as little memory as it can.
 struct Task {
-    future: LocalFuture,
+    future: Option<LocalFuture>,
     waker: Waker,
-    done: bool,
-    woken: Arc<TaskWake>,
+}
+
+/// Whose a task is, and the flag its waker sets.
+struct TaskInfo {
     owner: Owner,
+    woken: Arc<TaskWake>,
 }
 
 /// Set when a task is woken by anything but a tick (I/O, a channel, another task); wakes the
@@ -65,6 +68,7 @@ impl Wake for TaskWake {
 
 pub(crate) struct Executor {
     tasks: Vec<Task>,
+    infos: Vec<TaskInfo>,
     wake: Arc<PlatformWake>,
     behaviours: usize,
     clock: Clock,
@@ -80,6 +84,7 @@ impl Executor {
     pub(crate) fn new(clock: Clock) -> Self {
         Self {
             tasks: Vec::new(),
+            infos: Vec::new(),
             wake: Arc::new(PlatformWake {
                 any_woken: AtomicBool::new(false),
                 sleeping: AtomicBool::new(false),
@@ -104,12 +109,10 @@ impl Executor {
         self.wake.any_woken.store(true, Ordering::Release);
         let waker = Waker::from(Arc::clone(&woken));
         self.tasks.push(Task {
-            owner,
-            future,
-            woken,
+            future: Some(future),
             waker,
-            done: false,
         });
+        self.infos.push(TaskInfo { owner, woken });
     }
 
     /// Whether every behaviour has returned.
@@ -154,7 +157,7 @@ impl Executor {
             }
             for index in 0..self.tasks.len() {
                 // The only consumer clears the flag before polling, so no wake is lost.
-                if self.tasks[index].woken.woken.swap(false, Ordering::Acquire)
+                if self.infos[index].woken.woken.swap(false, Ordering::Acquire)
                     && !self.poll_task(index)
                 {
                     return self.failure();
@@ -172,15 +175,16 @@ impl Executor {
     /// Polls one task; `false` when it failed (its error is kept for [`Executor::failure`]).
     #[inline(always)]
     fn poll_task(&mut self, index: usize) -> bool {
-        let Some(task) = self.tasks.get_mut(index) else {
+        let Some(Task {
+            future: Some(future),
+            waker,
+        }) = self.tasks.get_mut(index)
+        else {
             return true;
         };
-        if task.done {
-            return true;
-        }
-        let mut context = Context::from_waker(&task.waker);
-        self.clock.begin_polling(&task.waker);
-        let poll = task.future.as_mut().poll(&mut context);
+        let mut context = Context::from_waker(waker);
+        self.clock.begin_polling(waker);
+        let poll = future.as_mut().poll(&mut context);
         if self.clock.end_polling() {
             self.ticked.push(index);
         }
@@ -193,8 +197,8 @@ impl Executor {
     /// A task returned; `false` when with an error.
     #[cold]
     fn ended(&mut self, index: usize, result: Result<(), crate::BoxError>) -> bool {
-        let task = &mut self.tasks[index];
-        task.done = true;
+        self.tasks[index].future = None;
+        let task = &mut self.infos[index];
         if let Owner::Behaviour { .. } = task.owner {
             self.behaviours -= 1;
         }
@@ -243,6 +247,7 @@ impl Executor {
     pub(crate) fn finish(&mut self) {
         let _results_after_the_end = self.tick();
         self.tasks.clear();
+        self.infos.clear();
         self.behaviours = 0;
     }
 }

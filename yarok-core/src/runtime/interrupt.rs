@@ -15,15 +15,16 @@ static LISTENING: Mutex<usize> = Mutex::new(0);
 /// Ctrl-C after `run()` would be swallowed for the rest of the process.
 static IDLE: OnceLock<Arc<AtomicBool>> = OnceLock::new();
 
-/// Ctrl-C while a platform runs: the first one stops it cleanly (a flag checked every tick);
-/// a second one, if shutdown hangs, exits the process with status 130.
+/// Ctrl-C while a platform runs: the first one stops it cleanly (it sets the platform's stop
+/// flag, checked every tick, and its own, which says why it stopped); a second one, if shutdown
+/// hangs, exits the process with status 130.
 pub(super) struct Interrupt {
     flag: Arc<AtomicBool>,
     handlers: Vec<signal_hook::SigId>,
 }
 
 impl Interrupt {
-    pub(super) fn listen() -> Self {
+    pub(super) fn listen(stop: &Arc<AtomicBool>) -> Self {
         let mut listening = LISTENING.lock().unwrap_or_else(PoisonError::into_inner);
         *listening += 1;
         idle().store(false, Ordering::SeqCst);
@@ -33,6 +34,7 @@ impl Interrupt {
         let handlers = [
             signal_hook::flag::register_conditional_shutdown(SIGINT, 130, Arc::clone(&flag)),
             signal_hook::flag::register(SIGINT, Arc::clone(&flag)),
+            signal_hook::flag::register(SIGINT, Arc::clone(stop)),
         ]
         .into_iter()
         .filter_map(|registered| {

@@ -91,10 +91,6 @@ impl Pl {
         self.inner.stop.store(true, Ordering::Relaxed);
     }
 
-    pub(crate) fn stop_requested(&self) -> bool {
-        self.inner.stop.load(Ordering::Relaxed)
-    }
-
     pub(crate) fn stop_flag(&self) -> Arc<AtomicBool> {
         Arc::clone(&self.inner.stop)
     }

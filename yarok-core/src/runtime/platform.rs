@@ -70,6 +70,8 @@ pub struct Platform {
     phase: Phase,
     ctrl_c: bool,
     interrupt: Option<Interrupt>,
+    /// The stop flag (`pl.stop()`, [`Platform::stop_flag`], Ctrl-C), read every tick.
+    stop: Arc<AtomicBool>,
     started: Option<tokio::time::Instant>,
     stepper: Option<(tokio::runtime::Runtime, LocalSet)>,
 }
@@ -99,6 +101,7 @@ impl Platform {
                 .map(|i| (i.path.clone(), i.component)),
         )));
         let executor = Executor::new(clock.clone());
+        let stop = Arc::clone(&prepared.stop);
         let pl = Pl::new(
             clock.clone(),
             prepared.environment.to_owned(),
@@ -123,6 +126,7 @@ impl Platform {
             phase: Phase::Built,
             ctrl_c: prepared.ctrl_c,
             interrupt: None,
+            stop,
             started: None,
             stepper: None,
         }
@@ -313,14 +317,29 @@ impl Platform {
             self.executor
                 .spawn(Owner::Behaviour { index, name }, future);
         }
-        self.interrupt = self.ctrl_c.then(Interrupt::listen);
+        self.interrupt = self.ctrl_c.then(|| Interrupt::listen(&self.stop));
         self.started = Some(tokio::time::Instant::now());
         self.executor.poll()
     }
 
+    /// Whether the run goes on: behaviours are pending and nobody asked to stop.
+    ///
+    /// # Errors
+    ///
+    /// [`RuntimeError::Interrupted`] when Ctrl-C asked.
+    fn goes_on(&self) -> Result<bool, RuntimeError> {
+        if !self.stop.load(std::sync::atomic::Ordering::Relaxed) {
+            return Ok(!self.executor.behaviours_done());
+        }
+        if self.interrupt.as_ref().is_some_and(Interrupt::happened) {
+            return Err(RuntimeError::Interrupted);
+        }
+        Ok(false)
+    }
+
     /// One tick; whether the run goes on.
     async fn advance(&mut self) -> Result<bool, RuntimeError> {
-        if self.executor.behaviours_done() || self.pl.stop_requested() {
+        if !self.goes_on()? {
             return Ok(false);
         }
         let ticks = self.clock.ticks() + 1;
@@ -330,7 +349,7 @@ impl Platform {
             let due =
                 started + std::time::Duration::from_secs_f64(ticks as f64 * self.clock.timestep());
             self.executor.serve_until(due).await?;
-            if self.executor.behaviours_done() {
+            if !self.goes_on()? {
                 return Ok(false);
             }
         } else if ticks.is_multiple_of(YIELD_EVERY) {
@@ -361,10 +380,7 @@ impl Platform {
         }
         self.clock.advance(self.backend.time());
         self.executor.tick()?;
-        if self.interrupt.as_ref().is_some_and(Interrupt::happened) {
-            return Err(RuntimeError::Interrupted);
-        }
-        Ok(!self.executor.behaviours_done() && !self.pl.stop_requested())
+        self.goes_on()
     }
 
     /// Ends the run: behaviours' last poll, plugins' end, stop actions, the backend's stop.

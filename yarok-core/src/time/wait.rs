@@ -61,14 +61,17 @@ impl WaitError {
 ///
 /// Dropping a `Wait` cancels it; nothing else changes.
 #[must_use = "a wait does nothing unless awaited"]
+#[repr(C)] // What every tick reads first, together.
 pub struct Wait<'a, C> {
     clock: &'a ClockState,
-    condition: C,
-    started_tick: u64,
-    started_time: f64,
+    /// The last tick the wait has seen; the tick it was made on, at first.
     seen_tick: u64,
-    timeout: Option<f64>,
+    /// Platform time at which it times out (−∞ when it is invalid: it then fails at once).
+    deadline: f64,
     on_tick: Option<Box<dyn FnMut() + 'a>>,
+    condition: C,
+    started_time: f64,
+    timeout: Option<f64>,
     location: &'static Location<'static>,
     /// An error found while the wait was built, returned by its first poll.
     invalid: Option<WaitError>,
@@ -77,15 +80,14 @@ pub struct Wait<'a, C> {
 impl<'a, C: FnMut() -> bool + Unpin> Wait<'a, C> {
     #[track_caller]
     pub(crate) fn new(clock: &'a ClockState, condition: C) -> Self {
-        let ticks = clock.ticks.get();
         Self {
             clock,
-            condition,
-            started_tick: ticks,
-            started_time: clock.time.get(),
-            seen_tick: ticks,
-            timeout: None,
+            seen_tick: clock.ticks.get(),
+            deadline: f64::INFINITY,
             on_tick: None,
+            condition,
+            started_time: clock.time.get(),
+            timeout: None,
             location: Location::caller(),
             invalid: None,
         }
@@ -94,6 +96,9 @@ impl<'a, C: FnMut() -> bool + Unpin> Wait<'a, C> {
     /// Ends the wait with `error` on its first poll.
     pub(crate) fn invalid(mut self, error: Option<WaitError>) -> Self {
         self.invalid = self.invalid.or(error);
+        if self.invalid.is_some() {
+            self.deadline = f64::NEG_INFINITY;
+        }
         self
     }
 
@@ -103,6 +108,10 @@ impl<'a, C: FnMut() -> bool + Unpin> Wait<'a, C> {
     #[track_caller]
     pub fn timeout(mut self, seconds: f64) -> Self {
         self.timeout = Some(seconds);
+        // Half a timestep of slack so that float time never adds or drops a tick.
+        self.deadline = self
+            .deadline
+            .min(self.started_time + seconds - self.clock.timestep / 2.0);
         self.invalid(WaitError::check_duration("timeout", seconds))
     }
 
@@ -119,41 +128,53 @@ impl<C: FnMut() -> bool + Unpin> Future for Wait<'_, C> {
     #[inline]
     fn poll(self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<Self::Output> {
         let this = self.get_mut();
-        if let Some(error) = this.invalid {
-            return Poll::Ready(Err(error));
-        }
-        if this.clock.stopped.get() {
-            return Poll::Ready(Err(WaitError::Stopped));
-        }
         let ticks = this.clock.ticks.get();
         if ticks > this.seen_tick {
             this.seen_tick = ticks;
+            if this.clock.stopped.get() {
+                return Poll::Ready(Err(WaitError::Stopped));
+            }
             if let Some(callback) = &mut this.on_tick {
                 callback();
             }
-            if ticks > this.started_tick && (this.condition)() {
+            if this.deadline == f64::NEG_INFINITY {
+                return Poll::Ready(Err(this.failure()));
+            }
+            if (this.condition)() {
                 return Poll::Ready(Ok(()));
             }
-            if let Some(seconds) = this.timeout {
-                // Half a timestep of slack so that float time never adds or drops a tick.
-                if this.clock.time.get() - this.started_time >= seconds - this.clock.timestep / 2.0
-                {
-                    return Poll::Ready(Err(WaitError::Timeout {
-                        seconds,
-                        location: this.location,
-                    }));
-                }
+            if this.clock.time.get() >= this.deadline {
+                return Poll::Ready(Err(this.failure()));
             }
+        } else if this.invalid.is_some() || this.clock.stopped.get() {
+            return Poll::Ready(Err(this.failure()));
         }
         this.clock.register(cx.waker());
         Poll::Pending
     }
 }
 
+impl<C> Wait<'_, C> {
+    /// Why the wait ends unresolved: invalid, stopped, or timed out.
+    #[cold]
+    fn failure(&self) -> WaitError {
+        if let Some(error) = self.invalid {
+            error
+        } else if self.clock.stopped.get() {
+            WaitError::Stopped
+        } else {
+            WaitError::Timeout {
+                seconds: self.timeout.unwrap_or(f64::INFINITY),
+                location: self.location,
+            }
+        }
+    }
+}
+
 impl<C> fmt::Debug for Wait<'_, C> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("Wait")
-            .field("started_tick", &self.started_tick)
+            .field("seen_tick", &self.seen_tick)
             .field("timeout", &self.timeout)
             .field("location", &self.location)
             .finish()
