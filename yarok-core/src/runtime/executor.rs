@@ -72,10 +72,8 @@ pub(crate) struct Executor {
     wake: Arc<PlatformWake>,
     behaviours: usize,
     clock: Clock,
-    /// The tasks that wait for the next tick, by index.
-    ticked: Vec<usize>,
-    /// The tasks being woken by this tick (a buffer kept between ticks).
-    waking: Vec<usize>,
+    /// Whether each task waits for the next tick (by index; dense, so a tick reads little).
+    waits_tick: Vec<bool>,
     /// The error a task ended with, until [`Executor::failure`] returns it.
     failed: Option<RuntimeError>,
 }
@@ -92,8 +90,7 @@ impl Executor {
             }),
             behaviours: 0,
             clock,
-            ticked: Vec::new(),
-            waking: Vec::new(),
+            waits_tick: Vec::new(),
             failed: None,
         }
     }
@@ -113,6 +110,7 @@ impl Executor {
             waker,
         });
         self.infos.push(TaskInfo { owner, woken });
+        self.waits_tick.push(false);
     }
 
     /// Whether every behaviour has returned.
@@ -127,19 +125,16 @@ impl Executor {
     ///
     /// The first error a behaviour or a component's task returns.
     pub(crate) fn tick(&mut self) -> Result<(), RuntimeError> {
-        std::mem::swap(&mut self.waking, &mut self.ticked);
-        if !self.waking.is_sorted() {
-            self.waking.sort_unstable();
-            self.waking.dedup();
-        }
-        for position in 0..self.waking.len() {
-            if !self.poll_task(self.waking[position]) {
-                break;
+        for index in 0..self.waits_tick.len() {
+            if self.waits_tick[index] && !self.poll_task(index) {
+                return self.failure();
             }
         }
-        self.waking.clear();
-        self.failure()?;
-        self.poll()
+        // Most ticks wake nothing else: a plain load before the call.
+        if self.wake.any_woken.load(Ordering::Relaxed) {
+            self.poll()?;
+        }
+        Ok(())
     }
 
     /// Polls the tasks woken by anything but a tick until none is (or `MAX_ROUNDS`).
@@ -185,9 +180,7 @@ impl Executor {
         let mut context = Context::from_waker(waker);
         self.clock.begin_polling(waker);
         let poll = future.as_mut().poll(&mut context);
-        if self.clock.end_polling() {
-            self.ticked.push(index);
-        }
+        self.waits_tick[index] = self.clock.end_polling();
         match poll {
             Poll::Pending => true,
             Poll::Ready(result) => self.ended(index, result),
@@ -248,6 +241,7 @@ impl Executor {
         let _results_after_the_end = self.tick();
         self.tasks.clear();
         self.infos.clear();
+        self.waits_tick.clear();
         self.behaviours = 0;
     }
 }

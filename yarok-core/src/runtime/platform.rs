@@ -24,9 +24,10 @@ type Behaviour = Pin<Box<dyn Future<Output = BehaviourResult>>>;
 /// A behaviour not started yet, with its name.
 pub(super) type BehaviourFactory = (String, Box<dyn FnOnce(Pl) -> Behaviour>);
 
-/// Ticks between yields to the tokio scheduler when the simulation runs unpaced, so that Ctrl-C,
-/// I/O and other tasks are served without slowing stepping.
-const YIELD_EVERY: u64 = 64;
+/// Ticks between yields to the tokio scheduler when the simulation runs unpaced, so that I/O and
+/// other tokio tasks are served without slowing stepping (Ctrl-C needs none: it sets the stop
+/// flag, read every tick).
+const YIELD_EVERY: u64 = 256;
 
 /// What the builder checked and made.
 pub(super) struct Prepared {
@@ -366,6 +367,15 @@ impl Platform {
                 source,
             })?;
         }
+        if !self.plugins.is_empty() {
+            self.step_plugins()?;
+        }
+        self.clock.advance(self.backend.time());
+        self.executor.tick()?;
+        self.goes_on()
+    }
+
+    fn step_plugins(&mut self) -> Result<(), RuntimeError> {
         let world = World {
             pl: &self.pl,
             backend: self.backend.as_ref(),
@@ -378,9 +388,7 @@ impl Platform {
                 source,
             })?;
         }
-        self.clock.advance(self.backend.time());
-        self.executor.tick()?;
-        self.goes_on()
+        Ok(())
     }
 
     /// Ends the run: behaviours' last poll, plugins' end, stop actions, the backend's stop.
