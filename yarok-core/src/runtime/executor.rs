@@ -125,16 +125,41 @@ impl Executor {
     ///
     /// The first error a behaviour or a component's task returns.
     pub(crate) fn tick(&mut self) -> Result<(), RuntimeError> {
-        for index in 0..self.waits_tick.len() {
-            if self.waits_tick[index] && !self.poll_task(index) {
+        let mut next = 0;
+        while let Some((index, result)) = self.poll_ticked(next) {
+            if !self.ended(index, result) {
                 return self.failure();
             }
+            next = index + 1;
         }
         // Most ticks wake nothing else: a plain load before the call.
         if self.wake.any_woken.load(Ordering::Relaxed) {
             self.poll()?;
         }
         Ok(())
+    }
+
+    /// Polls the tasks from `first` on that wait for a tick, until one returns: its index and
+    /// result.
+    #[inline(always)]
+    fn poll_ticked(&mut self, first: usize) -> Option<(usize, Result<(), crate::BoxError>)> {
+        let tasks = self.waits_tick.iter_mut().zip(&mut self.tasks).enumerate();
+        for (index, (waits_tick, task)) in tasks.skip(first) {
+            if !*waits_tick {
+                continue;
+            }
+            let Some(future) = &mut task.future else {
+                continue;
+            };
+            let mut context = Context::from_waker(&task.waker);
+            self.clock.begin_polling(&task.waker);
+            let poll = future.as_mut().poll(&mut context);
+            *waits_tick = self.clock.end_polling();
+            if let Poll::Ready(result) = poll {
+                return Some((index, result));
+            }
+        }
+        None
     }
 
     /// Polls the tasks woken by anything but a tick until none is (or `MAX_ROUNDS`).

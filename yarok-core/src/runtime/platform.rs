@@ -71,6 +71,8 @@ pub struct Platform {
     phase: Phase,
     ctrl_c: bool,
     interrupt: Option<Interrupt>,
+    /// Whether ticks are paced to the wall clock (hardware, or `[platform] realtime`).
+    paced: bool,
     /// The stop flag (`pl.stop()`, [`Platform::stop_flag`], Ctrl-C), read every tick.
     stop: Arc<AtomicBool>,
     started: Option<tokio::time::Instant>,
@@ -103,6 +105,7 @@ impl Platform {
         )));
         let executor = Executor::new(clock.clone());
         let stop = Arc::clone(&prepared.stop);
+        let paced = prepared.platform.realtime || prepared.backend.paced();
         let pl = Pl::new(
             clock.clone(),
             prepared.environment.to_owned(),
@@ -127,6 +130,7 @@ impl Platform {
             phase: Phase::Built,
             ctrl_c: prepared.ctrl_c,
             interrupt: None,
+            paced,
             stop,
             started: None,
             stepper: None,
@@ -185,7 +189,14 @@ impl Platform {
 
     async fn run_to_end(&mut self) -> Result<(), RuntimeError> {
         self.start().await?;
-        while self.advance().await? {}
+        let mut goes_on = self.goes_on()?;
+        while goes_on {
+            // Most unpaced ticks need no `.await`: they skip the asynchronous pacing.
+            if (self.paced || self.due_to_yield()) && !self.pace().await? {
+                break;
+            }
+            goes_on = self.tick()?;
+        }
         Ok(())
     }
 
@@ -338,24 +349,40 @@ impl Platform {
         Ok(false)
     }
 
-    /// One tick; whether the run goes on.
+    /// One tick, paced; whether the run goes on.
     async fn advance(&mut self) -> Result<bool, RuntimeError> {
+        Ok(self.pace().await? && self.tick()?)
+    }
+
+    /// Whether the next unpaced tick is one on which other tokio tasks get their turn.
+    fn due_to_yield(&self) -> bool {
+        (self.clock.ticks() + 1).is_multiple_of(YIELD_EVERY)
+    }
+
+    /// Waits until the next tick is due — serving I/O meanwhile — on hardware or in real time,
+    /// or yields to tokio now and then; whether the run goes on.
+    async fn pace(&mut self) -> Result<bool, RuntimeError> {
         if !self.goes_on()? {
             return Ok(false);
         }
-        let ticks = self.clock.ticks() + 1;
-        if self.platform.realtime || self.backend.paced() {
+        if self.paced {
             // On hardware a tick happens at its due time, so tick n reads time n·timestep.
             let started = self.started.unwrap_or_else(tokio::time::Instant::now);
+            let ticks = self.clock.ticks() + 1;
             let due =
                 started + std::time::Duration::from_secs_f64(ticks as f64 * self.clock.timestep());
             self.executor.serve_until(due).await?;
-            if !self.goes_on()? {
-                return Ok(false);
-            }
-        } else if ticks.is_multiple_of(YIELD_EVERY) {
+            return self.goes_on();
+        }
+        if self.due_to_yield() {
             tokio::task::yield_now().await;
         }
+        Ok(true)
+    }
+
+    /// Steps the backend, the components, the plugins and the clock, then runs what the tick
+    /// woke; whether the run goes on.
+    fn tick(&mut self) -> Result<bool, RuntimeError> {
         self.backend.step().map_err(|source| RuntimeError::Step {
             environment: self.environment.to_owned(),
             source,

@@ -11,7 +11,7 @@ mod wait;
 use std::cell::{Cell, RefCell};
 use std::future::Future;
 use std::rc::Rc;
-use std::task::{RawWakerVTable, Waker};
+use std::task::Waker;
 
 pub use timeout::Timeout;
 pub use wait::{Wait, WaitError};
@@ -35,7 +35,7 @@ pub(crate) struct ClockState {
     /// The waker identity of the platform's task being polled, so that its waits register by
     /// setting `registered` instead of storing a waker (no reference counting per tick). A wait
     /// polled with another waker registers that waker.
-    polling: Cell<Option<(*const (), &'static RawWakerVTable)>>,
+    polling: Cell<*const ()>,
     /// Whether the task being polled waits for the next tick.
     registered: Cell<bool>,
 }
@@ -43,10 +43,10 @@ pub(crate) struct ClockState {
 impl ClockState {
     #[inline]
     pub(crate) fn register(&self, waker: &Waker) {
-        if let Some((data, vtable)) = self.polling.get()
-            && waker.data() == data
-            && std::ptr::eq(waker.vtable(), vtable)
-        {
+        // Another waker with the same data would have to point into the task's own waker; no
+        // task is polled while `polling` is null (which a no-op waker's data is too).
+        let data = waker.data();
+        if !data.is_null() && data == self.polling.get() {
             self.registered.set(true);
         } else {
             self.register_waker(waker);
@@ -73,7 +73,7 @@ impl Clock {
                 stopped: Cell::new(false),
                 waiters: RefCell::new(Vec::new()),
                 spare: RefCell::new(Vec::new()),
-                polling: Cell::new(None),
+                polling: Cell::new(std::ptr::null()),
                 registered: Cell::new(false),
             }),
         }
@@ -90,13 +90,13 @@ impl Clock {
     #[inline(always)]
     pub(crate) fn begin_polling(&self, waker: &Waker) {
         self.state.registered.set(false);
-        self.state.polling.set(Some((waker.data(), waker.vtable())));
+        self.state.polling.set(waker.data());
     }
 
     /// Says that the poll is over; returns whether the task waits for the next tick.
     #[inline(always)]
     pub(crate) fn end_polling(&self) -> bool {
-        self.state.polling.set(None);
+        self.state.polling.set(std::ptr::null());
         self.state.registered.get()
     }
 
