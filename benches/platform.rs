@@ -16,11 +16,12 @@ use yarok::mjc::{Data, Model};
 use yarok::{Component, Declaration};
 
 /// Seconds of raw stepping each of the [`ROUNDS`] aims for.
-const ROUND_SECONDS: f64 = 0.25;
+const ROUND_SECONDS: f64 = 0.15;
 
 /// Rounds the measurement is split into; raw and platform take turns within each round, so that
-/// machine noise (another process, frequency changes) hits both alike.
-const ROUNDS: u32 = 8;
+/// machine noise (another process, frequency changes) hits both alike, and the ratio reported is
+/// the median of the rounds' ratios, so that one disturbed round does not decide it.
+const ROUNDS: usize = 15;
 
 /// Just a floor: stepping is so cheap that the executor's own cost shows.
 struct Floor;
@@ -62,17 +63,17 @@ fn platform_seconds<W: Component>(ticks: u64) -> f64 {
     started.elapsed().as_secs_f64()
 }
 
-/// Raw and platform steps/s, measured in alternating rounds.
+/// Steps per tick measured in alternating rounds: (steps per round, the median round's raw and
+/// platform steps/s).
 fn compare<W: Component>() -> (u64, f64, f64) {
     let probe = 500.0 / raw_seconds::<W>(500);
     let ticks = (probe * ROUND_SECONDS).max(1000.0) as u64;
-    let (mut raw, mut platform) = (0.0, 0.0);
-    for _ in 0..ROUNDS {
-        raw += raw_seconds::<W>(ticks);
-        platform += platform_seconds::<W>(ticks);
-    }
-    let total = ticks as f64 * f64::from(ROUNDS);
-    (ticks, total / raw, total / platform)
+    let mut rounds: Vec<(f64, f64)> = (0..ROUNDS)
+        .map(|_| (raw_seconds::<W>(ticks), platform_seconds::<W>(ticks)))
+        .collect();
+    rounds.sort_by(|a, b| (a.0 / a.1).total_cmp(&(b.0 / b.1)));
+    let (raw, platform) = rounds[ROUNDS / 2];
+    (ticks, ticks as f64 / raw, ticks as f64 / platform)
 }
 
 fn main() {
@@ -89,7 +90,7 @@ fn main() {
         ("floor only (executor cost shows)", compare::<Floor>()),
     ] {
         println!(
-            "{name:<34} {raw:>12.0} {platform:>12.0} {:>8.1}% {:>11.2} µs   ({ROUNDS} × {ticks} steps)",
+            "{name:<34} {raw:>12.0} {platform:>12.0} {:>8.1}% {:>11.2} µs   (median of {ROUNDS} × {ticks} steps)",
             100.0 * platform / raw,
             (1.0 / platform - 1.0 / raw) * 1e6
         );

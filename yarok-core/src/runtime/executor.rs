@@ -143,21 +143,20 @@ impl Executor {
     /// result.
     #[inline(always)]
     fn poll_ticked(&mut self, first: usize) -> Option<(usize, Result<(), crate::BoxError>)> {
-        let tasks = self.waits_tick.iter_mut().zip(&mut self.tasks).enumerate();
-        for (index, (waits_tick, task)) in tasks.skip(first) {
-            if !*waits_tick {
-                continue;
+        let tasks = self.tasks.get_mut(first..)?;
+        let waits = self.waits_tick.get_mut(first..)?;
+        let mut index = first;
+        for (task, waits_tick) in tasks.iter_mut().zip(waits) {
+            if *waits_tick && let Some(future) = &mut task.future {
+                let mut context = Context::from_waker(&task.waker);
+                self.clock.begin_polling(&task.waker);
+                let poll = future.as_mut().poll(&mut context);
+                *waits_tick = self.clock.end_polling();
+                if let Poll::Ready(result) = poll {
+                    return Some((index, result));
+                }
             }
-            let Some(future) = &mut task.future else {
-                continue;
-            };
-            let mut context = Context::from_waker(&task.waker);
-            self.clock.begin_polling(&task.waker);
-            let poll = future.as_mut().poll(&mut context);
-            *waits_tick = self.clock.end_polling();
-            if let Poll::Ready(result) = poll {
-                return Some((index, result));
-            }
+            index += 1;
         }
         None
     }

@@ -106,10 +106,15 @@ impl Clock {
         self.wake_all();
     }
 
+    #[inline]
     fn wake_all(&self) {
-        if self.state.waiters.borrow().is_empty() {
-            return;
+        if !self.state.waiters.borrow().is_empty() {
+            self.wake_waiters();
         }
+    }
+
+    #[cold]
+    fn wake_waiters(&self) {
         // Waking may register new waits: wake from the other buffer.
         let mut waking = self.state.spare.take();
         std::mem::swap(&mut waking, &mut *self.state.waiters.borrow_mut());
