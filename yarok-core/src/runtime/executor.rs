@@ -145,8 +145,7 @@ impl Executor {
     fn poll_ticked(&mut self, first: usize) -> Option<(usize, Result<(), crate::BoxError>)> {
         let tasks = self.tasks.get_mut(first..)?;
         let waits = self.waits_tick.get_mut(first..)?;
-        let mut index = first;
-        for (task, waits_tick) in tasks.iter_mut().zip(waits) {
+        for (index, (task, waits_tick)) in (first..).zip(tasks.iter_mut().zip(waits)) {
             if *waits_tick && let Some(future) = &mut task.future {
                 let mut context = Context::from_waker(&task.waker);
                 self.clock.begin_polling(&task.waker);
@@ -156,7 +155,6 @@ impl Executor {
                     return Some((index, result));
                 }
             }
-            index += 1;
         }
         None
     }
