@@ -140,3 +140,58 @@ fn a_platform_stepped_and_dropped_midway_still_stops_its_devices() {
     assert_eq!(a.received(1), ["STOP"]);
     assert_eq!(b.received(1), ["STOP"]);
 }
+
+/// Counts ticks in a task of its own: per-tick work that awaits.
+#[derive(Clone)]
+struct Ticker {
+    count: std::rc::Rc<std::cell::Cell<u64>>,
+}
+
+impl Component for Ticker {
+    fn declaration() -> Declaration {
+        Declaration::new("ticker").template("<mujoco/>")
+    }
+
+    fn interfaces(interfaces: &mut yarok_core::component::Interfaces<Self>) {
+        interfaces.add::<yarok_core::component::Mock>();
+    }
+}
+
+impl yarok_core::component::Interface<yarok_core::component::Mock> for Ticker {
+    async fn bind(
+        bind: &mut yarok_core::component::Bind<yarok_core::component::Mock>,
+    ) -> Result<Self, BindError> {
+        let ticker = Ticker {
+            count: std::rc::Rc::default(),
+        };
+        let (clock, count) = (bind.clock(), std::rc::Rc::clone(&ticker.count));
+        let device = tokio::sync::Mutex::new(0u64);
+        bind.spawn(async move {
+            loop {
+                clock.tick().await?;
+                let mut reading = device.lock().await; // an asynchronous resource
+                *reading += 1;
+                count.set(*reading);
+            }
+        });
+        Ok(ticker)
+    }
+}
+
+#[test]
+fn an_interface_task_that_awaits_runs_every_tick_before_behaviours_see_it() {
+    Platform::builder()
+        .world::<Ticker>()
+        .environment("mock")
+        .backend::<yarok_core::component::Mock>(|_, _| Ok(MockBackend::new(0.01, false)))
+        .behaviour(|pl| async move {
+            let ticker: Ticker = pl.get("/")?;
+            for _ in 0..300 {
+                pl.tick().await?;
+                assert_eq!(ticker.count.get(), pl.ticks());
+            }
+            Ok(())
+        })
+        .run()
+        .unwrap();
+}

@@ -24,10 +24,13 @@ type Behaviour = Pin<Box<dyn Future<Output = BehaviourResult>>>;
 /// A behaviour not started yet, with its name.
 pub(super) type BehaviourFactory = (String, Box<dyn FnOnce(Pl) -> Behaviour>);
 
-/// Ticks between yields to the tokio scheduler when the simulation runs unpaced, so that I/O and
-/// other tokio tasks are served without slowing stepping (Ctrl-C needs none: it sets the stop
-/// flag, read every tick).
-const YIELD_EVERY: u64 = 256;
+/// How often an unpaced run looks whether it is time to let other tokio tasks (the
+/// application's, I/O) run: every this many ticks...
+const YIELD_CHECK_TICKS: u64 = 64;
+/// ...it yields to the tokio scheduler when this much wall time passed since it last did, so
+/// that they are served without slowing stepping. (Ctrl-C needs none: it sets the stop flag, read
+/// every tick.)
+const YIELD_EVERY: std::time::Duration = std::time::Duration::from_millis(1);
 
 /// What the builder checked and made.
 pub(super) struct Prepared {
@@ -73,6 +76,8 @@ pub struct Platform {
     interrupt: Option<Interrupt>,
     /// Whether ticks are paced to the wall clock (hardware, or `[platform] realtime`).
     paced: bool,
+    /// When an unpaced run last let other tokio tasks run.
+    yielded: std::time::Instant,
     /// The stop flag (`pl.stop()`, [`Platform::stop_flag`], Ctrl-C), read every tick.
     stop: Arc<AtomicBool>,
     started: Option<tokio::time::Instant>,
@@ -131,6 +136,7 @@ impl Platform {
             ctrl_c: prepared.ctrl_c,
             interrupt: None,
             paced,
+            yielded: std::time::Instant::now(),
             stop,
             started: None,
             stepper: None,
@@ -356,7 +362,8 @@ impl Platform {
 
     /// Whether the next unpaced tick is one on which other tokio tasks get their turn.
     fn due_to_yield(&self) -> bool {
-        (self.clock.ticks() + 1).is_multiple_of(YIELD_EVERY)
+        (self.clock.ticks() + 1).is_multiple_of(YIELD_CHECK_TICKS)
+            && self.yielded.elapsed() >= YIELD_EVERY
     }
 
     /// Waits until the next tick is due — serving I/O meanwhile — on hardware or in real time,
@@ -376,6 +383,7 @@ impl Platform {
         }
         if self.due_to_yield() {
             tokio::task::yield_now().await;
+            self.yielded = std::time::Instant::now();
         }
         Ok(true)
     }
