@@ -189,7 +189,9 @@ impl Platform {
     /// Not cancel safe: dropping the future before it completes skips the stop actions. Stop
     /// the platform through its [stop flag](Platform::stop_flag) instead.
     pub async fn run_local(mut self) -> Result<(), RuntimeError> {
-        let result = self.run_to_end().await;
+        // The whole loop is one poll of this future between yields: tokio's per-poll budget
+        // would otherwise run out across ticks and stall the tasks' tokio resources.
+        let result = tokio::task::unconstrained(self.run_to_end()).await;
         self.shutdown(result).await
     }
 
@@ -258,12 +260,15 @@ impl Platform {
                 LocalSet::new(),
             ),
         };
-        let result = local.block_on(&runtime, async {
-            if self.phase == Phase::Built {
-                self.start().await?;
-            }
-            self.advance().await
-        });
+        let result = local.block_on(
+            &runtime,
+            tokio::task::unconstrained(async {
+                if self.phase == Phase::Built {
+                    self.start().await?;
+                }
+                self.advance().await
+            }),
+        );
         let result = match result {
             Ok(true) => Ok(true),
             ended => local
