@@ -64,9 +64,10 @@ impl WaitError {
 #[repr(C)] // What every tick reads first, together.
 pub struct Wait<'a, C> {
     clock: &'a ClockState,
-    /// The last tick the wait has seen; the tick it was made on, at first.
+    /// The last tick the wait has seen; the tick it was made on, at first (`u64::MAX` when it is
+    /// invalid: no tick is new to it then, and its first poll fails).
     seen_tick: u64,
-    /// Platform time at which it times out (−∞ when it is invalid: it then fails at once).
+    /// Platform time at which it times out.
     deadline: f64,
     on_tick: Option<Box<dyn FnMut() + 'a>>,
     condition: C,
@@ -97,7 +98,7 @@ impl<'a, C: FnMut() -> bool + Unpin> Wait<'a, C> {
     pub(crate) fn invalid(mut self, error: Option<WaitError>) -> Self {
         self.invalid = self.invalid.or(error);
         if self.invalid.is_some() {
-            self.deadline = f64::NEG_INFINITY;
+            self.seen_tick = u64::MAX;
         }
         self
     }
@@ -129,16 +130,11 @@ impl<C: FnMut() -> bool + Unpin> Future for Wait<'_, C> {
     fn poll(self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<Self::Output> {
         let this = self.get_mut();
         let ticks = this.clock.ticks.get();
+        // A stopped clock ticks no more: a new tick means it runs.
         if ticks > this.seen_tick {
             this.seen_tick = ticks;
-            if this.clock.stopped.get() {
-                return Poll::Ready(Err(WaitError::Stopped));
-            }
             if let Some(callback) = &mut this.on_tick {
                 callback();
-            }
-            if this.deadline == f64::NEG_INFINITY {
-                return Poll::Ready(Err(this.failure()));
             }
             if (this.condition)() {
                 return Poll::Ready(Ok(()));
