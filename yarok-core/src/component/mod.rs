@@ -170,11 +170,6 @@ impl ComponentType {
             .collect()
     }
 
-    /// Whether it has any interface (worlds and props have none).
-    pub fn has_interfaces(&self) -> bool {
-        !(self.interfaces)().is_empty()
-    }
-
     /// Its interface for `environment`.
     pub(crate) fn binder(&self, environment: &str) -> Option<BindFn> {
         (self.interfaces)()

@@ -90,8 +90,4 @@ impl Pl {
     pub fn stop(&self) {
         self.inner.stop.store(true, Ordering::Relaxed);
     }
-
-    pub(crate) fn stop_flag(&self) -> Arc<AtomicBool> {
-        Arc::clone(&self.inner.stop)
-    }
 }

@@ -155,7 +155,7 @@ impl Platform {
 
     /// A flag that stops the platform after the current tick when set, from any thread.
     pub fn stop_flag(&self) -> Arc<AtomicBool> {
-        self.pl.stop_flag()
+        Arc::clone(&self.stop)
     }
 
     /// Runs on a new single-threaded tokio runtime until the behaviours finish, one fails, a
@@ -319,13 +319,8 @@ impl Platform {
         for (component, task) in tasks {
             self.executor.spawn(Owner::Component(component), task);
         }
-        let world = World {
-            pl: &self.pl,
-            backend: self.backend.as_ref(),
-            composition: &self.composition,
-            settings: &self.settings,
-        };
-        for plugin in &mut self.plugins {
+        let (plugins, world) = self.plugins_and_world();
+        for plugin in plugins {
             plugin
                 .start(&world)
                 .map_err(|source| RuntimeError::Plugin {
@@ -416,19 +411,25 @@ impl Platform {
     }
 
     fn step_plugins(&mut self) -> Result<(), RuntimeError> {
-        let world = World {
-            pl: &self.pl,
-            backend: self.backend.as_ref(),
-            composition: &self.composition,
-            settings: &self.settings,
-        };
-        for plugin in &mut self.plugins {
+        let (plugins, world) = self.plugins_and_world();
+        for plugin in plugins {
             plugin.step(&world).map_err(|source| RuntimeError::Plugin {
                 name: plugin.name(),
                 source,
             })?;
         }
         Ok(())
+    }
+
+    /// The plugins, and the world they see.
+    fn plugins_and_world(&mut self) -> (&mut [Box<dyn Plugin>], World<'_>) {
+        let world = World {
+            pl: &self.pl,
+            backend: self.backend.as_ref(),
+            composition: &self.composition,
+            settings: &self.settings,
+        };
+        (&mut self.plugins, world)
     }
 
     /// Ends the run: behaviours' last poll, plugins' end, stop actions, the backend's stop.
@@ -441,13 +442,8 @@ impl Platform {
         let mut result = result;
         self.clock.stop();
         self.executor.finish();
-        let world = World {
-            pl: &self.pl,
-            backend: self.backend.as_ref(),
-            composition: &self.composition,
-            settings: &self.settings,
-        };
-        for plugin in &mut self.plugins {
+        let (plugins, world) = self.plugins_and_world();
+        for plugin in plugins {
             if let Err(source) = plugin.end(&world) {
                 let error = RuntimeError::Plugin {
                     name: plugin.name(),
