@@ -165,7 +165,7 @@ fn env_real_on_a_world_of_sim_components_fails_before_binding_and_lists_them() {
 #[test]
 fn a_plugin_reads_qpos_from_the_sim_backend_every_tick() {
     let seen = Rc::new(RefCell::new(Vec::new()));
-    let log = Rc::clone(&seen);
+    let (log, checked) = (Rc::clone(&seen), Rc::clone(&seen));
     desk()
         .plugin(move |world: &World<'_>| {
             let sim = world.backend::<SimBackend>().ok_or("not in sim")?;
@@ -174,12 +174,13 @@ fn a_plugin_reads_qpos_from_the_sim_backend_every_tick() {
                 .push((world.pl().ticks(), sim.data().qpos(hinge)[0]));
             Ok(())
         })
-        .behaviour(|pl| async move {
+        .behaviour(move |pl| async move {
             let lamp: Lamp = pl.get("/lamp")?;
             for _ in 0..5 {
                 pl.tick().await?;
                 // The plugin saw this tick's state: the angle the behaviour sees now.
-                assert_eq!(lamp.angle(), lamp.angle());
+                let last = checked.borrow().last().map(|(_, qpos)| *qpos);
+                assert_eq!(last, Some(lamp.angle()));
             }
             Ok(())
         })
