@@ -22,11 +22,13 @@ pub(crate) enum Owner {
     Component(String),
 }
 
-/// A task that is polled: its future, until it is done, and its waker. Kept apart from what
-/// polls do not read ([`TaskInfo`]), so that a tick touches as little memory as it can.
+/// A task that is polled: its future (a never-ready one once it is done), its waker, and
+/// whether it waits for the next tick. Kept apart from what polls do not read ([`TaskInfo`]),
+/// so that a tick touches as little memory as it can.
 struct Task {
-    future: Option<LocalFuture>,
+    future: LocalFuture,
     waker: Waker,
+    waits_tick: bool,
 }
 
 /// Whose a task is, and the flag its waker sets.
@@ -72,8 +74,6 @@ pub(crate) struct Executor {
     wake: Arc<PlatformWake>,
     behaviours: usize,
     clock: Clock,
-    /// Whether each task waits for the next tick (by index; dense, so a tick reads little).
-    waits_tick: Vec<bool>,
     /// The error a task ended with, until [`Executor::failure`] returns it.
     failed: Option<RuntimeError>,
 }
@@ -90,7 +90,6 @@ impl Executor {
             }),
             behaviours: 0,
             clock,
-            waits_tick: Vec::new(),
             failed: None,
         }
     }
@@ -106,11 +105,11 @@ impl Executor {
         self.wake.any_woken.store(true, Ordering::Release);
         let waker = Waker::from(Arc::clone(&woken));
         self.tasks.push(Task {
-            future: Some(future),
+            future,
             waker,
+            waits_tick: false,
         });
         self.infos.push(TaskInfo { owner, woken });
-        self.waits_tick.push(false);
     }
 
     /// Whether every behaviour has returned.
@@ -119,24 +118,18 @@ impl Executor {
     }
 
     /// After a tick: polls the tasks that waited for it (in the order they were spawned), then
-    /// the others woken (see [`Executor::poll`]).
-    ///
-    /// # Errors
-    ///
-    /// The first error a behaviour or a component's task returns.
-    pub(crate) fn tick(&mut self) -> Result<(), RuntimeError> {
+    /// the others woken (see [`Executor::poll`]); `false` when a behaviour or a component's task
+    /// failed ([`Executor::failure`] has its error).
+    pub(crate) fn tick(&mut self) -> bool {
         let mut next = 0;
         while let Some((index, result)) = self.poll_ticked(next) {
             if !self.ended(index, result) {
-                return self.failure();
+                return false;
             }
             next = index + 1;
         }
         // Most ticks wake nothing else: a plain load before the call.
-        if self.wake.any_woken.load(Ordering::Relaxed) {
-            self.poll()?;
-        }
-        Ok(())
+        !self.wake.any_woken.load(Ordering::Relaxed) || self.poll_woken()
     }
 
     /// Polls the tasks from `first` on that wait for a tick, until one returns: its index and
@@ -144,13 +137,12 @@ impl Executor {
     #[inline(always)]
     fn poll_ticked(&mut self, first: usize) -> Option<(usize, Result<(), crate::BoxError>)> {
         let tasks = self.tasks.get_mut(first..)?;
-        let waits = self.waits_tick.get_mut(first..)?;
-        for (index, (task, waits_tick)) in (first..).zip(tasks.iter_mut().zip(waits)) {
-            if *waits_tick && let Some(future) = &mut task.future {
+        for (index, task) in (first..).zip(tasks) {
+            if task.waits_tick {
                 let mut context = Context::from_waker(&task.waker);
                 self.clock.begin_polling(&task.waker);
-                let poll = future.as_mut().poll(&mut context);
-                *waits_tick = self.clock.end_polling();
+                let poll = task.future.as_mut().poll(&mut context);
+                task.waits_tick = self.clock.end_polling();
                 if let Poll::Ready(result) = poll {
                     return Some((index, result));
                 }
@@ -165,6 +157,16 @@ impl Executor {
     ///
     /// The first error a behaviour or a component's task returns.
     pub(crate) fn poll(&mut self) -> Result<(), RuntimeError> {
+        if self.poll_woken() {
+            Ok(())
+        } else {
+            self.failure()
+        }
+    }
+
+    /// [`Executor::poll`]; `false` when a task failed.
+    #[inline(never)]
+    fn poll_woken(&mut self) -> bool {
         for _ in 0..MAX_ROUNDS {
             // A plain load first: most ticks wake nothing but tick waits.
             if !self.wake.any_woken.load(Ordering::Relaxed)
@@ -177,32 +179,33 @@ impl Executor {
                 if self.infos[index].woken.woken.swap(false, Ordering::Acquire)
                     && !self.poll_task(index)
                 {
-                    return self.failure();
+                    return false;
                 }
             }
         }
-        Ok(())
+        true
     }
 
-    /// The error a task ended with, once.
-    fn failure(&mut self) -> Result<(), RuntimeError> {
+    /// The error a task ended with, once (after a poll said one failed).
+    ///
+    /// # Errors
+    ///
+    /// That error.
+    #[cold]
+    pub(crate) fn failure(&mut self) -> Result<(), RuntimeError> {
         self.failed.take().map_or(Ok(()), Err)
     }
 
     /// Polls one task; `false` when it failed (its error is kept for [`Executor::failure`]).
     #[inline(always)]
     fn poll_task(&mut self, index: usize) -> bool {
-        let Some(Task {
-            future: Some(future),
-            waker,
-        }) = self.tasks.get_mut(index)
-        else {
+        let Some(task) = self.tasks.get_mut(index) else {
             return true;
         };
-        let mut context = Context::from_waker(waker);
-        self.clock.begin_polling(waker);
-        let poll = future.as_mut().poll(&mut context);
-        self.waits_tick[index] = self.clock.end_polling();
+        let mut context = Context::from_waker(&task.waker);
+        self.clock.begin_polling(&task.waker);
+        let poll = task.future.as_mut().poll(&mut context);
+        task.waits_tick = self.clock.end_polling();
         match poll {
             Poll::Pending => true,
             Poll::Ready(result) => self.ended(index, result),
@@ -212,7 +215,7 @@ impl Executor {
     /// A task returned; `false` when with an error.
     #[cold]
     fn ended(&mut self, index: usize, result: Result<(), crate::BoxError>) -> bool {
-        self.tasks[index].future = None;
+        self.tasks[index].future = Box::pin(std::future::pending());
         let task = &mut self.infos[index];
         if let Owner::Behaviour { .. } = task.owner {
             self.behaviours -= 1;
@@ -260,10 +263,11 @@ impl Executor {
     /// Gives every waiting task one last poll (call it once the clock has stopped: their waits
     /// then fail with `Stopped`, so they can clean up), then drops them all.
     pub(crate) fn finish(&mut self) {
-        let _results_after_the_end = self.tick();
+        // What the tasks return now does not change the run's result.
+        self.tick();
+        self.failed = None;
         self.tasks.clear();
         self.infos.clear();
-        self.waits_tick.clear();
         self.behaviours = 0;
     }
 }

@@ -34,7 +34,8 @@ pub(crate) struct ClockState {
     spare: RefCell<Vec<Waker>>,
     /// The waker identity of the platform's task being polled, so that its waits register by
     /// setting `registered` instead of storing a waker (no reference counting per tick). A wait
-    /// polled with another waker registers that waker.
+    /// polled with another waker registers that waker. While no task is polled: the address of
+    /// `registered` ([`ClockState::idle`]), which no waker's data points to.
     polling: Cell<*const ()>,
     /// Whether the task being polled waits for the next tick.
     registered: Cell<bool>,
@@ -43,14 +44,18 @@ pub(crate) struct ClockState {
 impl ClockState {
     #[inline]
     pub(crate) fn register(&self, waker: &Waker) {
-        // Another waker with the same data would have to point into the task's own waker; no
-        // task is polled while `polling` is null (which a no-op waker's data is too).
-        let data = waker.data();
-        if !data.is_null() && data == self.polling.get() {
+        // Another waker with the same data would have to point into the task's own waker.
+        if waker.data() == self.polling.get() {
             self.registered.set(true);
         } else {
             self.register_waker(waker);
         }
+    }
+
+    /// What `polling` holds while no task is polled.
+    #[inline(always)]
+    fn idle(&self) -> *const () {
+        std::ptr::from_ref(&self.registered).cast()
     }
 
     #[cold]
@@ -65,7 +70,7 @@ impl ClockState {
 
 impl Clock {
     pub(crate) fn new(time: f64, timestep: f64) -> Self {
-        Self {
+        let clock = Self {
             state: Rc::new(ClockState {
                 ticks: Cell::new(0),
                 time: Cell::new(time),
@@ -76,7 +81,9 @@ impl Clock {
                 polling: Cell::new(std::ptr::null()),
                 registered: Cell::new(false),
             }),
-        }
+        };
+        clock.state.polling.set(clock.state.idle());
+        clock
     }
 
     /// Records a tick and wakes every wait.
@@ -96,7 +103,7 @@ impl Clock {
     /// Says that the poll is over; returns whether the task waits for the next tick.
     #[inline(always)]
     pub(crate) fn end_polling(&self) -> bool {
-        self.state.polling.set(std::ptr::null());
+        self.state.polling.set(self.state.idle());
         self.state.registered.get()
     }
 

@@ -69,7 +69,6 @@ pub struct Wait<'a, C> {
     seen_tick: u64,
     /// Platform time at which it times out.
     deadline: f64,
-    on_tick: Option<Box<dyn FnMut() + 'a>>,
     condition: C,
     started_time: f64,
     timeout: Option<f64>,
@@ -85,7 +84,6 @@ impl<'a, C: FnMut() -> bool + Unpin> Wait<'a, C> {
             clock,
             seen_tick: clock.ticks.get(),
             deadline: f64::INFINITY,
-            on_tick: None,
             condition,
             started_time: clock.time.get(),
             timeout: None,
@@ -117,9 +115,27 @@ impl<'a, C: FnMut() -> bool + Unpin> Wait<'a, C> {
     }
 
     /// Calls `callback` on every tick the wait sees, before checking the condition.
-    pub fn on_tick(mut self, callback: impl FnMut() + 'a) -> Self {
-        self.on_tick = Some(Box::new(callback));
-        self
+    pub fn on_tick(
+        self,
+        mut callback: impl FnMut() + Unpin + 'a,
+    ) -> Wait<'a, impl FnMut() -> bool + Unpin + 'a>
+    where
+        C: 'a,
+    {
+        let mut condition = self.condition;
+        Wait {
+            clock: self.clock,
+            seen_tick: self.seen_tick,
+            deadline: self.deadline,
+            condition: move || {
+                callback();
+                condition()
+            },
+            started_time: self.started_time,
+            timeout: self.timeout,
+            location: self.location,
+            invalid: self.invalid,
+        }
     }
 }
 
@@ -133,9 +149,6 @@ impl<C: FnMut() -> bool + Unpin> Future for Wait<'_, C> {
         // A stopped clock ticks no more: a new tick means it runs.
         if ticks > this.seen_tick {
             this.seen_tick = ticks;
-            if let Some(callback) = &mut this.on_tick {
-                callback();
-            }
             if (this.condition)() {
                 return Poll::Ready(Ok(()));
             }
