@@ -1,0 +1,122 @@
+//! [`AnetA30`]: a 3-D printer used as a cartesian robot.
+
+use std::cell::Cell;
+use std::rc::Rc;
+
+use yarok_core::component::{Bind, BindError, Component, Declaration, Interface, Interfaces, Mock};
+use yarok_mjc::{Actuator, Sensor, Sim, SimBind};
+
+/// The work volume of the [`AnetA30`], in millimetres.
+pub const WORK_VOLUME_MM: [f64; 3] = [320.0, 320.0, 420.0];
+
+/// How close (sum of the axes' distances, millimetres) counts as arrived for [`AnetA30::is_at`].
+pub const ARRIVED_MM: f64 = 0.25;
+
+/// A 3-D printer used as a cartesian robot: its head moves to `[x, y, z]` millimetres inside a
+/// 320 × 320 × 420 mm work volume (targets outside are clamped to it). Tools attach to the body
+/// `head` (`<cam name="cam" parent="head"/>` inside the tag).
+///
+/// Tag `anet_a30`; config `stiffness` (N/m of the axes' position servos, default 2000).
+///
+/// Environments: `sim` drives three position servos in MuJoCo; `mock` moves instantly.
+#[derive(Clone)]
+pub struct AnetA30 {
+    axes: Axes,
+}
+
+#[derive(Clone)]
+enum Axes {
+    Sim {
+        servos: [Actuator; 3],
+        positions: [Sensor; 3],
+    },
+    Mock(Rc<Cell<[f64; 3]>>),
+}
+
+impl std::fmt::Debug for AnetA30 {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("AnetA30").field("at", &self.at()).finish()
+    }
+}
+
+impl AnetA30 {
+    /// Starts moving the head to `target` (millimetres), clamped to the work volume; returns the
+    /// clamped target.
+    ///
+    /// A NaN coordinate is a warning (`tracing`) and goes to 0; an infinite one to the end of
+    /// its axis.
+    pub fn move_to(&self, target: [f64; 3]) -> [f64; 3] {
+        if target.iter().any(|t| t.is_nan()) {
+            tracing::warn!("printer: move_to({target:?}) has a NaN coordinate; it goes to 0");
+        }
+        let clamped = clamp(target);
+        match &self.axes {
+            Axes::Sim { servos, .. } => {
+                for (servo, mm) in servos.iter().zip(clamped) {
+                    servo.set(mm / 1000.0);
+                }
+            }
+            Axes::Mock(at) => at.set(clamped),
+        }
+        clamped
+    }
+
+    /// Where the head is, in millimetres.
+    pub fn at(&self) -> [f64; 3] {
+        match &self.axes {
+            Axes::Sim { positions, .. } => positions.each_ref().map(|axis| axis.value() * 1000.0),
+            Axes::Mock(at) => at.get(),
+        }
+    }
+
+    /// Whether the head is at `target` (clamped to the work volume) within [`ARRIVED_MM`].
+    pub fn is_at(&self, target: [f64; 3]) -> bool {
+        let at = self.at();
+        clamp(target)
+            .iter()
+            .zip(at)
+            .map(|(t, a)| (t - a).abs())
+            .sum::<f64>()
+            < ARRIVED_MM
+    }
+}
+
+fn clamp(target: [f64; 3]) -> [f64; 3] {
+    let mut clamped = [0.0; 3];
+    for ((c, t), max) in clamped.iter_mut().zip(target).zip(WORK_VOLUME_MM) {
+        *c = if t.is_nan() { 0.0 } else { t.clamp(0.0, max) };
+    }
+    clamped
+}
+
+impl Component for AnetA30 {
+    fn declaration() -> Declaration {
+        Declaration::new("anet_a30")
+            .default("stiffness", 2000.0)
+            .template(include_str!("anet_a30.xml"))
+    }
+
+    fn interfaces(interfaces: &mut Interfaces<Self>) {
+        interfaces.add::<Sim>().add::<Mock>();
+    }
+}
+
+impl Interface<Sim> for AnetA30 {
+    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
+        let [x, y, z] = ["x", "y", "z"];
+        Ok(AnetA30 {
+            axes: Axes::Sim {
+                servos: [bind.actuator(x)?, bind.actuator(y)?, bind.actuator(z)?],
+                positions: [bind.sensor(x)?, bind.sensor(y)?, bind.sensor(z)?],
+            },
+        })
+    }
+}
+
+impl Interface<Mock> for AnetA30 {
+    async fn bind(_: &mut Bind<Mock>) -> Result<Self, BindError> {
+        Ok(AnetA30 {
+            axes: Axes::Mock(Rc::default()),
+        })
+    }
+}
