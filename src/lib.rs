@@ -21,6 +21,8 @@ use yarok_core::runtime::{Platform, PlatformBuilder};
 
 #[doc(inline)]
 pub use yarok_components as components;
+/// Linear algebra for poses (`Isometry3`) and kinematics.
+pub use yarok_components::nalgebra;
 #[doc(inline)]
 pub use yarok_core as core;
 #[doc(inline)]

@@ -3,9 +3,11 @@
 //! Its one job is the catalogue of components, each with one interface per environment. Today:
 //! a camera ([`cameras::Cam`]), the optical models of the DIGIT, GelSight and GelTip tactile
 //! sensors ([`tactile`]), the Anet A30 printer used as a cartesian robot ([`robots::AnetA30`]),
-//! a tumble tower ([`toys::TumbleTower`]) and worlds ([`worlds`]). Arms, grippers and tactile
-//! sensors in the world come with their own issues.
+//! the UR5 and UR5e arms with their closed-form kinematics ([`robots::ur`]), a tumble tower
+//! ([`toys::TumbleTower`]) and worlds ([`worlds`]). [`nalgebra`] is re-exported for poses.
 //!
+pub use nalgebra;
+
 pub mod cameras;
 pub mod plugins;
 pub mod robots;
@@ -23,6 +25,8 @@ pub fn catalogue() -> Vec<ComponentType> {
         ComponentType::of::<worlds::TowerWorld>(),
         ComponentType::of::<cameras::Cam>(),
         ComponentType::of::<robots::AnetA30>(),
+        ComponentType::of::<robots::ur::Ur5>(),
+        ComponentType::of::<robots::ur::Ur5e>(),
         ComponentType::of::<toys::TumbleTower>(),
     ]
 }

@@ -34,7 +34,9 @@ fn errors(a: &Isometry3<f64>, b: &Isometry3<f64>) -> (f64, f64) {
 #[test]
 fn forward_kinematics_matches_the_reference_table() {
     let upright = [0.0, -FRAC_PI_2, 0.0, -FRAC_PI_2, 0.0, 0.0];
-    let home = [-FRAC_PI_2, -FRAC_PI_2, FRAC_PI_2, -FRAC_PI_2, -FRAC_PI_2, 0.0];
+    let home = [
+        -FRAC_PI_2, -FRAC_PI_2, FRAC_PI_2, -FRAC_PI_2, -FRAC_PI_2, 0.0,
+    ];
     let cases = [
         (DhParameters::UR5E, [0.0; 6], [-0.8172, -0.2329, 0.0628]),
         (DhParameters::UR5E, upright, [0.0, -0.2329, 1.0794]),
@@ -45,8 +47,13 @@ fn forward_kinematics_matches_the_reference_table() {
     ];
     for (dh, q, expected) in cases {
         let tool0 = dh.forward(&q);
-        let error = (tool0.translation.vector - Vector3::from(expected)).abs().max();
-        assert!(error <= 0.6e-4, "{dh:?} at {q:?}: {tool0:?}, expected {expected:?}");
+        let error = (tool0.translation.vector - Vector3::from(expected))
+            .abs()
+            .max();
+        assert!(
+            error <= 0.6e-4,
+            "{dh:?} at {q:?}: {tool0:?}, expected {expected:?}"
+        );
     }
     let z = |q: &Joints| DhParameters::UR5E.forward(q).rotation * Vector3::z();
     assert!((z(&[0.0; 6]) - Vector3::new(0.0, -1.0, 0.0)).norm() < 1e-12);
@@ -64,7 +71,10 @@ fn every_inverse_solution_reproduces_the_pose() {
             let q = random_joints(&mut random);
             let pose = dh.forward(&q);
             let solutions = dh.inverse(&pose, q[5]);
-            assert!(!solutions.is_empty(), "{dh:?}: no solution for the pose of {q:?}");
+            assert!(
+                !solutions.is_empty(),
+                "{dh:?}: no solution for the pose of {q:?}"
+            );
             let near_singular = q[4].sin().abs() < 1e-3 || q[2].sin().abs() < 1e-3;
             for solution in solutions.as_slice() {
                 let (position, rotation) = errors(&dh.forward(solution), &pose);
@@ -137,7 +147,10 @@ fn unreachable_and_non_finite_poses_are_errors() {
     let far = pose_from_vector([1.5, 0.2, 0.3, PI, 0.0, 0.0]);
     let error = kinematics.nearest(&far, &current).unwrap_err();
     assert!(matches!(error, IkError::Unreachable { .. }));
-    assert!(error.to_string().contains("out of the arm's reach"), "{error}");
+    assert!(
+        error.to_string().contains("out of the arm's reach"),
+        "{error}"
+    );
     // The wrist centre on the base axis: inside the shoulder offset's cylinder.
     let inside = pose_from_vector([0.0, 0.0, 0.3 + 0.0996, PI, 0.0, 0.0]);
     assert!(matches!(
@@ -165,7 +178,9 @@ fn at_a_wrist_singularity_wrist_3_keeps_its_current_angle() {
     let singular = [0.2, -1.3, 1.5, -1.2, 0.0, 0.7];
     let pose = kinematics.forward(&singular);
     let current = [0.25, -1.25, 1.45, -1.1, 0.05, 1.1];
-    let chosen = kinematics.nearest(&pose, &current).expect("a valid solution");
+    let chosen = kinematics
+        .nearest(&pose, &current)
+        .expect("a valid solution");
     assert!((chosen[5] - current[5]).abs() < 1e-12, "{chosen:?}");
     let (position, rotation) = errors(&kinematics.forward(&chosen), &pose);
     assert!(position < 1e-9 && rotation < 1e-9, "{position} {rotation}");
@@ -194,7 +209,14 @@ fn ur_pose_vectors_round_trip() {
     for _ in 0..1000 {
         let axis = Vector3::from_fn(|_, _| uniform(&mut random, -1.0, 1.0)).normalize();
         let angle = uniform(&mut random, 0.0, PI);
-        let vector = [0.1, -0.2, 0.3, axis.x * angle, axis.y * angle, axis.z * angle];
+        let vector = [
+            0.1,
+            -0.2,
+            0.3,
+            axis.x * angle,
+            axis.y * angle,
+            axis.z * angle,
+        ];
         let back = pose_to_vector(&pose_from_vector(vector));
         for (a, b) in back.iter().zip(vector) {
             assert!((a - b).abs() < 1e-9, "{back:?} vs {vector:?}");

@@ -87,6 +87,15 @@ impl Joint {
         self.data.borrow().qvel(self.id)[0]
     }
 
+    /// Puts a hinge or slide joint at `position` and at rest, and recomputes what follows from
+    /// it (body poses, sensors), as at the start of a run.
+    pub fn set_position(&self, position: f64) {
+        let mut data = self.data.borrow_mut();
+        data.qpos_mut(self.id)[0] = position;
+        data.qvel_mut(self.id)[0] = 0.0;
+        data.forward();
+    }
+
     /// Every position coordinate (7 for a free joint, 4 for a ball).
     pub fn qpos(&self) -> Vec<f64> {
         self.data.borrow().qpos(self.id).to_vec()

@@ -9,7 +9,7 @@ mod timeout;
 mod wait;
 
 use std::cell::{Cell, RefCell};
-use std::future::Future;
+use std::future::IntoFuture;
 use std::rc::Rc;
 use std::task::Waker;
 
@@ -196,7 +196,7 @@ impl Clock {
     /// [`WaitError::Timeout`] if the deadline passes first (the future is then dropped).
     /// NaN or a negative number fails at once with [`WaitError::InvalidDuration`].
     ///
-    /// Any future works — a channel receive, a socket read, several waits joined — and, unlike
+    /// Any future works (or anything `.await` takes: an arm's motion) — a channel receive, a socket read, several waits joined — and, unlike
     /// `tokio::time::timeout`, its deadline is in platform time, so it means the same in `sim`
     /// (simulated seconds) as on hardware.
     ///
@@ -204,7 +204,7 @@ impl Clock {
     ///
     /// As cancel safe as `future`.
     #[track_caller]
-    pub fn timeout<F: Future>(&self, seconds: f64, future: F) -> Timeout<'_, F> {
-        Timeout::new(&self.state, seconds, future)
+    pub fn timeout<F: IntoFuture>(&self, seconds: f64, future: F) -> Timeout<'_, F::IntoFuture> {
+        Timeout::new(&self.state, seconds, future.into_future())
     }
 }

@@ -1,0 +1,416 @@
+//! The UR arms in MuJoCo: the model's flange is the kinematics' tool0, the servos hold a pose
+//! under gravity, `move_j` keeps to its speed and acceleration, `move_l` keeps the TCP on its
+//! line, runs repeat bit for bit, bad targets fail before anything moves, a dropped motion
+//! stops the arm, `mock` follows its motions, and a UR model with Menagerie's names is driven
+//! through the same API.
+
+use std::cell::RefCell;
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
+use std::rc::Rc;
+use std::sync::Arc;
+
+use yarok::components::robots::ur::{
+    Arm, ArmConfig, ArmNames, DhParameters, Joints, Kinematics, MOVE_J_DEFAULTS, MOVE_L_DEFAULTS,
+    MotionError, Ur5, Ur5e, pose_from_vector,
+};
+use yarok::components::tactile::noise::SplitMix64;
+use yarok::components::worlds::EmptyWorld;
+use yarok::core::compose::compose;
+use yarok::mjc::{Data, Model, Sim};
+use yarok::nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
+use yarok::prelude::*;
+
+const HOME: Joints = [0.0, -FRAC_PI_2, FRAC_PI_2, -FRAC_PI_2, -FRAC_PI_2, 0.0];
+
+/// An empty world with an arm `A` at `/arm` on the floor.
+struct ArmWorld<A>(std::marker::PhantomData<A>);
+
+impl<A: Component> Component for ArmWorld<A> {
+    fn declaration() -> Declaration {
+        let tag = A::declaration().tag().to_owned();
+        Declaration::new(format!("{tag}_world"))
+            .extends::<EmptyWorld>()
+            .uses::<A>()
+            .template(format!(
+                r#"<mujoco><worldbody><{tag} name="arm" pos="0 0 0.05"/></worldbody></mujoco>"#
+            ))
+    }
+}
+
+fn uniform(random: &mut SplitMix64, lower: f64, upper: f64) -> f64 {
+    lower + (upper - lower) * (random.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+}
+
+#[test]
+fn the_flange_site_is_tool0_of_the_kinematics() {
+    fn check<A: Component>(dh: DhParameters) {
+        let model = Arc::new(Model::from_composition(&compose::<A>().unwrap()).unwrap());
+        let mut data = Data::new(&model).unwrap();
+        let names = ArmNames::YAROK.joints;
+        let joints = names.map(|name| model.joint(name).unwrap());
+        let flange = model.site("flange").unwrap();
+        let mut random = SplitMix64::new(5);
+        for _ in 0..1000 {
+            let q: Joints = std::array::from_fn(|i| {
+                let limit = if i == 2 { PI } else { TAU };
+                uniform(&mut random, -limit, limit)
+            });
+            for (joint, angle) in joints.iter().zip(q) {
+                data.qpos_mut(*joint)[0] = angle;
+            }
+            data.forward();
+            let site = data.site_pose(flange);
+            let expected = dh.forward(&q);
+            let [w, x, y, z] = site.quat;
+            let rotation = UnitQuaternion::from_quaternion(Quaternion::new(w, x, y, z));
+            let position = (Vector3::from(site.pos) - expected.translation.vector).norm();
+            let angle = rotation.angle_to(&expected.rotation);
+            assert!(
+                position < 1e-6 && angle < 1e-6,
+                "{dh:?} at {q:?}: {position} m, {angle} rad"
+            );
+        }
+    }
+    check::<Ur5e>(DhParameters::UR5E);
+    check::<Ur5>(DhParameters::UR5);
+}
+
+/// Runs `behaviour` on an arm of type `A` in its world, in `sim`.
+fn run<A, F>(behaviour: impl FnOnce(A, Pl) -> F + 'static) -> Result<(), yarok::RuntimeError>
+where
+    A: Component + Clone + std::ops::Deref<Target = Arm>,
+    F: Future<Output = BehaviourResult> + 'static,
+{
+    yarok::platform()
+        .world::<ArmWorld<A>>()
+        .behaviour(move |pl| async move {
+            let arm: A = pl.get("/arm")?;
+            behaviour(arm, pl).await
+        })
+        .run()
+}
+
+#[test]
+fn the_servos_hold_a_pose_under_gravity() {
+    run(|arm: Ur5e, pl| async move {
+        let target = [0.4, -1.0, 1.3, -1.9, -1.4, 0.6];
+        arm.move_j(target).await?;
+        let mut worst = 0.0f64;
+        pl.wait_seconds(3.0)
+            .on_tick(|| {
+                let q = arm.q();
+                worst = q
+                    .iter()
+                    .zip(target)
+                    .map(|(a, b)| (a - b).abs())
+                    .fold(worst, f64::max);
+            })
+            .await?;
+        assert!(
+            worst < 1e-3,
+            "the arm drifts {worst} rad from the pose it holds"
+        );
+        Ok(())
+    })
+    .unwrap();
+}
+
+#[test]
+fn move_j_keeps_to_its_speed_and_acceleration_and_arrives() {
+    run(|arm: Ur5, pl| async move {
+        let (speed, acceleration) = MOVE_J_DEFAULTS;
+        let dt = pl.timestep();
+        let trace = Rc::new(RefCell::new(Vec::new()));
+        let recorder = Rc::clone(&trace);
+        let watched = arm.clone();
+        let watch = pl
+            .wait_forever()
+            .on_tick(move || recorder.borrow_mut().push(watched.qd()));
+        let target = [1.2, -1.9, 2.0, -1.0, 0.5, -0.8];
+        tokio::select! {
+            biased;
+            result = arm.move_j(target) => result?,
+            _ = watch => {}
+        }
+        assert!(arm.is_at(&target));
+        let trace = trace.borrow();
+        let fastest = trace.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+        let hardest = trace
+            .windows(2)
+            .flat_map(|w| (0..6).map(move |i| (w[1][i] - w[0][i]).abs() / dt))
+            .fold(0.0f64, f64::max);
+        for (k, w) in trace.windows(2).enumerate() {
+            for i in 0..6 {
+                let a = (w[1][i] - w[0][i]).abs() / dt;
+                if a > 2.0 {
+                    eprintln!("tick {k} joint {i} accel {a} qd {:?}", w[1]);
+                }
+            }
+        }
+        assert!(
+            fastest <= speed * 1.02,
+            "joint speed {fastest} rad/s over {speed}"
+        );
+        assert!(
+            fastest > speed * 0.95,
+            "the leading joint cruises at {fastest}, not {speed}"
+        );
+        assert!(
+            hardest <= acceleration * 1.1,
+            "joint acceleration {hardest} over {acceleration}"
+        );
+        Ok(())
+    })
+    .unwrap();
+}
+
+#[test]
+fn move_l_keeps_the_tcp_on_its_line() {
+    run(|arm: Ur5e, pl| async move {
+        arm.move_j(HOME).await?;
+        let start = arm.tcp_pose();
+        let end = Isometry3::from_parts(
+            Translation3::from(start.translation.vector + Vector3::new(0.25, -0.15, 0.1)),
+            start.rotation,
+        );
+        let (a, b) = (start.translation.vector, end.translation.vector);
+        let mut worst = 0.0f64;
+        let mut fastest = 0.0f64;
+        let mut last = a;
+        let watched = arm.clone();
+        let dt = pl.timestep();
+        let watch = pl.wait_forever().on_tick(|| {
+            let p = watched.tcp_pose().translation.vector;
+            let along = ((p - a).dot(&(b - a)) / (b - a).norm_squared()).clamp(0.0, 1.0);
+            worst = worst.max((p - (a + along * (b - a))).norm());
+            fastest = fastest.max((p - last).norm() / dt);
+            last = p;
+        });
+        tokio::select! {
+            biased;
+            result = arm.move_l(end) => result?,
+            _ = watch => {}
+        }
+        assert!(arm.is_at_pose(&end), "{:?} vs {end:?}", arm.tcp_pose());
+        assert!(worst < 0.002, "the TCP leaves the line by {worst} m");
+        let speed = MOVE_L_DEFAULTS.0;
+        assert!(
+            fastest < speed * 1.05 && fastest > speed * 0.9,
+            "TCP speed {fastest} m/s"
+        );
+        Ok(())
+    })
+    .unwrap();
+}
+
+#[test]
+fn the_same_behaviour_gives_bit_identical_trajectories() {
+    let trajectory = || {
+        let trace = Rc::new(RefCell::new(Vec::new()));
+        let recorder = Rc::clone(&trace);
+        run(move |arm: Ur5e, pl| async move {
+            let watched = arm.clone();
+            let watch = pl
+                .wait_forever()
+                .on_tick(move || recorder.borrow_mut().push(watched.q()));
+            tokio::select! {
+                biased;
+                result = async {
+                    arm.move_j(HOME).await?;
+                    arm.move_l_vector([-0.3, 0.3, 0.4, PI, 0.0, 0.0]).await
+                } => result?,
+                _ = watch => {}
+            }
+            Ok(())
+        })
+        .unwrap();
+        Rc::try_unwrap(trace).unwrap().into_inner()
+    };
+    let (first, second) = (trajectory(), trajectory());
+    assert!(first.len() > 100);
+    assert!(first == second, "two runs differ");
+}
+
+#[test]
+fn bad_targets_fail_before_anything_moves() {
+    run(|arm: Ur5e, pl| async move {
+        arm.move_j(HOME).await?;
+        pl.wait_seconds(0.2).await?;
+        let before = arm.q();
+        let outside = [0.0, 0.0, 4.0, 0.0, 0.0, 0.0];
+        let error = arm.move_j(outside).await.unwrap_err();
+        assert!(
+            matches!(error, MotionError::InvalidTarget { .. }),
+            "{error}"
+        );
+        let nan = [f64::NAN; 6];
+        assert!(arm.move_j(nan).start().is_err());
+        let far = arm
+            .move_l_vector([2.0, 0.0, 0.5, PI, 0.0, 0.0])
+            .await
+            .unwrap_err();
+        assert!(far.to_string().contains("out of the arm's reach"), "{far}");
+        let slow = arm.move_j(HOME).speed(0.0).await.unwrap_err();
+        assert!(matches!(slow, MotionError::InvalidLimits { .. }), "{slow}");
+        pl.wait_seconds(0.2).await?;
+        assert!(!arm.is_moving());
+        let moved = arm
+            .q()
+            .iter()
+            .zip(before)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        assert!(moved < 1e-4, "the arm moved {moved} rad");
+        Ok(())
+    })
+    .unwrap();
+}
+
+#[test]
+fn a_dropped_motion_stops_the_arm_and_stop_ends_an_awaited_one() {
+    run(|arm: Ur5e, pl| async move {
+        let far = [2.5, -1.0, 1.0, -1.0, -1.0, 1.0];
+        // Dropped by the timeout a third of a second in.
+        let result = pl.timeout(0.3, arm.move_j(far)).await;
+        assert!(result.is_err());
+        pl.wait(|| !arm.is_moving()).timeout(2.0).await?;
+        pl.wait_seconds(0.3).await?;
+        let q = arm.q();
+        assert!(!arm.is_at(&far) && q[0] > 0.05 && q[0] < 1.5, "{q:?}");
+        assert!(arm.qd().iter().all(|v| v.abs() < 1e-2), "{:?}", arm.qd());
+        // A stop from elsewhere ends an awaited motion with an error.
+        let stopper = arm.clone();
+        let (moved, ()) = tokio::join!(arm.move_j(HOME), async {
+            let _ = pl.wait_seconds(0.2).await;
+            stopper.stop();
+        });
+        assert!(matches!(moved, Err(MotionError::Stopped)), "{moved:?}");
+        Ok(())
+    })
+    .unwrap();
+}
+
+#[test]
+fn mock_arms_follow_their_motions() {
+    yarok::platform()
+        .world::<ArmWorld<Ur5e>>()
+        .environment("mock")
+        .behaviour(|pl| async move {
+            let arm: Ur5e = pl.get("/arm")?;
+            let started = pl.time();
+            arm.move_j(HOME).await?;
+            assert!(arm.is_at(&HOME));
+            assert!(
+                pl.time() - started > 1.0,
+                "the motion takes its profile's time"
+            );
+            let target = pose_from_vector([-0.3, 0.35, 0.3, PI, 0.0, 0.0]);
+            arm.move_l(target).await?;
+            assert!(arm.is_at_pose(&target));
+            Ok(())
+        })
+        .run()
+        .unwrap();
+}
+
+/// A UR5e authored here with MuJoCo Menagerie's names (body chain, joint and actuator names),
+/// driven through [`Arm`] with [`ArmNames::MENAGERIE`].
+#[derive(Clone, Debug)]
+struct MenagerieNamedUr5e {
+    arm: Arm,
+    attachment: Site,
+}
+
+impl Component for MenagerieNamedUr5e {
+    fn declaration() -> Declaration {
+        Declaration::new("menagerie_named_ur5e").template(
+            r#"<mujoco>
+              <compiler angle="radian"/>
+              <option integrator="implicitfast"/>
+              <default>
+                <joint axis="0 1 0" armature="0.1"/>
+                <general biastype="affine" gainprm="2000" biasprm="0 -2000 -400" forcerange="-150 150"/>
+                <geom type="capsule" size="0.04" contype="0" conaffinity="0"/>
+              </default>
+              <worldbody>
+                <body name="base" quat="0 0 0 -1">
+                  <body name="shoulder_link" pos="0 0 0.163" gravcomp="1">
+                    <inertial mass="3.7" pos="0 0 0" diaginertia="0.01 0.01 0.007"/>
+                    <joint name="shoulder_pan_joint" axis="0 0 1"/>
+                    <body name="upper_arm_link" pos="0 0.138 0" quat="1 0 1 0" gravcomp="1">
+                      <inertial mass="8.393" pos="0 0 0.2125" diaginertia="0.13 0.13 0.015"/>
+                      <joint name="shoulder_lift_joint"/>
+                      <geom fromto="0 0 0 0 0 0.425"/>
+                      <body name="forearm_link" pos="0 -0.131 0.425" gravcomp="1">
+                        <inertial mass="2.275" pos="0 0 0.196" diaginertia="0.03 0.03 0.004"/>
+                        <joint name="elbow_joint" range="-3.1415 3.1415"/>
+                        <geom fromto="0 0 0 0 0 0.392"/>
+                        <body name="wrist_1_link" pos="0 0 0.392" quat="1 0 1 0" gravcomp="1">
+                          <inertial mass="1.219" pos="0 0.127 0" diaginertia="0.0026 0.0026 0.0022"/>
+                          <joint name="wrist_1_joint"/>
+                          <body name="wrist_2_link" pos="0 0.127 0" gravcomp="1">
+                            <inertial mass="1.219" pos="0 0 0.1" diaginertia="0.0026 0.0026 0.0022"/>
+                            <joint name="wrist_2_joint" axis="0 0 1"/>
+                            <body name="wrist_3_link" pos="0 0 0.1" gravcomp="1">
+                              <inertial mass="0.1889" pos="0 0.0771 0" quat="1 0 0 1" diaginertia="0.0002 0.0001 0.0001"/>
+                              <joint name="wrist_3_joint"/>
+                              <site name="attachment_site" pos="0 0.1 0" quat="-1 1 0 0"/>
+                            </body>
+                          </body>
+                        </body>
+                      </body>
+                    </body>
+                  </body>
+                </body>
+              </worldbody>
+              <actuator>
+                <general name="shoulder_pan" joint="shoulder_pan_joint"/>
+                <general name="shoulder_lift" joint="shoulder_lift_joint"/>
+                <general name="elbow" joint="elbow_joint"/>
+                <general name="wrist_1" joint="wrist_1_joint" gainprm="500" biasprm="0 -500 -100" forcerange="-28 28"/>
+                <general name="wrist_2" joint="wrist_2_joint" gainprm="500" biasprm="0 -500 -100" forcerange="-28 28"/>
+                <general name="wrist_3" joint="wrist_3_joint" gainprm="500" biasprm="0 -500 -100" forcerange="-28 28"/>
+              </actuator>
+            </mujoco>"#,
+        )
+    }
+
+    fn interfaces(interfaces: &mut Interfaces<Self>) {
+        interfaces.add::<Sim>();
+    }
+}
+
+impl Interface<Sim> for MenagerieNamedUr5e {
+    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
+        let config = ArmConfig {
+            names: ArmNames::MENAGERIE,
+            feedforward: [0.2, 0.2, 0.2, 0.2, 0.2, 0.2],
+            ..ArmConfig::new(DhParameters::UR5E)
+        };
+        Ok(MenagerieNamedUr5e {
+            arm: Arm::bind_sim(bind, config)?,
+            attachment: bind.site("attachment_site")?,
+        })
+    }
+}
+
+#[test]
+fn a_model_with_menagerie_names_is_driven_through_the_same_api() {
+    yarok::platform()
+        .world::<MenagerieNamedUr5e>()
+        .behaviour(|pl| async move {
+            let ur5e: MenagerieNamedUr5e = pl.get("/")?;
+            for target in [HOME, [0.5, -1.2, 1.0, -2.0, -1.0, 0.8]] {
+                ur5e.arm.move_j(target).await?;
+                assert!(ur5e.arm.is_at(&target), "{:?}", ur5e.arm.q());
+                // Its rounded lengths put the attachment site within 2 mm of the DH tool0.
+                let tool0 = Kinematics::new(DhParameters::UR5E).forward(&ur5e.arm.q());
+                let site = ur5e.attachment.pose();
+                let off = (Vector3::from(site.pos) - tool0.translation.vector).norm();
+                assert!(off < 0.002, "the attachment site is {off} m from tool0");
+            }
+            Ok(())
+        })
+        .run()
+        .unwrap();
+}

@@ -1,0 +1,124 @@
+//! [`Path`]: where a motion goes — a straight line in joint space (`movej`) or of the TCP in
+//! Cartesian space (`movel`) — measured by a length its profile runs along.
+
+use nalgebra::Isometry3;
+
+use super::kinematics::{IkError, Joints, Kinematics};
+
+/// Spacing (metres or radians of path length) at which a line is checked before it starts.
+const CHECK_SPACING: f64 = 0.005;
+
+/// The largest joint step (radians) between two checked points of a line; more means the line
+/// passes a singularity or changes IK branch.
+const MAX_JOINT_STEP: f64 = 0.25;
+
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Path {
+    /// Every joint moves in proportion; the length is the largest joint motion (radians), so
+    /// the leading joint follows the profile.
+    Joints { from: Joints, to: Joints },
+    /// The TCP moves along a straight line while turning (spherical interpolation); the length
+    /// is the longer of the distance (metres) and the turn (radians).
+    Line {
+        from: Isometry3<f64>,
+        to: Isometry3<f64>,
+    },
+}
+
+/// Where a path is at a point of its length.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Point {
+    Joints(Joints),
+    Pose(Isometry3<f64>),
+}
+
+impl Path {
+    pub(crate) fn length(&self) -> f64 {
+        match self {
+            Path::Joints { from, to } => from
+                .iter()
+                .zip(to)
+                .map(|(a, b)| (b - a).abs())
+                .fold(0.0, f64::max),
+            Path::Line { from, to } => (to.translation.vector - from.translation.vector)
+                .norm()
+                .max(from.rotation.angle_to(&to.rotation)),
+        }
+    }
+
+    /// The point `along` (0 to [`Path::length`]) the path.
+    pub(crate) fn point(&self, along: f64) -> Point {
+        let length = self.length();
+        let fraction = if length > 0.0 {
+            (along / length).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        match self {
+            Path::Joints { from, to } => Point::Joints(std::array::from_fn(|i| {
+                from[i] + (to[i] - from[i]) * fraction
+            })),
+            Path::Line { from, to } => Point::Pose(from.lerp_slerp(to, fraction)),
+        }
+    }
+
+    /// The joints at `point`, by inverse kinematics near `near` for a pose.
+    pub(crate) fn joints_at(
+        point: Point,
+        kinematics: &Kinematics,
+        near: &Joints,
+    ) -> Result<Joints, IkError> {
+        match point {
+            Point::Joints(q) => Ok(q),
+            Point::Pose(pose) => kinematics.nearest(&pose, near),
+        }
+    }
+
+    /// Checks, before anything moves, that the arm can follow the whole path from `start`:
+    /// every point of a line reachable within the joint limits, without a joint jumping (a
+    /// singularity or a change of branch on the way). Returns the joints at the end.
+    pub(crate) fn check(
+        &self,
+        kinematics: &Kinematics,
+        start: &Joints,
+    ) -> Result<Joints, PathError> {
+        let length = self.length();
+        let steps = match self {
+            Path::Joints { .. } => 1,
+            Path::Line { .. } => ((length / CHECK_SPACING).ceil() as usize).max(1),
+        };
+        let mut q = *start;
+        for step in 1..=steps {
+            let along = length * step as f64 / steps as f64;
+            let next = Self::joints_at(self.point(along), kinematics, &q)?;
+            let jump = next
+                .iter()
+                .zip(&q)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            if matches!(self, Path::Line { .. }) && jump > MAX_JOINT_STEP {
+                return Err(PathError::Singular { along, jump });
+            }
+            q = next;
+        }
+        Ok(q)
+    }
+}
+
+/// Why a path cannot be followed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PathError {
+    /// A point of the path has no joint solution.
+    #[error(transparent)]
+    Kinematics(#[from] IkError),
+    /// The joints would jump on the way.
+    #[error(
+        "the line passes a singularity {along:.3} along its length (a joint would jump {jump:.2} rad)"
+    )]
+    Singular {
+        /// How far along the path (metres or radians).
+        along: f64,
+        /// The jump (radians).
+        jump: f64,
+    },
+}
