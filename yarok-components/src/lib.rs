@@ -3,12 +3,14 @@
 //! Its one job is the catalogue of components, each with one interface per environment. Today:
 //! a camera ([`cameras::Cam`]), the optical models of the DIGIT, GelSight and GelTip tactile
 //! sensors ([`tactile`]), the Anet A30 printer used as a cartesian robot ([`robots::AnetA30`]),
-//! the UR5 and UR5e arms with their closed-form kinematics ([`robots::ur`]), a tumble tower
+//! the UR5 and UR5e arms with their closed-form kinematics ([`robots::ur`]), the Robotiq
+//! 2F-85 gripper ([`grippers::Robotiq2f85`]), a tumble tower
 //! ([`toys::TumbleTower`]) and worlds ([`worlds`]). [`nalgebra`] is re-exported for poses.
 //!
 pub use nalgebra;
 
 pub mod cameras;
+pub mod grippers;
 pub mod plugins;
 pub mod robots;
 pub mod tactile;
@@ -27,6 +29,7 @@ pub fn catalogue() -> Vec<ComponentType> {
         ComponentType::of::<robots::AnetA30>(),
         ComponentType::of::<robots::ur::Ur5>(),
         ComponentType::of::<robots::ur::Ur5e>(),
+        ComponentType::of::<grippers::Robotiq2f85>(),
         ComponentType::of::<toys::TumbleTower>(),
     ]
 }

@@ -1,0 +1,5 @@
+//! Grippers: the Robotiq 2F-85.
+
+mod robotiq_2f85;
+
+pub use robotiq_2f85::{Grip, Gripped, REACHED_COUNTS, Robotiq2f85};
