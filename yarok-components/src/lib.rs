@@ -25,11 +25,14 @@ pub fn catalogue() -> Vec<ComponentType> {
         ComponentType::of::<worlds::EmptyWorld>(),
         ComponentType::of::<worlds::PrinterWorld>(),
         ComponentType::of::<worlds::TowerWorld>(),
+        ComponentType::of::<worlds::PickAndPlaceWorld>(),
         ComponentType::of::<cameras::Cam>(),
         ComponentType::of::<robots::AnetA30>(),
         ComponentType::of::<robots::ur::Ur5>(),
         ComponentType::of::<robots::ur::Ur5e>(),
         ComponentType::of::<grippers::Robotiq2f85>(),
         ComponentType::of::<toys::TumbleTower>(),
+        ComponentType::of::<toys::Block>(),
+        ComponentType::of::<toys::Spot>(),
     ]
 }

@@ -3,8 +3,10 @@
 use yarok_core::component::{Component, Declaration};
 
 use crate::cameras::Cam;
+use crate::grippers::Robotiq2f85;
 use crate::robots::AnetA30;
-use crate::toys::TumbleTower;
+use crate::robots::ur::Ur5e;
+use crate::toys::{Block, Spot, TumbleTower};
 
 /// A floor (`floor_size` metres from the centre to each edge, default 2), a sky and a sun;
 /// angles in radians. Extend it (`Declaration::extends::<EmptyWorld>()`) to build a world.
@@ -58,5 +60,29 @@ impl Component for TowerWorld {
             .uses::<TumbleTower>()
             .default("rows", 8)
             .template(r#"<mujoco><worldbody><tumble-tower name="tower" rows="{rows}"/></worldbody></mujoco>"#)
+    }
+}
+
+/// Pick and place: a table (top at `table_height`, default 0.4 m) with a UR5e on a stand at its
+/// edge and a Robotiq 2F-85 on the arm's flange, its TCP at the gripper's pinch point; three
+/// blocks of 5, 4 and 3 cm on the table and a spot to stack them on at `target` (x, y).
+///
+/// Paths: `/arm`, `/arm/gripper`, `/large`, `/medium`, `/small`, `/target`. The arm's base frame
+/// is the world frame raised to the table top.
+#[derive(Debug, Clone)]
+pub struct PickAndPlaceWorld;
+
+impl Component for PickAndPlaceWorld {
+    fn declaration() -> Declaration {
+        Declaration::new("pick_and_place_world")
+            .extends::<EmptyWorld>()
+            .uses::<Ur5e>()
+            .uses::<Robotiq2f85>()
+            .uses::<Block>()
+            .uses::<Spot>()
+            .default("table_height", 0.4)
+            .default("target", [0.42, 0.38])
+            .default("start", [0.0, -1.9, 1.9, -1.57, -1.57, 0.0])
+            .template(include_str!("pick_and_place.xml"))
     }
 }

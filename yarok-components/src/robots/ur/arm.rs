@@ -12,7 +12,7 @@ use yarok_core::time::{Clock, WaitError};
 use yarok_mjc::{Actuator, Joint, Sim, SimBind};
 
 use super::kinematics::{DhParameters, IkError, Joints, Kinematics, pose_from_vector};
-use super::path::{Path, PathError, Point};
+use super::path::{Path, PathError};
 use super::profile::Profile;
 
 /// How close (radians, every joint) counts as arrived.
@@ -329,10 +329,20 @@ impl Arm {
     /// the one moving furthest at the speed and acceleration given ([`MOVE_J_DEFAULTS`]).
     /// `.await` it (it resolves on arrival; dropping it stops the arm), or [`Move::start`] it.
     pub fn move_j(&self, target: Joints) -> Move<'_> {
-        let (speed, acceleration) = MOVE_J_DEFAULTS;
+        self.motion(Goal::Joints(target), MOVE_J_DEFAULTS)
+    }
+
+    /// A joint motion (as [`Arm::move_j`]) to the joints nearest the current ones that put the
+    /// TCP at `pose` (URScript `movej` given a pose): the TCP's path is not a line, which lets
+    /// it go round the base where a line would pass too close to it.
+    pub fn move_j_pose(&self, pose: Isometry3<f64>) -> Move<'_> {
+        self.motion(Goal::JointsFor(pose), MOVE_J_DEFAULTS)
+    }
+
+    fn motion(&self, goal: Goal, (speed, acceleration): (f64, f64)) -> Move<'_> {
         Move {
             arm: self,
-            to: Point::Joints(target),
+            goal,
             speed,
             acceleration,
         }
@@ -342,13 +352,7 @@ impl Arm {
     /// TCP moves along the line (turning on the way) at the speed and acceleration given
     /// ([`MOVE_L_DEFAULTS`]). `.await` it, or [`Move::start`] it.
     pub fn move_l(&self, pose: Isometry3<f64>) -> Move<'_> {
-        let (speed, acceleration) = MOVE_L_DEFAULTS;
-        Move {
-            arm: self,
-            to: Point::Pose(pose),
-            speed,
-            acceleration,
-        }
+        self.motion(Goal::Line(pose), MOVE_L_DEFAULTS)
     }
 
     /// [`Arm::move_l`] to a UR pose vector `[x, y, z, rx, ry, rz]`.
@@ -435,7 +439,7 @@ impl Inner {
     }
 
     /// Starts a motion to `to`, after checking the whole path; its id.
-    fn start(&self, to: Point, speed: f64, acceleration: f64) -> Result<u64, MotionError> {
+    fn start(&self, goal: Goal, speed: f64, acceleration: f64) -> Result<u64, MotionError> {
         if !(speed > 0.0 && acceleration > 0.0 && speed.is_finite() && acceleration.is_finite()) {
             return Err(MotionError::InvalidLimits {
                 speed,
@@ -444,18 +448,12 @@ impl Inner {
         }
         let mut state = self.state.borrow_mut();
         let from = state.reference;
-        let path = match to {
-            Point::Joints(target) => {
-                let inside = target
-                    .iter()
-                    .zip(&self.kinematics.limits)
-                    .all(|(q, (lower, upper))| q.is_finite() && (lower..=upper).contains(&q));
-                if !inside {
-                    return Err(MotionError::InvalidTarget { target });
-                }
-                Path::Joints { from, to: target }
+        let path = match goal {
+            Goal::Joints(target) => self.joint_path(from, target)?,
+            Goal::JointsFor(pose) => {
+                self.joint_path(from, self.kinematics.nearest(&pose, &from)?)?
             }
-            Point::Pose(pose) => Path::Line {
+            Goal::Line(pose) => Path::Line {
                 from: self.kinematics.forward(&from),
                 to: pose,
             },
@@ -478,6 +476,18 @@ impl Inner {
         self.advance(self.clock.time());
         self.command();
         Ok(id)
+    }
+
+    fn joint_path(&self, from: Joints, target: Joints) -> Result<Path, MotionError> {
+        let inside = target
+            .iter()
+            .zip(&self.kinematics.limits)
+            .all(|(q, (lower, upper))| q.is_finite() && (lower..=upper).contains(&q));
+        if inside {
+            Ok(Path::Joints { from, to: target })
+        } else {
+            Err(MotionError::InvalidTarget { target })
+        }
     }
 
     /// Stops the motion under way (only motion `id`, if given).
@@ -514,6 +524,16 @@ fn within(q: &Joints, target: &Joints) -> bool {
         .all(|(a, b)| (a - b).abs() < ARRIVED_RAD)
 }
 
+/// Where a motion goes, and how.
+#[derive(Debug, Clone, Copy)]
+enum Goal {
+    Joints(Joints),
+    /// In joint space, to the joints that put the TCP at the pose.
+    JointsFor(Isometry3<f64>),
+    /// The TCP along a straight line.
+    Line(Isometry3<f64>),
+}
+
 /// A motion about to start: set its speed and acceleration, then `.await` it (it resolves on
 /// arrival) or [`Move::start`] it and wait yourself (`pl.wait(|| arm.is_at(&q))`).
 ///
@@ -524,7 +544,7 @@ fn within(q: &Joints, target: &Joints) -> bool {
 #[derive(Debug)]
 pub struct Move<'a> {
     arm: &'a Arm,
-    to: Point,
+    goal: Goal,
     speed: f64,
     acceleration: f64,
 }
@@ -552,7 +572,7 @@ impl Move<'_> {
     pub fn start(self) -> Result<(), MotionError> {
         self.arm
             .inner
-            .start(self.to, self.speed, self.acceleration)
+            .start(self.goal, self.speed, self.acceleration)
             .map(drop)
     }
 }
@@ -564,7 +584,7 @@ impl<'a> IntoFuture for Move<'a> {
     fn into_future(self) -> Self::IntoFuture {
         Box::pin(async move {
             let inner = &self.arm.inner;
-            let id = inner.start(self.to, self.speed, self.acceleration)?;
+            let id = inner.start(self.goal, self.speed, self.acceleration)?;
             // Dropped with the future: stops the motion if it is still under way.
             let _stop_if_dropped = StopIfDropped { inner, id };
             let mut outcome = None;

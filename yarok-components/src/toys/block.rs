@@ -1,0 +1,132 @@
+//! [`Block`]: a cube to pick and place, and [`Spot`]: a marked place on a surface.
+
+use yarok_core::component::{Bind, BindError, Component, Declaration, Interface, Interfaces, Mock};
+use yarok_mjc::{Body, Sim, SimBind, Site};
+
+/// A cube of side `size` metres (default 0.04) and `mass` kilograms (default 0.1), free to move,
+/// its centre placed at `pos`; colour `rgba`.
+///
+/// Tag `block`. Environments: `sim` (where it is); `mock` (where it was placed).
+#[derive(Debug, Clone)]
+pub struct Block {
+    size: f64,
+    body: Option<Body>,
+    placed: [f64; 3],
+}
+
+impl Block {
+    /// The side of the cube in metres.
+    pub fn size(&self) -> f64 {
+        self.size
+    }
+
+    /// Where its centre is in the world (metres).
+    pub fn position(&self) -> [f64; 3] {
+        self.body
+            .as_ref()
+            .map_or(self.placed, |body| body.pose().pos)
+    }
+}
+
+impl Component for Block {
+    fn declaration() -> Declaration {
+        Declaration::new("block")
+            .default("size", 0.04)
+            .default("mass", 0.1)
+            .default("pos", [0.0, 0.0, 0.02])
+            .default("rgba", [0.8, 0.3, 0.2, 1.0])
+            .template(
+                r#"<mujoco>
+                  <worldbody>
+                    <body name="block" pos="{pos}">
+                      <freejoint/>
+                      <geom name="block" type="box" size="{size / 2} {size / 2} {size / 2}" mass="{mass}"
+                            rgba="{rgba}" friction="1 0.05 0.001" condim="4"/>
+                    </body>
+                  </worldbody>
+                </mujoco>"#,
+            )
+    }
+
+    fn interfaces(interfaces: &mut Interfaces<Self>) {
+        interfaces.add::<Sim>().add::<Mock>();
+    }
+}
+
+impl Interface<Sim> for Block {
+    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
+        Ok(Block {
+            size: bind.config_value("size")?,
+            body: Some(bind.body("block")?),
+            placed: bind.config_value("pos")?,
+        })
+    }
+}
+
+impl Interface<Mock> for Block {
+    async fn bind(bind: &mut Bind<Mock>) -> Result<Self, BindError> {
+        Ok(Block {
+            size: bind.config_value("size")?,
+            body: None,
+            placed: bind.config_value("pos")?,
+        })
+    }
+}
+
+/// A place marked on a surface: a flat disc of `radius` metres (default 0.05) whose centre is
+/// at `pos`; it collides with nothing.
+///
+/// Tag `spot`. Environments: `sim`, `mock`.
+#[derive(Debug, Clone)]
+pub struct Spot {
+    site: Option<Site>,
+    placed: [f64; 3],
+}
+
+impl Spot {
+    /// Where its centre is in the world (metres).
+    pub fn position(&self) -> [f64; 3] {
+        self.site
+            .as_ref()
+            .map_or(self.placed, |site| site.pose().pos)
+    }
+}
+
+impl Component for Spot {
+    fn declaration() -> Declaration {
+        Declaration::new("spot")
+            .default("radius", 0.05)
+            .default("pos", [0.0, 0.0, 0.0])
+            .template(
+                r#"<mujoco>
+                  <worldbody>
+                    <geom name="spot" type="cylinder" size="{radius} 0.0005" pos="{pos}"
+                          contype="0" conaffinity="0" rgba="0.2 0.75 0.3 0.6"/>
+                    <site name="spot" pos="{pos}" size="0.002"/>
+                  </worldbody>
+                </mujoco>"#,
+            )
+    }
+
+    fn interfaces(interfaces: &mut Interfaces<Self>) {
+        interfaces.add::<Sim>().add::<Mock>();
+    }
+}
+
+impl Interface<Sim> for Spot {
+    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
+        Ok(Spot {
+            site: Some(bind.site("spot")?),
+            placed: bind.config_value("pos")?,
+        })
+    }
+}
+
+impl Interface<Mock> for Spot {
+    async fn bind(bind: &mut Bind<Mock>) -> Result<Self, BindError> {
+        Ok(Spot {
+            site: None,
+            placed: bind.config_value("pos")?,
+        })
+    }
+}
