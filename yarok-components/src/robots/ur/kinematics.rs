@@ -8,7 +8,7 @@
 
 use std::f64::consts::{PI, TAU};
 
-use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
 
 /// Six joint angles in radians, base to wrist 3.
 pub type Joints = [f64; 6];
@@ -68,16 +68,27 @@ impl DhParameters {
     /// The fixed part of link `i`'s transform, `Tz(d)·Tx(a)·Rx(α)`: where joint `i + 1`'s frame
     /// (at angle 0) sits in joint `i`'s.
     pub fn link_offset(&self, i: usize) -> Isometry3<f64> {
-        let (d, a, alpha) = self.link(i);
-        Isometry3::from_parts(
-            Translation3::new(a, 0.0, d),
-            UnitQuaternion::from_axis_angle(&Vector3::x_axis(), alpha),
-        )
+        self.frame(i, 1.0, 0.0).isometry()
     }
 
-    /// DH frame `i + 1` in DH frame `i` with joint `i` at `theta`: `Rz(θ)·Tz(d)·Tx(a)·Rx(α)`.
-    fn transform(&self, i: usize, theta: f64) -> Isometry3<f64> {
-        rotation_z(theta) * self.link_offset(i)
+    /// DH frame `i + 1` in DH frame `i` with joint `i` at the angle of cosine `c` and sine `s`:
+    /// `Rz(θ)·Tz(d)·Tx(a)·Rx(α)`, with α's sine and cosine exact.
+    fn frame(&self, i: usize, c: f64, s: f64) -> Frame {
+        /// Sine and cosine of each link's α (π/2, 0, 0, π/2, −π/2, 0), exactly.
+        const ALPHA: [(f64, f64); 6] = [
+            (1.0, 0.0),
+            (0.0, 1.0),
+            (0.0, 1.0),
+            (1.0, 0.0),
+            (-1.0, 0.0),
+            (0.0, 1.0),
+        ];
+        let (d, a, _) = self.link(i);
+        let (sa, ca) = ALPHA[i.min(5)];
+        Frame {
+            rotation: Matrix3::new(c, -s * ca, s * sa, s, c * ca, -c * sa, 0.0, sa, ca),
+            translation: Vector3::new(a * c, a * s, d),
+        }
     }
 
     /// `tool0` in the base frame at joint angles `q`.
@@ -93,9 +104,12 @@ impl DhParameters {
     /// assert!((tool0.translation.z - 1.0794).abs() < 1e-4);
     /// ```
     pub fn forward(&self, q: &Joints) -> Isometry3<f64> {
-        (0..6).fold(Isometry3::identity(), |pose, i| {
-            pose * self.transform(i, q[i])
-        })
+        (0..6)
+            .fold(Frame::IDENTITY, |frame, i| {
+                let (s, c) = q[i].sin_cos();
+                frame.then(&self.frame(i, c, s))
+            })
+            .isometry()
     }
 
     /// Every joint solution that puts `tool0` at `pose` (up to eight; none when it is out of
@@ -106,77 +120,141 @@ impl DhParameters {
         if !is_finite(pose) {
             return solutions;
         }
-        let rotation = pose.rotation.to_rotation_matrix();
-        let rotation = rotation.matrix();
+        let tool0 = Frame {
+            rotation: pose.rotation.to_rotation_matrix().into_inner(),
+            translation: pose.translation.vector,
+        };
+        let rotation = &tool0.rotation;
         let (x, y, z) = (rotation.column(0), rotation.column(1), rotation.column(2));
-        let p = pose.translation.vector;
         // The point on joint 5's axis: one d6 back from the flange.
-        let wrist = p - self.d6 * z;
+        let wrist = tool0.translation - self.d6 * z;
         let radius = wrist.x.hypot(wrist.y);
-        let Some(shoulder) = acos_within(self.d4 / radius) else {
+        let Some(shoulder) = within_unit(self.d4 / radius).map(f64::acos) else {
             return solutions;
         };
+        // θ1 = heading + π/2 ± shoulder; its cosine and sine by angle addition.
         let heading = wrist.y.atan2(wrist.x) + PI / 2.0;
-        for theta1 in [heading + shoulder, heading - shoulder] {
-            let (s1, c1) = theta1.sin_cos();
+        let (ch, sh) = (-wrist.y / radius, wrist.x / radius);
+        let (cs, ss) = (shoulder.cos(), shoulder.sin());
+        for (theta1, c1, s1) in [
+            (heading + shoulder, ch * cs - sh * ss, sh * cs + ch * ss),
+            (heading - shoulder, ch * cs + sh * ss, sh * cs - ch * ss),
+        ] {
             // The flange's z axis along joint 2's axis (frame 1's z) is cos θ5.
-            let cos5 = (s1 * z.x - c1 * z.y).clamp(-1.0, 1.0);
-            for theta5 in [cos5.acos(), -cos5.acos()] {
-                let s5 = theta5.sin();
-                let theta6 = if s5.abs() < SINGULAR {
-                    free_wrist_3
+            let c5 = (s1 * z.x - c1 * z.y).clamp(-1.0, 1.0);
+            let (theta5, sine5) = (c5.acos(), (1.0 - c5 * c5).sqrt());
+            for (theta5, s5) in [(theta5, sine5), (-theta5, -sine5)] {
+                let wrist3 = if s5.abs() < SINGULAR {
+                    let (s6, c6) = free_wrist_3.sin_cos();
+                    (free_wrist_3, c6, s6)
                 } else {
-                    (-(s1 * y.x - c1 * y.y) / s5).atan2((s1 * x.x - c1 * x.y) / s5)
+                    let (s6, c6) = (-(s1 * y.x - c1 * y.y) / s5, (s1 * x.x - c1 * x.y) / s5);
+                    let norm = s6.hypot(c6);
+                    (s6.atan2(c6), c6 / norm, s6 / norm)
                 };
-                self.solve_planar([theta1, theta5, theta6], pose, &mut solutions);
+                let wrist = Wrist {
+                    theta1,
+                    c1,
+                    s1,
+                    theta5,
+                    c5,
+                    s5,
+                    wrist3,
+                };
+                self.solve_planar(&wrist, &tool0, &mut solutions);
             }
         }
         solutions
     }
 
     /// Joints 2, 3 and 4 (parallel axes) once θ1, θ5 and θ6 are known: both elbows.
-    fn solve_planar(
-        &self,
-        [theta1, theta5, theta6]: [f64; 3],
-        pose: &Isometry3<f64>,
-        solutions: &mut Solutions,
-    ) {
-        let frame4 = self.transform(0, theta1).inverse()
-            * pose
-            * self.transform(5, theta6).inverse()
-            * self.transform(4, theta5).inverse();
-        let planar = frame4.translation.vector;
+    fn solve_planar(&self, wrist: &Wrist, tool0: &Frame, solutions: &mut Solutions) {
+        let (theta6, c6, s6) = wrist.wrist3;
+        let frame4 = self
+            .frame(0, wrist.c1, wrist.s1)
+            .inverse()
+            .then(tool0)
+            .then(&self.frame(5, c6, s6).inverse())
+            .then(&self.frame(4, wrist.c5, wrist.s5).inverse());
+        let planar = frame4.translation;
         let (a2, a3) = (self.a2, self.a3);
-        let Some(elbow) = acos_within(
+        let Some(c3) = within_unit(
             (planar.x * planar.x + planar.y * planar.y - a2 * a2 - a3 * a3) / (2.0 * a2 * a3),
         ) else {
             return;
         };
-        let rotation = frame4.rotation.to_rotation_matrix();
-        let sum = rotation[(1, 0)].atan2(rotation[(0, 0)]);
-        for theta3 in [elbow, -elbow] {
-            let (s3, c3) = theta3.sin_cos();
-            let theta2 = planar.y.atan2(planar.x) - (a3 * s3).atan2(a2 + a3 * c3);
+        let (elbow, s3) = (c3.acos(), (1.0 - c3 * c3).sqrt());
+        let sum = frame4.rotation[(1, 0)].atan2(frame4.rotation[(0, 0)]);
+        for (theta3, s3) in [(elbow, s3), (-elbow, -s3)] {
+            // θ2 = atan2(planar) − atan2(a3·s3, a2 + a3·c3), as one angle difference.
+            let (along, across) = (a2 + a3 * c3, a3 * s3);
+            let theta2 =
+                (planar.y * along - planar.x * across).atan2(planar.x * along + planar.y * across);
             let theta4 = sum - theta2 - theta3;
-            solutions.push([theta1, theta2, theta3, theta4, theta5, theta6].map(wrap));
+            let q = [wrist.theta1, theta2, theta3, theta4, wrist.theta5, theta6];
+            solutions.push(q.map(wrap));
         }
+    }
+}
+
+/// θ1, θ5 and θ6 of a branch, with the cosines and sines the rest of the solve uses.
+struct Wrist {
+    theta1: f64,
+    c1: f64,
+    s1: f64,
+    theta5: f64,
+    c5: f64,
+    s5: f64,
+    /// θ6, its cosine and sine.
+    wrist3: (f64, f64, f64),
+}
+
+/// A rigid transform as a rotation matrix and a translation: cheaper to compose than
+/// quaternions where sines and cosines are at hand.
+#[derive(Debug, Clone, Copy)]
+struct Frame {
+    rotation: Matrix3<f64>,
+    translation: Vector3<f64>,
+}
+
+impl Frame {
+    const IDENTITY: Self = Self {
+        rotation: Matrix3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0),
+        translation: Vector3::new(0.0, 0.0, 0.0),
+    };
+
+    /// `self · next`.
+    fn then(&self, next: &Frame) -> Frame {
+        Frame {
+            rotation: self.rotation * next.rotation,
+            translation: self.rotation * next.translation + self.translation,
+        }
+    }
+
+    fn inverse(&self) -> Frame {
+        let rotation = self.rotation.transpose();
+        Frame {
+            translation: -(rotation * self.translation),
+            rotation,
+        }
+    }
+
+    fn isometry(&self) -> Isometry3<f64> {
+        let rotation = Rotation3::from_matrix_unchecked(self.rotation);
+        Isometry3::from_parts(
+            Translation3::from(self.translation),
+            UnitQuaternion::from_rotation_matrix(&rotation),
+        )
     }
 }
 
 /// `|sin θ5|` below which the wrist counts as singular (wrist 3 free).
 const SINGULAR: f64 = 1e-10;
 
-/// `acos(value)`, for values within rounding of [−1, 1]; `None` beyond (out of reach).
-fn acos_within(value: f64) -> Option<f64> {
+/// `value` clamped to [−1, 1] if within rounding of it; `None` beyond (out of reach).
+fn within_unit(value: f64) -> Option<f64> {
     const ROUNDING: f64 = 1e-9;
-    (value.abs() <= 1.0 + ROUNDING).then(|| value.clamp(-1.0, 1.0).acos())
-}
-
-fn rotation_z(theta: f64) -> Isometry3<f64> {
-    Isometry3::from_parts(
-        Translation3::identity(),
-        UnitQuaternion::from_axis_angle(&Vector3::z_axis(), theta),
-    )
+    (value.abs() <= 1.0 + ROUNDING).then(|| value.clamp(-1.0, 1.0))
 }
 
 /// `angle` in (−π, π].
@@ -326,24 +404,27 @@ impl Kinematics {
     ///
     /// [`IkError`]: out of reach, outside the limits, or not finite.
     pub fn nearest(&self, pose: &Isometry3<f64>, current: &Joints) -> Result<Joints, IkError> {
-        let vector = pose_to_vector(pose);
         if !is_finite(pose) || current.iter().any(|q| !q.is_finite()) {
             return Err(IkError::NotFinite {
-                pose: vector,
+                pose: pose_to_vector(pose),
                 current: *current,
             });
         }
         let tool0 = pose * self.tcp.inverse();
         let solutions = self.dh.inverse(&tool0, current[5]);
         if solutions.is_empty() {
-            return Err(IkError::Unreachable { pose: vector });
+            return Err(IkError::Unreachable {
+                pose: pose_to_vector(pose),
+            });
         }
         solutions
             .as_slice()
             .iter()
             .filter_map(|q| self.within_limits(q, current))
             .min_by(|a, b| distance(a, current).total_cmp(&distance(b, current)))
-            .ok_or(IkError::OutsideLimits { pose: vector })
+            .ok_or_else(|| IkError::OutsideLimits {
+                pose: pose_to_vector(pose),
+            })
     }
 
     /// `q` with each joint at its ±2π copy nearest `current` within the limits; `None` when a
@@ -352,14 +433,29 @@ impl Kinematics {
         let mut chosen = [0.0; 6];
         for (i, slot) in chosen.iter_mut().enumerate() {
             let (lower, upper) = self.limits[i];
-            // The copy nearest the current angle, then the ones a turn either side of it.
-            let nearest = q[i] + TAU * ((current[i] - q[i]) / TAU).round();
-            *slot = [nearest, nearest - TAU, nearest + TAU]
-                .into_iter()
-                .filter(|angle| (lower..=upper).contains(angle))
-                .min_by(|a, b| (a - current[i]).abs().total_cmp(&(b - current[i]).abs()))?;
+            let inside = |angle: &f64| (lower..=upper).contains(angle);
+            // The copy nearest the current angle, else the nearer of those a turn either side.
+            let nearest = q[i] + TAU * nearest_integer((current[i] - q[i]) / TAU);
+            let (near, far) = if nearest > current[i] {
+                (nearest - TAU, nearest + TAU)
+            } else {
+                (nearest + TAU, nearest - TAU)
+            };
+            *slot = [nearest, near, far].into_iter().find(inside)?;
         }
         Some(chosen)
+    }
+}
+
+/// The integer nearest `x` (finite, well within `i64`), without a library call on CPUs
+/// without SSE4.1's rounding instructions.
+fn nearest_integer(x: f64) -> f64 {
+    let shifted = x + 0.5;
+    let truncated = shifted as i64 as f64;
+    if truncated > shifted {
+        truncated - 1.0
+    } else {
+        truncated
     }
 }
 
