@@ -40,9 +40,11 @@ for image in falling_boxes_rgb.png falling_boxes_depth_mm.png; do
   test -s "$out/$image" || { echo "error: the example did not write $image" >&2; exit 1; }
 done
 echo "== embedding and behaviour examples"
-for example in threaded local_set pendulum_clock; do
+for example in threaded local_set pendulum_clock pick_and_place; do
   env -u LD_LIBRARY_PATH "$examples/$example"
 done
 env -u LD_LIBRARY_PATH "$examples/printer_camera" --set "behaviour/out=\"$out\""
 test -s "$out/printer_camera_3.png" || { echo "error: printer_camera wrote no images" >&2; exit 1; }
+echo "== the pick-and-place example in release, as the README runs it"
+cargo run --release --locked --example pick_and_place
 echo "== all checks passed"

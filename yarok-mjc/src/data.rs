@@ -185,6 +185,26 @@ impl Data {
         unsafe { &mut self.array_mut(self.raw().qvel, nv)[range] }
     }
 
+    /// The joint-space inertia a hinge or slide joint's first degree of freedom sees (the
+    /// diagonal of the mass matrix, armature included; kg·m² or kg) as of the last step.
+    ///
+    /// # Panics
+    ///
+    /// When `joint` was resolved in a different model.
+    #[track_caller]
+    pub fn dof_inertia(&self, joint: JointId) -> f64 {
+        let dof = self.joint_range(joint, Coordinates::Velocity).start;
+        let m = self.model.raw();
+        let nv = self.model.nv();
+        // SAFETY: M_rowadr and M_rownnz hold nv elements; M holds nC, and row `dof` of its
+        // lower triangle ends with the diagonal at M_rowadr[dof] + M_rownnz[dof] - 1 < nC.
+        unsafe {
+            let address =
+                self.model.array(m.M_rowadr, nv)[dof] + self.model.array(m.M_rownnz, nv)[dof] - 1;
+            self.array(self.raw().M, m.nC as usize)[address as usize]
+        }
+    }
+
     /// The reading of one sensor, as many values as the sensor's dimension (3 for an
     /// accelerometer, 1 for a joint position sensor, …).
     ///

@@ -96,6 +96,11 @@ impl Joint {
         data.forward();
     }
 
+    /// The joint-space inertia the joint sees (see [`Data::dof_inertia`]).
+    pub fn inertia(&self) -> f64 {
+        self.data.borrow().dof_inertia(self.id)
+    }
+
     /// Every position coordinate (7 for a free joint, 4 for a ball).
     pub fn qpos(&self) -> Vec<f64> {
         self.data.borrow().qpos(self.id).to_vec()

@@ -71,9 +71,10 @@ const JOINTS: [&str; 6] = [
     "wrist_3",
 ];
 
-/// How an [`Arm`] drives a model: its kinematics, names, where it starts, and each servo's
-/// velocity feed-forward (`kv / kp` of a position servo that damps the joint's velocity, so that
-/// it tracks a moving target without lag; 0 for none).
+/// How an [`Arm`] drives a model: its kinematics, names, where it starts, and the gains of its
+/// position servos, from which the arm feeds the motion's speed and acceleration forward (a
+/// servo that damps the joint's velocity lags a moving target by `kv / kp` times its speed;
+/// accelerating the joint's inertia takes force too), so that it tracks without lag.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ArmConfig {
     /// Kinematics with the joint limits and TCP the motions use.
@@ -82,8 +83,9 @@ pub struct ArmConfig {
     pub names: ArmNames,
     /// Joint angles at the start of a run; `None` keeps the model's.
     pub start: Option<Joints>,
-    /// `kv / kp` per servo.
-    pub feedforward: [f64; 6],
+    /// `(kp, kv)` of each servo (force per radian of error, per rad/s of joint speed); a
+    /// zero `kp` feeds nothing forward.
+    pub gains: [(f64, f64); 6],
 }
 
 impl ArmConfig {
@@ -93,7 +95,7 @@ impl ArmConfig {
             kinematics: Kinematics::new(dh),
             names: ArmNames::YAROK,
             start: None,
-            feedforward: [0.0; 6],
+            gains: [(0.0, 0.0); 6],
         }
     }
 }
@@ -170,13 +172,14 @@ enum Drive {
 struct Servos {
     joints: [Joint; 6],
     servos: [Actuator; 6],
-    feedforward: [f64; 6],
+    gains: [(f64, f64); 6],
 }
 
 struct State {
     /// The joints and speeds commanded for the next step.
     reference: Joints,
     speed: Joints,
+    acceleration: Joints,
     motion: Option<Motion>,
     next_id: u64,
     /// How the last motion that ended, ended.
@@ -243,7 +246,7 @@ impl Arm {
         let drive = Drive::Sim(Box::new(Servos {
             joints,
             servos,
-            feedforward: config.feedforward,
+            gains: config.gains,
         }));
         Ok(Self::with_drive(bind, config.kinematics, drive, start))
     }
@@ -267,6 +270,7 @@ impl Arm {
                 state: RefCell::new(State {
                     reference: start,
                     speed: [0.0; 6],
+                    acceleration: [0.0; 6],
                     motion: None,
                     next_id: 0,
                     ended: None,
@@ -386,6 +390,9 @@ impl Inner {
         let outcome = match motion.reference(t, dt, &self.kinematics, &state.reference) {
             Err(error) => Some(Err(error.into())),
             Ok((q, speed)) => {
+                let before = state.reference;
+                state.acceleration =
+                    std::array::from_fn(|i| (speed[i] - (q[i] - before[i]) / dt) / dt);
                 state.reference = q;
                 state.speed = speed;
                 if t >= motion.profile.duration() {
@@ -398,6 +405,7 @@ impl Inner {
         match outcome {
             Some(outcome) => {
                 state.speed = [0.0; 6];
+                state.acceleration = [0.0; 6];
                 state.ended = Some((motion.id, outcome));
             }
             None => state.motion = Some(motion),
@@ -432,8 +440,13 @@ impl Inner {
     fn command(&self) {
         if let Drive::Sim(sim) = &self.drive {
             let state = self.state.borrow();
-            for i in 0..6 {
-                sim.servos[i].set(state.reference[i] + sim.feedforward[i] * state.speed[i]);
+            for (i, (kp, kv)) in sim.gains.iter().enumerate() {
+                let mut target = state.reference[i];
+                if *kp > 0.0 {
+                    let inertia = sim.joints[i].inertia();
+                    target += (kv * state.speed[i] + inertia * state.acceleration[i]) / kp;
+                }
+                sim.servos[i].set(target);
             }
         }
     }

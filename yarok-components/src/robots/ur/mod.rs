@@ -45,9 +45,9 @@ fn config<E: yarok_core::component::Environment>(
         kinematics,
         names: ArmNames::YAROK,
         start: Some(start),
-        feedforward: std::array::from_fn(|i| {
+        gains: std::array::from_fn(|i| {
             let wrist = usize::from(i >= 3);
-            kv[wrist] / kp[wrist]
+            (kp[wrist], kv[wrist])
         }),
     })
 }

@@ -12,7 +12,7 @@ use super::kinematics::DhParameters;
 /// Position servo gains `(kp, kv)` of the three big joints (N·m/rad, N·m·s/rad) and of the
 /// wrists. With gravity compensated, they hold a pose within 1e-3 rad and, with velocity
 /// feed-forward, track `movel` lines within millimetres.
-pub(crate) const GAINS: [(f64, f64); 2] = [(5000.0, 200.0), (1500.0, 30.0)];
+pub(crate) const GAINS: [(f64, f64); 2] = [(5000.0, 400.0), (1500.0, 60.0)];
 
 /// Where the arms start: upright, clear of a table they stand on.
 const UPRIGHT: [f64; 6] = [0.0, -FRAC_PI_2, 0.0, -FRAC_PI_2, 0.0, 0.0];
