@@ -141,6 +141,7 @@ impl DhParameters {
             (heading - shoulder, ch * cs + sh * ss, sh * cs - ch * ss),
         ] {
             // The flange's z axis along joint 2's axis (frame 1's z) is cos θ5.
+            let tool0_in_1 = self.frame(0, c1, s1).inverse().then(&tool0);
             let c5 = (s1 * z.x - c1 * z.y).clamp(-1.0, 1.0);
             let (theta5, sine5) = (c5.acos(), (1.0 - c5 * c5).sqrt());
             for (theta5, s5) in [(theta5, sine5), (-theta5, -sine5)] {
@@ -154,26 +155,22 @@ impl DhParameters {
                 };
                 let wrist = Wrist {
                     theta1,
-                    c1,
-                    s1,
                     theta5,
                     c5,
                     s5,
                     wrist3,
                 };
-                self.solve_planar(&wrist, &tool0, &mut solutions);
+                self.solve_planar(&wrist, &tool0_in_1, &mut solutions);
             }
         }
         solutions
     }
 
     /// Joints 2, 3 and 4 (parallel axes) once θ1, θ5 and θ6 are known: both elbows.
-    fn solve_planar(&self, wrist: &Wrist, tool0: &Frame, solutions: &mut Solutions) {
+    /// `tool0_in_1` is `tool0` in DH frame 1 (θ1 undone).
+    fn solve_planar(&self, wrist: &Wrist, tool0_in_1: &Frame, solutions: &mut Solutions) {
         let (theta6, c6, s6) = wrist.wrist3;
-        let frame4 = self
-            .frame(0, wrist.c1, wrist.s1)
-            .inverse()
-            .then(tool0)
+        let frame4 = tool0_in_1
             .then(&self.frame(5, c6, s6).inverse())
             .then(&self.frame(4, wrist.c5, wrist.s5).inverse());
         let planar = frame4.translation;
@@ -200,8 +197,6 @@ impl DhParameters {
 /// θ1, θ5 and θ6 of a branch, with the cosines and sines the rest of the solve uses.
 struct Wrist {
     theta1: f64,
-    c1: f64,
-    s1: f64,
     theta5: f64,
     c5: f64,
     s5: f64,
@@ -417,14 +412,19 @@ impl Kinematics {
                 pose: pose_to_vector(pose),
             });
         }
-        solutions
-            .as_slice()
-            .iter()
-            .filter_map(|q| self.within_limits(q, current))
-            .min_by(|a, b| distance(a, current).total_cmp(&distance(b, current)))
-            .ok_or_else(|| IkError::OutsideLimits {
-                pose: pose_to_vector(pose),
-            })
+        let mut nearest = None;
+        let mut least = f64::INFINITY;
+        for q in solutions.as_slice() {
+            if let Some(q) = self.within_limits(q, current) {
+                let motion = distance(&q, current);
+                if motion < least {
+                    (nearest, least) = (Some(q), motion);
+                }
+            }
+        }
+        nearest.ok_or_else(|| IkError::OutsideLimits {
+            pose: pose_to_vector(pose),
+        })
     }
 
     /// `q` with each joint at its ±2π copy nearest `current` within the limits; `None` when a
