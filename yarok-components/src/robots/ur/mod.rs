@@ -2,22 +2,27 @@
 //! with the meaning of the controller's `movej`, `movel` and `stopj`.
 
 mod arm;
+mod config;
+mod controller;
+mod error;
 mod kinematics;
 mod model;
+mod motion;
 mod path;
 mod profile;
 
 use yarok_core::component::{Bind, BindError, Component, Declaration, Interface, Interfaces, Mock};
 use yarok_mjc::Sim;
 
-pub use arm::{
-    ARRIVED_M, ARRIVED_RAD, Arm, ArmConfig, ArmNames, MOVE_J_DEFAULTS, MOVE_L_DEFAULTS,
-    MotionError, Move, SETTLE_SECONDS,
-};
+pub use arm::{ARRIVED_M, Arm, MOVE_J_DEFAULTS, MOVE_L_DEFAULTS};
+pub use config::{ArmConfig, ArmNames};
+pub use controller::{ARRIVED_RAD, SETTLE_SECONDS};
+pub use error::MotionError;
 pub use kinematics::{
     DhParameters, IkError, JointLimits, Joints, Kinematics, Solutions, pose_from_vector,
     pose_to_vector,
 };
+pub use motion::Move;
 pub use path::PathError;
 
 use model::ArmModel;

@@ -1,0 +1,307 @@
+//! [`Controller`]: runs an arm's motions as the UR controller does — after every step, the
+//! joints due along the motion's path, fed to the servos with their speed and acceleration —
+//! and tells how each motion ended.
+
+use std::cell::RefCell;
+
+use nalgebra::Isometry3;
+use yarok_core::time::Clock;
+use yarok_mjc::{Actuator, Joint};
+
+use super::error::MotionError;
+use super::kinematics::{IkError, Joints, Kinematics};
+use super::path::Path;
+use super::profile::Profile;
+
+/// How close (radians, every joint) counts as arrived.
+pub const ARRIVED_RAD: f64 = 1e-3;
+
+/// Seconds after its profile ends that a motion may take to settle within [`ARRIVED_RAD`]
+/// before it counts as failed (something blocks the arm).
+pub const SETTLE_SECONDS: f64 = 0.5;
+
+/// Where a motion goes, and how.
+#[derive(Debug, Clone, Copy)]
+pub(super) enum Goal {
+    Joints(Joints),
+    /// In joint space, to the joints that put the TCP at the pose.
+    JointsFor(Isometry3<f64>),
+    /// The TCP along a straight line.
+    Line(Isometry3<f64>),
+}
+
+/// Runs an arm's motions.
+pub(super) struct Controller {
+    kinematics: Kinematics,
+    clock: Clock,
+    drive: Drive,
+    state: RefCell<State>,
+}
+
+/// What the motions move.
+pub(super) enum Drive {
+    Sim(Box<Servos>),
+    /// Follows the reference exactly.
+    Mock,
+}
+
+/// The joints and position servos of an arm in `sim`.
+pub(super) struct Servos {
+    pub(super) joints: [Joint; 6],
+    pub(super) servos: [Actuator; 6],
+    pub(super) gains: [(f64, f64); 6],
+}
+
+struct State {
+    /// The joints and speeds commanded for the next step.
+    reference: Joints,
+    speed: Joints,
+    acceleration: Joints,
+    motion: Option<Motion>,
+    next_id: u64,
+    /// How the last motion that ended, ended.
+    ended: Option<(u64, Result<(), MotionError>)>,
+}
+
+struct Motion {
+    id: u64,
+    path: Path,
+    profile: Profile,
+    /// Platform time at which the profile starts.
+    started: f64,
+    target: Joints,
+    stopping: bool,
+}
+
+impl Motion {
+    /// The joints `t` seconds into the motion (by inverse kinematics near `near` on a line),
+    /// and their speeds over the step of `dt` that follows.
+    fn reference(
+        &self,
+        t: f64,
+        dt: f64,
+        kinematics: &Kinematics,
+        near: &Joints,
+    ) -> Result<(Joints, Joints), IkError> {
+        let (along, _) = self.profile.at(t);
+        let (ahead, _) = self.profile.at(t + dt);
+        let q = Path::joints_at(self.path.point(along), kinematics, near)?;
+        let next = Path::joints_at(self.path.point(ahead), kinematics, &q)?;
+        Ok((q, std::array::from_fn(|i| (next[i] - q[i]) / dt)))
+    }
+}
+
+impl Controller {
+    /// A controller of `drive`, holding `start` until a motion comes.
+    pub(super) fn new(clock: Clock, kinematics: Kinematics, drive: Drive, start: Joints) -> Self {
+        Self {
+            kinematics,
+            clock,
+            drive,
+            state: RefCell::new(State {
+                reference: start,
+                speed: [0.0; 6],
+                acceleration: [0.0; 6],
+                motion: None,
+                next_id: 0,
+                ended: None,
+            }),
+        }
+    }
+
+    pub(super) fn kinematics(&self) -> &Kinematics {
+        &self.kinematics
+    }
+
+    pub(super) fn clock(&self) -> &Clock {
+        &self.clock
+    }
+
+    /// Joint angles (radians).
+    pub(super) fn q(&self) -> Joints {
+        self.measured(&self.state.borrow())
+    }
+
+    /// Joint speeds (rad/s).
+    pub(super) fn qd(&self) -> Joints {
+        match &self.drive {
+            Drive::Sim(sim) => sim.joints.each_ref().map(Joint::velocity),
+            Drive::Mock => self.state.borrow().speed,
+        }
+    }
+
+    /// Whether a motion is under way.
+    pub(super) fn is_moving(&self) -> bool {
+        self.state.borrow().motion.is_some()
+    }
+
+    /// After a step: the reference for the next one, and whether the motion has ended.
+    pub(super) fn tick(&self) {
+        let now = self.clock.time() + self.clock.timestep();
+        self.advance(now);
+        self.command();
+    }
+
+    /// Moves the reference to where the motion is due at `now` plus a step.
+    fn advance(&self, now: f64) {
+        let mut state = self.state.borrow_mut();
+        let Some(motion) = state.motion.take() else {
+            return;
+        };
+        let dt = self.clock.timestep();
+        let t = now + dt - motion.started;
+        let outcome = match motion.reference(t, dt, &self.kinematics, &state.reference) {
+            Err(error) => Some(Err(error.into())),
+            Ok((q, speed)) => {
+                let before = state.reference;
+                state.acceleration =
+                    std::array::from_fn(|i| (speed[i] - (q[i] - before[i]) / dt) / dt);
+                state.reference = q;
+                state.speed = speed;
+                if t >= motion.profile.duration() {
+                    self.settled(&motion, now, &state)
+                } else {
+                    None
+                }
+            }
+        };
+        match outcome {
+            Some(outcome) => {
+                state.speed = [0.0; 6];
+                state.acceleration = [0.0; 6];
+                state.ended = Some((motion.id, outcome));
+            }
+            None => state.motion = Some(motion),
+        }
+    }
+
+    /// How a motion whose profile is over ends: `None` while the arm settles.
+    fn settled(&self, motion: &Motion, now: f64, state: &State) -> Option<Result<(), MotionError>> {
+        let at = self.measured(state);
+        if motion.stopping {
+            Some(Err(MotionError::Stopped))
+        } else if within(&at, &motion.target) {
+            Some(Ok(()))
+        } else if now - (motion.started + motion.profile.duration()) > SETTLE_SECONDS {
+            Some(Err(MotionError::NotArrived {
+                target: motion.target,
+                at,
+                seconds: SETTLE_SECONDS,
+            }))
+        } else {
+            None
+        }
+    }
+
+    fn measured(&self, state: &State) -> Joints {
+        match &self.drive {
+            Drive::Sim(sim) => sim.joints.each_ref().map(Joint::position),
+            Drive::Mock => state.reference,
+        }
+    }
+
+    /// Sets the servos to the reference (plus velocity feed-forward).
+    pub(super) fn command(&self) {
+        if let Drive::Sim(sim) = &self.drive {
+            let state = self.state.borrow();
+            for (i, (kp, kv)) in sim.gains.iter().enumerate() {
+                let mut target = state.reference[i];
+                if *kp > 0.0 {
+                    let inertia = sim.joints[i].inertia();
+                    target += (kv * state.speed[i] + inertia * state.acceleration[i]) / kp;
+                }
+                sim.servos[i].set(target);
+            }
+        }
+    }
+
+    /// Starts a motion to `to`, after checking the whole path; its id.
+    pub(super) fn start(
+        &self,
+        goal: Goal,
+        speed: f64,
+        acceleration: f64,
+    ) -> Result<u64, MotionError> {
+        if !(speed > 0.0 && acceleration > 0.0 && speed.is_finite() && acceleration.is_finite()) {
+            return Err(MotionError::InvalidLimits {
+                speed,
+                acceleration,
+            });
+        }
+        let mut state = self.state.borrow_mut();
+        let from = state.reference;
+        let path = match goal {
+            Goal::Joints(target) => self.joint_path(from, target)?,
+            Goal::JointsFor(pose) => {
+                self.joint_path(from, self.kinematics.nearest(&pose, &from)?)?
+            }
+            Goal::Line(pose) => Path::Line {
+                from: self.kinematics.forward(&from),
+                to: pose,
+            },
+        };
+        let target = path.check(&self.kinematics, &from)?;
+        let id = state.next_id;
+        state.next_id += 1;
+        if let Some(replaced) = state.motion.take() {
+            state.ended = Some((replaced.id, Err(MotionError::Replaced)));
+        }
+        state.motion = Some(Motion {
+            id,
+            path,
+            profile: Profile::rest_to_rest(path.length(), speed, acceleration),
+            started: self.clock.time(),
+            target,
+            stopping: false,
+        });
+        drop(state);
+        self.advance(self.clock.time());
+        self.command();
+        Ok(id)
+    }
+
+    fn joint_path(&self, from: Joints, target: Joints) -> Result<Path, MotionError> {
+        let inside = target
+            .iter()
+            .zip(&self.kinematics.limits)
+            .all(|(q, (lower, upper))| q.is_finite() && (lower..=upper).contains(&q));
+        if inside {
+            Ok(Path::Joints { from, to: target })
+        } else {
+            Err(MotionError::InvalidTarget { target })
+        }
+    }
+
+    /// Stops the motion under way (only motion `id`, if given).
+    pub(super) fn stop(&self, id: Option<u64>) {
+        let mut state = self.state.borrow_mut();
+        let now = self.clock.time();
+        let Some(motion) = state.motion.as_mut() else {
+            return;
+        };
+        if motion.stopping || id.is_some_and(|id| id != motion.id) {
+            return;
+        }
+        let (along, speed) = motion.profile.at(now - motion.started);
+        let deceleration = motion.profile.acceleration();
+        motion.profile = Profile::stopping(along, speed, deceleration);
+        motion.started = now;
+        motion.stopping = true;
+    }
+
+    /// How motion `id` is: `None` while under way.
+    pub(super) fn outcome(&self, id: u64) -> Option<Result<(), MotionError>> {
+        let state = self.state.borrow();
+        match (&state.motion, &state.ended) {
+            (Some(motion), _) if motion.id == id => None,
+            (_, Some((ended, outcome))) if *ended == id => Some(outcome.clone()),
+            _ => Some(Err(MotionError::Replaced)),
+        }
+    }
+}
+
+pub(super) fn within(q: &Joints, target: &Joints) -> bool {
+    q.iter()
+        .zip(target)
+        .all(|(a, b)| (a - b).abs() < ARRIVED_RAD)
+}

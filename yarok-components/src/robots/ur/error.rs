@@ -1,0 +1,56 @@
+//! [`MotionError`]: why a motion did not arrive.
+
+use yarok_core::time::WaitError;
+
+use super::kinematics::{IkError, Joints};
+use super::path::PathError;
+
+/// Why a motion did not arrive.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum MotionError {
+    /// The target or a point on the way cannot be reached; nothing moved.
+    #[error("{0}")]
+    Path(#[from] PathError),
+    /// A target joint is NaN, infinite or outside its limits; nothing moved.
+    #[error("target joints {target:?} are not finite or outside the joint limits")]
+    InvalidTarget {
+        /// The joints asked for.
+        target: Joints,
+    },
+    /// A speed or acceleration is not a positive number.
+    #[error("speed {speed} and acceleration {acceleration} must be positive numbers")]
+    InvalidLimits {
+        /// The speed given.
+        speed: f64,
+        /// The acceleration given.
+        acceleration: f64,
+    },
+    /// [`Arm::stop`] stopped it, or its future was dropped.
+    #[error("the motion was stopped")]
+    Stopped,
+    /// A newer motion replaced it.
+    #[error("a newer motion replaced this one")]
+    Replaced,
+    /// Its profile ended but the arm did not settle at the target (something blocks it).
+    #[error(
+        "the arm did not reach {target:?} within {seconds} s of the motion's end; it is at {at:?}"
+    )]
+    NotArrived {
+        /// The target joints.
+        target: Joints,
+        /// Where the arm is.
+        at: Joints,
+        /// How long after the motion's end it was given to settle.
+        seconds: f64,
+    },
+    /// The platform stopped, or a timeout passed.
+    #[error(transparent)]
+    Wait(#[from] WaitError),
+}
+
+impl From<IkError> for MotionError {
+    fn from(error: IkError) -> Self {
+        Self::Path(PathError::Kinematics(error))
+    }
+}
