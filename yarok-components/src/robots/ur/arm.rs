@@ -159,7 +159,7 @@ impl Arm {
     }
 
     /// Stops the motion under way: it decelerates along its path (a line stays a line) at its
-    /// own acceleration; its awaiting future ends with [`MotionError::Stopped`].
+    /// own acceleration; its awaiting future ends with [`MotionError::Stopped`](super::MotionError::Stopped).
     pub fn stop(&self) {
         self.controller.stop(None);
     }

@@ -42,7 +42,7 @@ const JOINTS: [&str; 6] = [
     "wrist_3",
 ];
 
-/// How an [`Arm`] drives a model: its kinematics, names, where it starts, and the gains of its
+/// How an [`Arm`](super::Arm) drives a model: its kinematics, names, where it starts, and the gains of its
 /// position servos, from which the arm feeds the motion's speed and acceleration forward (a
 /// servo that damps the joint's velocity lags a moving target by `kv / kp` times its speed;
 /// accelerating the joint's inertia takes force too), so that it tracks without lag.

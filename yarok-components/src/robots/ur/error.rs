@@ -26,7 +26,7 @@ pub enum MotionError {
         /// The acceleration given.
         acceleration: f64,
     },
-    /// [`Arm::stop`] stopped it, or its future was dropped.
+    /// [`Arm::stop`](super::Arm::stop) stopped it, or its future was dropped.
     #[error("the motion was stopped")]
     Stopped,
     /// A newer motion replaced it.
