@@ -14,6 +14,7 @@ pub mod grippers;
 pub mod plugins;
 pub mod robots;
 pub mod tactile;
+pub mod tactile_sensors;
 pub mod toys;
 pub mod worlds;
 
@@ -31,6 +32,7 @@ pub fn catalogue() -> Vec<ComponentType> {
         ComponentType::of::<robots::ur::Ur5>(),
         ComponentType::of::<robots::ur::Ur5e>(),
         ComponentType::of::<grippers::Robotiq2f85>(),
+        ComponentType::of::<tactile_sensors::Digit>(),
         ComponentType::of::<toys::TumbleTower>(),
         ComponentType::of::<toys::Block>(),
         ComponentType::of::<toys::Spot>(),

@@ -143,6 +143,7 @@ pub struct Camera {
     data: Rc<RefCell<Data>>,
     renderer: SharedRenderer,
     id: crate::CameraId,
+    visible: [bool; 6],
 }
 
 #[cfg(feature = "render")]
@@ -154,14 +155,31 @@ impl std::fmt::Debug for Camera {
 
 #[cfg(feature = "render")]
 impl Camera {
+    /// The same camera, not drawing geoms of the `hidden` groups (0–5, MJCF's `group`).
+    #[must_use]
+    pub fn hiding_groups(mut self, hidden: &[usize]) -> Self {
+        for &group in hidden {
+            if let Some(visible) = self.visible.get_mut(group) {
+                *visible = false;
+            }
+        }
+        self
+    }
+
+    /// The renderer, set to this camera's visible groups.
+    fn renderer(&self) -> std::cell::RefMut<'_, crate::Renderer> {
+        let mut renderer = self.renderer.borrow_mut();
+        renderer.set_visible_groups(self.visible);
+        renderer
+    }
+
     /// The current colour image, top row first.
     ///
     /// # Errors
     ///
     /// When rendering fails.
     pub fn rgb(&self) -> Result<image::RgbImage, crate::RenderError> {
-        self.renderer
-            .borrow_mut()
+        self.renderer()
             .render_rgb(&mut self.data.borrow_mut(), self.id)
     }
 
@@ -171,8 +189,7 @@ impl Camera {
     ///
     /// When rendering fails.
     pub fn depth(&self) -> Result<crate::DepthImage, crate::RenderError> {
-        self.renderer
-            .borrow_mut()
+        self.renderer()
             .render_depth(&mut self.data.borrow_mut(), self.id)
     }
 }
@@ -296,6 +313,7 @@ impl SimBind for Bind<Sim> {
             data: backend.shared_data(),
             renderer,
             id,
+            visible: [true; 6],
         })
     }
 }

@@ -295,6 +295,12 @@ impl Renderer {
         (self.width, self.height)
     }
 
+    /// Which geom groups (0–5, as in MJCF's `group`) the next renders draw; all by default.
+    /// A tactile sensor's camera hides the sensor's own housing and gel this way.
+    pub fn set_visible_groups(&mut self, visible: [bool; 6]) {
+        self.option.geomgroup = visible.map(u8::from);
+    }
+
     /// Renders the colour image of `camera`.
     ///
     /// # Errors

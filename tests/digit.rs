@@ -1,0 +1,141 @@
+//! The DIGIT in the world: an imprint appears where an object presses into the gel, nothing but
+//! the background without contact, a deeper press makes a larger imprint, and two runs give the
+//! same bytes.
+
+use yarok::components::tactile_sensors::Digit;
+use yarok::components::worlds::EmptyWorld;
+use yarok::prelude::*;
+
+/// A DIGIT facing up with its gel's face at z = 0.13 m, and a 5 mm sphere pressed `press`
+/// metres into the gel at (`dx`, `dy`) from its centre (it stands still and collides with
+/// nothing: only the camera sees it).
+struct PressWorld;
+
+impl Component for PressWorld {
+    fn declaration() -> Declaration {
+        Declaration::new("press_world")
+            .extends::<EmptyWorld>()
+            .uses::<Digit>()
+            .default("press", 0.001)
+            .default("dx", 0.003)
+            .default("dy", -0.002)
+            .default("noise", false)
+            .template(
+                r#"<mujoco><worldbody>
+                  <digit name="digit" pos="{[0, 0, 0.1]}" noise="{noise}"/>
+                  <geom name="indenter" type="sphere" size="0.005" pos="{dx} {dy} {0.13 + 0.005 - press}"
+                        contype="0" conaffinity="0" rgba="0.8 0.2 0.2 1"/>
+                </worldbody></mujoco>"#,
+            )
+    }
+}
+
+/// The first frame of a world pressed as `settings` say, and the DIGIT's contact then.
+fn press(settings: &[&str]) -> (image::RgbImage, yarok::components::tactile_sensors::Contact) {
+    let out = std::rc::Rc::new(std::cell::RefCell::new(None));
+    let result = std::rc::Rc::clone(&out);
+    let mut builder = yarok::platform().world::<PressWorld>();
+    for setting in settings {
+        builder = builder.set(setting).unwrap();
+    }
+    builder
+        .behaviour(move |pl| async move {
+            let digit: Digit = pl.get("/digit")?;
+            pl.tick().await?;
+            *result.borrow_mut() = Some((digit.read(), digit.contact()));
+            Ok(())
+        })
+        .run()
+        .unwrap();
+    let taken = out.borrow_mut().take();
+    taken.unwrap()
+}
+
+/// Pixels that differ from the untouched frame: their count and centroid (column, row).
+fn imprint(frame: &image::RgbImage, untouched: &image::RgbImage) -> (usize, f64, f64) {
+    let (mut count, mut sx, mut sy) = (0usize, 0.0, 0.0);
+    for (x, y, pixel) in frame.enumerate_pixels() {
+        let base = untouched.get_pixel(x, y);
+        let diff = pixel
+            .0
+            .iter()
+            .zip(base.0)
+            .map(|(a, b)| a.abs_diff(b))
+            .max()
+            .unwrap_or(0);
+        if diff > 8 {
+            count += 1;
+            sx += f64::from(x);
+            sy += f64::from(y);
+        }
+    }
+    (count, sx / count.max(1) as f64, sy / count.max(1) as f64)
+}
+
+#[test]
+fn an_imprint_appears_where_the_object_presses() {
+    let (untouched, nothing) = press(&["press=-0.01"]);
+    assert!(!nothing.in_contact, "{nothing:?}");
+    let (frame, contact) = press(&[]);
+    assert!(
+        contact.in_contact && (contact.max_indentation - 0.001).abs() < 2e-4,
+        "{contact:?}"
+    );
+    let (count, column, row) = imprint(&frame, &untouched);
+    assert!(count > 50, "only {count} pixels changed");
+    // 54.3 µm a pixel: 3 mm right of the centre, 2 mm towards the top.
+    let (expected_column, expected_row) = (
+        120.0 + 0.003 / 5.4347826087e-5,
+        160.0 - 0.002 / 5.4347826087e-5,
+    );
+    assert!(
+        (column - expected_column).abs() < 4.0 && (row - expected_row).abs() < 4.0,
+        "imprint at ({column:.1}, {row:.1}), expected ({expected_column:.1}, {expected_row:.1})"
+    );
+}
+
+/// Without contact the frame is the optical model's image of the untouched gel, whatever lies
+/// beyond it.
+#[test]
+fn without_contact_the_frame_is_the_untouched_gel() {
+    use yarok::components::tactile::default_background;
+    use yarok::components::tactile::phong::{PhongModel, PhongParams};
+    let (far, contact) = press(&["press=-0.01"]);
+    let (farther, _) = press(&["press=-0.05", "dx=0.0"]);
+    assert!(!contact.in_contact);
+    let mut model = PhongModel::new(PhongParams {
+        texture_sigma: 0.0,
+        ..PhongParams::digit_metric()
+    });
+    let untouched = model
+        .render(&[1.0; 240 * 320], 240, &default_background(240, 320))
+        .unwrap();
+    assert!(
+        far.as_raw() == &untouched,
+        "the frame is not the untouched gel"
+    );
+    assert!(far == farther);
+}
+
+#[test]
+fn a_deeper_press_makes_a_larger_imprint() {
+    let (untouched, _) = press(&["press=-0.01"]);
+    let (shallow, light) = press(&["press=0.0005"]);
+    let (deep, firm) = press(&["press=0.0015"]);
+    assert!(firm.area > light.area * 1.5, "{light:?} then {firm:?}");
+    let (shallow_pixels, _, _) = imprint(&shallow, &untouched);
+    let (deep_pixels, _, _) = imprint(&deep, &untouched);
+    assert!(
+        deep_pixels > shallow_pixels,
+        "{shallow_pixels} then {deep_pixels} pixels"
+    );
+}
+
+#[test]
+fn two_runs_give_the_same_bytes() {
+    let (first, _) = press(&["noise=true"]);
+    let (second, _) = press(&["noise=true"]);
+    assert!(first == second);
+    let (quiet, _) = press(&[]);
+    assert!(first != quiet, "the texture noise changes nothing");
+}
