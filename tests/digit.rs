@@ -6,7 +6,7 @@ use yarok::components::tactile_sensors::Digit;
 use yarok::components::worlds::EmptyWorld;
 use yarok::prelude::*;
 
-/// A DIGIT facing up with its gel's face at z = 0.13 m, and a 5 mm sphere pressed `press`
+/// A DIGIT facing up with its gel's face at z = 0.118 m, and a 5 mm sphere pressed `press`
 /// metres into the gel at (`dx`, `dy`) from its centre (it stands still and collides with
 /// nothing: only the camera sees it).
 struct PressWorld;
@@ -23,7 +23,7 @@ impl Component for PressWorld {
             .template(
                 r#"<mujoco><worldbody>
                   <digit name="digit" pos="{[0, 0, 0.1]}" noise="{noise}"/>
-                  <geom name="indenter" type="sphere" size="0.005" pos="{dx} {dy} {0.13 + 0.005 - press}"
+                  <geom name="indenter" type="sphere" size="0.005" pos="{dx} {dy} {0.118 + 0.005 - press}"
                         contype="0" conaffinity="0" rgba="0.8 0.2 0.2 1"/>
                 </worldbody></mujoco>"#,
             )
@@ -105,10 +105,12 @@ fn without_contact_the_frame_is_the_untouched_gel() {
     assert!(!contact.in_contact);
     let mut model = PhongModel::new(PhongParams {
         texture_sigma: 0.0,
+        elastomer_thickness: 0.002,
+        min_depth: 0.018 - 0.002,
         ..PhongParams::digit_metric()
     });
     let untouched = model
-        .render(&[1.0; 240 * 320], 240, &default_background(240, 320))
+        .render(&[0.018; 240 * 320], 240, &default_background(240, 320))
         .unwrap();
     assert!(
         far.as_raw() == &untouched,
@@ -139,3 +141,4 @@ fn two_runs_give_the_same_bytes() {
     let (quiet, _) = press(&[]);
     assert!(first != quiet, "the texture noise changes nothing");
 }
+

@@ -19,7 +19,7 @@ const WIDTH: u32 = 240;
 const HEIGHT: u32 = 320;
 
 /// Distance from the camera to the gel's outer face, and the gel's thickness (metres).
-const GEL_FACE: f64 = 0.030;
+const GEL_FACE: f64 = 0.018;
 const GEL_THICKNESS: f64 = 0.002;
 
 /// Indentation (metres) above which a pixel counts as touched.
@@ -64,6 +64,9 @@ struct State {
     background: Vec<u8>,
     frame: RgbImage,
     depth: DepthImage,
+    /// The depth the model sees: nothing beyond the gel's face, which is all the camera sees
+    /// of what lies farther.
+    gel: Vec<f32>,
     /// Platform time the next frame is due.
     due: f64,
     failed: Option<String>,
@@ -84,7 +87,7 @@ impl Digit {
     }
 
     /// The depth the internal camera saw for the latest frame (metres from the camera; the
-    /// gel's outer face is at 0.030).
+    /// gel's outer face is at 0.018).
     pub fn read_depth(&self) -> DepthImage {
         self.inner.state.borrow().depth.clone()
     }
@@ -92,7 +95,7 @@ impl Digit {
     /// What the latest frame feels.
     pub fn contact(&self) -> Contact {
         let state = self.inner.state.borrow();
-        let px2m = PhongParams::digit_metric().px2m_ratio;
+        let px2m = params().px2m_ratio;
         let (mut deepest, mut touched) = (0.0f64, 0usize);
         for depth in state.depth.as_raw() {
             let indentation = (GEL_FACE - f64::from(*depth)).clamp(0.0, GEL_THICKNESS);
@@ -124,17 +127,28 @@ impl Inner {
                     model,
                     background,
                     frame,
+                    gel,
                     ..
                 } = &mut *state;
-                if let Err(error) =
-                    model.render_into(depth.as_raw(), WIDTH as usize, background, frame)
-                {
+                gel.clear();
+                gel.extend(depth.as_raw().iter().map(|d| d.min(GEL_FACE as f32)));
+                if let Err(error) = model.render_into(gel, WIDTH as usize, background, frame) {
                     state.failed = Some(error.to_string());
                 }
                 state.depth = depth;
             }
             Err(error) => state.failed = Some(error.to_string()),
         }
+    }
+}
+
+/// The DIGIT model's parameters for this sensor's geometry: the gel between 16 and 18 mm from
+/// the camera.
+fn params() -> PhongParams {
+    PhongParams {
+        elastomer_thickness: GEL_THICKNESS,
+        min_depth: GEL_FACE - GEL_THICKNESS,
+        ..PhongParams::digit_metric()
     }
 }
 
@@ -165,12 +179,8 @@ impl Digit {
         let noise: bool = bind.config_value("noise")?;
         let params = PhongParams {
             seed: bind.seed(),
-            texture_sigma: if noise {
-                PhongParams::digit_metric().texture_sigma
-            } else {
-                0.0
-            },
-            ..PhongParams::digit_metric()
+            texture_sigma: if noise { params().texture_sigma } else { 0.0 },
+            ..params()
         };
         let background = default_background(WIDTH as usize, HEIGHT as usize);
         let inner = Rc::new(Inner {
@@ -183,6 +193,7 @@ impl Digit {
                     .ok_or_else(|| bind.error("background size"))?,
                 background,
                 depth: DepthImage::from_pixel(WIDTH, HEIGHT, image::Luma([f32::INFINITY])),
+                gel: Vec::with_capacity((WIDTH * HEIGHT) as usize),
                 due: 0.0,
                 failed: None,
             }),
