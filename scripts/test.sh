@@ -45,6 +45,8 @@ for example in threaded local_set pendulum_clock pick_and_place; do
 done
 env -u LD_LIBRARY_PATH "$examples/printer_camera" --set "behaviour/out=\"$out\""
 test -s "$out/printer_camera_3.png" || { echo "error: printer_camera wrote no images" >&2; exit 1; }
-echo "== the pick-and-place example in release, as the README runs it"
+echo "== the manipulation examples in release, as the README runs them"
 cargo run --release --locked --example pick_and_place
+cargo run --release --locked --example digit_world -- --set "behaviour/out=\"$out\""
+test -s "$out/digit_left.png" || { echo "error: digit_world wrote no tactile image" >&2; exit 1; }
 echo "== all checks passed"

@@ -1,6 +1,6 @@
-//! The DIGIT in the world: an imprint appears where an object presses into the gel, nothing but
-//! the background without contact, a deeper press makes a larger imprint, and two runs give the
-//! same bytes.
+//! The DIGIT in the world: an imprint appears where an object presses into the gel, the untouched
+//! gel without contact, a deeper press makes a larger imprint, two runs give the same bytes, and
+//! on the gripper's pads both sensors feel a grasped block.
 
 use yarok::components::tactile_sensors::Digit;
 use yarok::components::worlds::EmptyWorld;
@@ -142,3 +142,41 @@ fn two_runs_give_the_same_bytes() {
     assert!(first != quiet, "the texture noise changes nothing");
 }
 
+/// In DigitWorld a DIGIT on each pad of the closing gripper feels the block, one from each
+/// side, and neither feels anything before the gripper closes.
+#[test]
+fn a_sensor_on_each_finger_feels_the_block_from_its_side() {
+    use std::f64::consts::PI;
+
+    use yarok::components::grippers::Robotiq2f85;
+    use yarok::components::robots::ur::{Ur5e, pose_from_vector};
+    use yarok::components::toys::Block;
+    use yarok::components::worlds::DigitWorld;
+
+    yarok::platform()
+        .world::<DigitWorld>()
+        .behaviour(|pl| async move {
+            let arm: Ur5e = pl.get("/arm")?;
+            let gripper: Robotiq2f85 = pl.get("/arm/gripper")?;
+            let left: Digit = pl.get("/arm/gripper/left_digit")?;
+            let right: Digit = pl.get("/arm/gripper/right_digit")?;
+            let block: Block = pl.get("/small")?;
+            let down = |[x, y, _]: [f64; 3], z: f64| pose_from_vector([x, y, z, PI, 0.0, 0.0]);
+            gripper.open().await?;
+            arm.move_j_pose(down(block.position(), 0.12)).await?;
+            arm.move_l(down(block.position(), 0.026)).await?;
+            assert!(!left.contact().in_contact && !right.contact().in_contact);
+            assert!(gripper.close().force(200).await?.object_detected);
+            pl.wait_seconds(0.05).await?;
+            for (side, digit) in [("left", &left), ("right", &right)] {
+                let contact = digit.contact();
+                assert!(
+                    contact.in_contact && contact.area > 1e-6,
+                    "{side}: {contact:?}"
+                );
+            }
+            Ok(())
+        })
+        .run()
+        .unwrap();
+}

@@ -27,6 +27,7 @@ pub fn catalogue() -> Vec<ComponentType> {
         ComponentType::of::<worlds::PrinterWorld>(),
         ComponentType::of::<worlds::TowerWorld>(),
         ComponentType::of::<worlds::PickAndPlaceWorld>(),
+        ComponentType::of::<worlds::DigitWorld>(),
         ComponentType::of::<cameras::Cam>(),
         ComponentType::of::<robots::AnetA30>(),
         ComponentType::of::<robots::ur::Ur5>(),

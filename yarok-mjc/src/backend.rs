@@ -30,7 +30,7 @@ pub struct SimBackend {
     /// Simulation time after the last step, so that reading it needs no borrow of the data.
     time: Cell<f64>,
     #[cfg(feature = "render")]
-    renderers: RefCell<Vec<((u32, u32), crate::handles::SharedRenderer)>>,
+    renderers: RefCell<Vec<(RendererKey, crate::handles::SharedRenderer)>>,
 }
 
 impl std::fmt::Debug for SimBackend {
@@ -40,6 +40,10 @@ impl std::fmt::Debug for SimBackend {
             .finish()
     }
 }
+
+/// What cameras share a renderer by: image width, height and preset.
+#[cfg(feature = "render")]
+type RendererKey = (u32, u32, crate::RenderPreset);
 
 impl SimBackend {
     /// Compiles the composition and makes its state, with derived quantities computed.
@@ -97,17 +101,20 @@ impl SimBackend {
         &self,
         width: u32,
         height: u32,
+        preset: crate::RenderPreset,
     ) -> Result<crate::handles::SharedRenderer, crate::RenderError> {
+        let key = (width, height, preset);
         let mut renderers = self.renderers.borrow_mut();
-        if let Some((_, renderer)) = renderers.iter().find(|(size, _)| *size == (width, height)) {
+        if let Some((_, renderer)) = renderers.iter().find(|(made, _)| *made == key) {
             return Ok(Rc::clone(renderer));
         }
         let renderer = Rc::new(RefCell::new(
             crate::Renderer::builder()
                 .size(width, height)
+                .preset(preset)
                 .build(&self.model)?,
         ));
-        renderers.push(((width, height), Rc::clone(&renderer)));
+        renderers.push((key, Rc::clone(&renderer)));
         Ok(renderer)
     }
 }

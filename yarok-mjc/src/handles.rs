@@ -280,7 +280,25 @@ pub trait SimBind {
     ///
     /// As [`SimBind::actuator`], or when no renderer can be made.
     #[cfg(feature = "render")]
-    fn camera(&self, local: &str, width: u32, height: u32) -> Result<Camera, BindError>;
+    fn camera(&self, local: &str, width: u32, height: u32) -> Result<Camera, BindError> {
+        self.camera_with(local, width, height, crate::RenderPreset::Quality)
+    }
+
+    /// [`SimBind::camera`] rendering with `preset` (cameras of one size and preset share a
+    /// renderer): [`RenderPreset::Fast`](crate::RenderPreset::Fast) for a sensor's camera whose
+    /// images no one looks at directly.
+    ///
+    /// # Errors
+    ///
+    /// As [`SimBind::camera`].
+    #[cfg(feature = "render")]
+    fn camera_with(
+        &self,
+        local: &str,
+        width: u32,
+        height: u32,
+        preset: crate::RenderPreset,
+    ) -> Result<Camera, BindError>;
 }
 
 macro_rules! lookups {
@@ -304,11 +322,19 @@ impl SimBind for Bind<Sim> {
     }
 
     #[cfg(feature = "render")]
-    fn camera(&self, local: &str, width: u32, height: u32) -> Result<Camera, BindError> {
+    fn camera_with(
+        &self,
+        local: &str,
+        width: u32,
+        height: u32,
+        preset: crate::RenderPreset,
+    ) -> Result<Camera, BindError> {
         let name = self.name(NameKind::Camera, local)?;
         let backend = self.backend();
         let id = backend.model().camera(name).map_err(|e| self.error(e))?;
-        let renderer = backend.renderer(width, height).map_err(|e| self.error(e))?;
+        let renderer = backend
+            .renderer(width, height, preset)
+            .map_err(|e| self.error(e))?;
         Ok(Camera {
             data: backend.shared_data(),
             renderer,

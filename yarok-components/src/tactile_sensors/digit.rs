@@ -9,7 +9,7 @@ use yarok_core::component::{
     Bind, BindError, Component, Declaration, Environment, Interface, Interfaces, Mock,
 };
 use yarok_core::time::Clock;
-use yarok_mjc::{Camera, DepthImage, Sim, SimBind};
+use yarok_mjc::{Camera, DepthImage, RenderPreset, Sim, SimBind};
 
 use crate::tactile::default_background;
 use crate::tactile::phong::{PhongModel, PhongParams};
@@ -217,7 +217,9 @@ impl Digit {
 
 impl Interface<Sim> for Digit {
     async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
-        let camera = bind.camera("camera", WIDTH, HEIGHT)?.hiding_groups(&[3]);
+        let camera = bind
+            .camera_with("camera", WIDTH, HEIGHT, RenderPreset::Fast)?
+            .hiding_groups(&[3]);
         Self::bind_with(bind, Some(camera))
     }
 }

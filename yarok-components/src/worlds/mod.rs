@@ -6,6 +6,7 @@ use crate::cameras::Cam;
 use crate::grippers::Robotiq2f85;
 use crate::robots::AnetA30;
 use crate::robots::ur::Ur5e;
+use crate::tactile_sensors::Digit;
 use crate::toys::{Block, Spot, TumbleTower};
 
 /// A floor (`floor_size` metres from the centre to each edge, default 2), a sky and a sun;
@@ -65,7 +66,8 @@ impl Component for TowerWorld {
 
 /// Pick and place: a table (top at `table_height`, default 0.4 m) with a UR5e on a stand at its
 /// edge and a Robotiq 2F-85 on the arm's flange, its TCP at the gripper's pinch point; three
-/// blocks of 5, 4 and 3 cm on the table and a spot to stack them on at `target` (x, y).
+/// blocks (`sizes`, default 5, 4 and 3 cm) on the table and a spot to stack them on at `target`
+/// (x, y); with `digits`, a DIGIT on each pad ([`DigitWorld`]).
 ///
 /// Paths: `/arm`, `/arm/gripper`, `/large`, `/medium`, `/small`, `/target`. The arm's base frame
 /// is the world frame raised to the table top.
@@ -80,9 +82,28 @@ impl Component for PickAndPlaceWorld {
             .uses::<Robotiq2f85>()
             .uses::<Block>()
             .uses::<Spot>()
+            .uses::<Digit>()
             .default("table_height", 0.4)
+            .default("sizes", [0.05, 0.04, 0.03])
+            .default("digits", false)
             .default("target", [0.42, 0.38])
             .default("start", [0.0, -1.9, 1.9, -1.57, -1.57, 0.0])
             .template(include_str!("pick_and_place.xml"))
+    }
+}
+
+/// [`PickAndPlaceWorld`] with a DIGIT on each of the gripper's pads (`/arm/gripper/left_digit`,
+/// `/arm/gripper/right_digit`), sensing the grasped block from both sides. The DIGITs take 18 mm
+/// of each finger's stroke, so the blocks are 4, 3.5 and 3 cm.
+#[derive(Debug, Clone)]
+pub struct DigitWorld;
+
+impl Component for DigitWorld {
+    fn declaration() -> Declaration {
+        Declaration::new("digit_world")
+            .extends::<PickAndPlaceWorld>()
+            .default("digits", true)
+            .default("sizes", [0.04, 0.035, 0.03])
+            .template("<mujoco/>")
     }
 }
