@@ -34,6 +34,7 @@ pub fn catalogue() -> Vec<ComponentType> {
         ComponentType::of::<robots::ur::Ur5e>(),
         ComponentType::of::<grippers::Robotiq2f85>(),
         ComponentType::of::<tactile_sensors::Digit>(),
+        ComponentType::of::<tactile_sensors::GelSight2014>(),
         ComponentType::of::<toys::TumbleTower>(),
         ComponentType::of::<toys::Block>(),
         ComponentType::of::<toys::Spot>(),

@@ -2,5 +2,9 @@
 //! optical models over the depth their internal cameras render.
 
 mod digit;
+mod gelsight;
+mod phong_sensor;
 
-pub use digit::{Contact, Digit};
+pub use digit::Digit;
+pub use gelsight::GelSight2014;
+pub use phong_sensor::{Contact, PhongSensor};

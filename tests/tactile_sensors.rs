@@ -1,6 +1,7 @@
 //! The DIGIT in the world: an imprint appears where an object presses into the gel, the untouched
 //! gel without contact, a deeper press makes a larger imprint, two runs give the same bytes, and
-//! on the gripper's pads both sensors feel a grasped block.
+//! on the gripper's pads both sensors feel a grasped block. The GelSight 2014 shows its imprint
+//! where pressed too.
 
 use yarok::components::tactile_sensors::Digit;
 use yarok::components::worlds::EmptyWorld;
@@ -179,4 +180,61 @@ fn a_sensor_on_each_finger_feels_the_block_from_its_side() {
         })
         .run()
         .unwrap();
+}
+
+/// A GelSight 2014 fingertip facing up (gel face at z = 0.134 m) with a 5 mm sphere pressed 1 mm
+/// into it at (5 mm, 3 mm) from its centre.
+struct GelSightWorld;
+
+impl Component for GelSightWorld {
+    fn declaration() -> Declaration {
+        Declaration::new("gelsight_world")
+            .extends::<EmptyWorld>()
+            .uses::<yarok::components::tactile_sensors::GelSight2014>()
+            .default("press", 0.001)
+            .template(
+                r#"<mujoco><worldbody>
+                  <gelsight2014 name="sensor" pos="{[0, 0, 0.1]}" noise="false"/>
+                  <geom type="sphere" size="0.005" pos="0.005 0.003 {0.134 + 0.005 - press}"
+                        contype="0" conaffinity="0"/>
+                </worldbody></mujoco>"#,
+            )
+    }
+}
+
+#[test]
+fn a_gelsight_shows_the_imprint_where_the_object_presses() {
+    use yarok::components::tactile_sensors::GelSight2014;
+    let frames = std::rc::Rc::new(std::cell::RefCell::new(Vec::new()));
+    for press in ["press=-0.01", "press=0.001"] {
+        let out = std::rc::Rc::clone(&frames);
+        yarok::platform()
+            .world::<GelSightWorld>()
+            .set(press)
+            .unwrap()
+            .behaviour(move |pl| async move {
+                let sensor: GelSight2014 = pl.get("/sensor")?;
+                pl.tick().await?;
+                out.borrow_mut().push((sensor.read(), sensor.contact()));
+                Ok(())
+            })
+            .run()
+            .unwrap();
+    }
+    let frames = frames.borrow();
+    let ((untouched, free), (pressed, contact)) = (&frames[0], &frames[1]);
+    assert!(
+        !free.in_contact && contact.in_contact,
+        "{free:?} {contact:?}"
+    );
+    assert_eq!(pressed.dimensions(), (640, 480));
+    let (count, column, row) = imprint(pressed, untouched);
+    // 54.3 µm a pixel at the gel's face, 34 mm from the camera; the contact is 1 mm nearer.
+    let scale = 34.0 / 33.0 / 5.4347826087e-5;
+    let (expected_column, expected_row) = (320.0 + 0.005 * scale, 240.0 + 0.003 * scale);
+    assert!(count > 100, "only {count} pixels changed");
+    assert!(
+        (column - expected_column).abs() < 6.0 && (row - expected_row).abs() < 6.0,
+        "imprint at ({column:.1}, {row:.1}), expected ({expected_column:.1}, {expected_row:.1})"
+    );
 }

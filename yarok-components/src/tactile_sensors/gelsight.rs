@@ -1,0 +1,29 @@
+//! [`GelSight2014`]: the 2014 GelSight fingertip sensor (Li et al., IROS 2014) in the world.
+
+use super::phong_sensor::{PhongSensor, Spec, phong_sensor_component};
+use crate::tactile::phong::PhongParams;
+
+/// The GelSight 2014 fingertip: 640 × 480 frames at 30 fps, a 4 mm gel 34 mm in front of its
+/// camera (a field of 34.8 × 26.1 mm at the model's 54.3 µm a pixel), 40 × 30 × 34 mm.
+const GELSIGHT_2014: Spec = Spec {
+    tag: "gelsight2014",
+    width: 640,
+    height: 480,
+    gel_face: 0.034,
+    thickness: 0.004,
+    housing: [0.02, 0.015],
+    gel: [0.0175, 0.0131],
+    model: PhongParams::gelsight2014,
+    fps: 30.0,
+};
+
+phong_sensor_component! {
+    /// A GelSight 2014 fingertip tactile sensor (a [`PhongSensor`]: `read()`, `read_depth()`,
+    /// `contact()`).
+    ///
+    /// Tag `gelsight2014`; config `pos` and `quat` (placement; it senses along its +z), `fps`
+    /// (default 30), `noise` (the gel's texture, default on, seeded from the platform's seed).
+    ///
+    /// Environments: `sim`; `mock` (always the untouched gel).
+    GelSight2014, GELSIGHT_2014
+}
