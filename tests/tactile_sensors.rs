@@ -238,3 +238,90 @@ fn a_gelsight_shows_the_imprint_where_the_object_presses() {
         "imprint at ({column:.1}, {row:.1}), expected ({expected_column:.1}, {expected_row:.1})"
     );
 }
+
+/// A sphere on a vertical slide, weightless, that a behaviour puts at a height.
+#[derive(Clone, Debug)]
+struct Indenter(yarok::mjc::Joint);
+
+impl Component for Indenter {
+    fn declaration() -> Declaration {
+        Declaration::new("indenter").template(
+            r#"<mujoco><worldbody>
+              <body name="indenter" pos="0 0 0.15" gravcomp="1">
+                <joint name="height" type="slide" axis="0 0 1"/>
+                <geom type="sphere" size="0.005" mass="0.01" contype="0" conaffinity="0"/>
+              </body>
+            </worldbody></mujoco>"#,
+        )
+    }
+
+    fn interfaces(interfaces: &mut Interfaces<Self>) {
+        interfaces.add::<Sim>();
+    }
+}
+
+impl Interface<Sim> for Indenter {
+    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
+        Ok(Indenter(bind.joint("height")?))
+    }
+}
+
+/// A DIGIT at 100 frames/s (one every five 2 ms ticks) under the indenter.
+struct RateWorld;
+
+impl Component for RateWorld {
+    fn declaration() -> Declaration {
+        Declaration::new("rate_world")
+            .extends::<EmptyWorld>()
+            .uses::<Digit>()
+            .uses::<Indenter>()
+            .template(
+                r#"<mujoco><worldbody>
+                  <digit name="digit" pos="{[0, 0, 0.1]}" fps="100" noise="false"/>
+                  <indenter name="indenter"/>
+                </worldbody></mujoco>"#,
+            )
+    }
+}
+
+/// Frames come at the sensor's rate: a press shows in the first frame due after it, not
+/// before, and every tick that was due a frame has made it.
+#[test]
+fn frames_come_at_the_sensor_rate_and_are_never_stale() {
+    yarok::platform()
+        .world::<RateWorld>()
+        .behaviour(|pl| async move {
+            let digit: Digit = pl.get("/digit")?;
+            let indenter: Indenter = pl.get("/indenter")?;
+            assert!((pl.timestep() - 0.002).abs() < 1e-12);
+            // Frames at ticks 0, 5, 10, …: press right after the one of tick 5.
+            pl.wait(|| pl.ticks() >= 5).await?;
+            // The sphere's bottom 1 mm into the gel (its centre starts 0.15 m up).
+            indenter.0.set_position(0.118 + 0.005 - 0.001 - 0.15);
+            for tick in 6..=9 {
+                pl.tick().await?;
+                assert_eq!(pl.ticks(), tick);
+                assert!(
+                    !digit.contact().in_contact,
+                    "a frame at tick {tick}, not due"
+                );
+            }
+            pl.tick().await?;
+            assert!(
+                digit.contact().in_contact,
+                "the frame due at tick 10 is missing"
+            );
+            // Lifted again: the frame due at tick 15 shows it.
+            indenter.0.set_position(0.0);
+            pl.wait(|| pl.ticks() >= 14).await?;
+            assert!(digit.contact().in_contact);
+            pl.tick().await?;
+            assert!(
+                !digit.contact().in_contact,
+                "the frame due at tick 15 is stale"
+            );
+            Ok(())
+        })
+        .run()
+        .unwrap();
+}
