@@ -1,6 +1,7 @@
 //! [`Digit`]: the DIGIT tactile sensor (Lambeta et al., 2020) in the world.
 
-use super::phong_sensor::{PhongSensor, Spec, phong_sensor_component};
+use super::phong::Spec;
+use super::sensor::{SensorKind, TactileSensor, tactile_sensor_component};
 use crate::tactile::phong::PhongParams;
 
 /// The DIGIT: 240 × 320 frames (portrait QVGA) at 60 fps, a 2 mm gel 18 mm in front of its
@@ -17,8 +18,8 @@ const DIGIT: Spec = Spec {
     fps: 60.0,
 };
 
-phong_sensor_component! {
-    /// A DIGIT tactile sensor (a [`PhongSensor`]: `read()`, `read_depth()`, `contact()`).
+tactile_sensor_component! {
+    /// A DIGIT tactile sensor (a [`TactileSensor`]: `read()`, `read_depth()`, `contact()`).
     ///
     /// Tag `digit`; config `pos` and `quat` (placement; it senses along its +z), `fps` (default 60,
     /// the DIGIT's QVGA rate), `noise` (the gel's texture, default on, seeded from the platform's

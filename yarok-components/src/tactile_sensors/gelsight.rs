@@ -1,6 +1,7 @@
 //! [`GelSight2014`]: the 2014 GelSight fingertip sensor (Li et al., IROS 2014) in the world.
 
-use super::phong_sensor::{PhongSensor, Spec, phong_sensor_component};
+use super::phong::Spec;
+use super::sensor::{SensorKind, TactileSensor, tactile_sensor_component};
 use crate::tactile::phong::PhongParams;
 
 /// The GelSight 2014 fingertip: 640 × 480 frames at 30 fps, a 4 mm gel 34 mm in front of its
@@ -17,8 +18,8 @@ const GELSIGHT_2014: Spec = Spec {
     fps: 30.0,
 };
 
-phong_sensor_component! {
-    /// A GelSight 2014 fingertip tactile sensor (a [`PhongSensor`]: `read()`, `read_depth()`,
+tactile_sensor_component! {
+    /// A GelSight 2014 fingertip tactile sensor (a [`TactileSensor`]: `read()`, `read_depth()`,
     /// `contact()`).
     ///
     /// Tag `gelsight2014`; config `pos` and `quat` (placement; it senses along its +z), `fps`

@@ -3,8 +3,9 @@
 
 mod digit;
 mod gelsight;
-mod phong_sensor;
+mod phong;
+mod sensor;
 
 pub use digit::Digit;
 pub use gelsight::GelSight2014;
-pub use phong_sensor::{Contact, PhongSensor};
+pub use sensor::{Contact, TactileSensor};

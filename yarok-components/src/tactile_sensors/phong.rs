@@ -1,0 +1,111 @@
+//! Sensors of the Phong kind (DIGIT, GelSight): a flat gel in front of the camera, and the Phong
+//! optical model.
+
+use yarok_core::component::Declaration;
+
+use super::sensor::{Optics, SensorKind};
+use crate::tactile::SizeError;
+use crate::tactile::phong::{PhongModel, PhongParams};
+
+/// What makes one sensor of the kind: its image, its gel and camera, its model and rate.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Spec {
+    pub(super) tag: &'static str,
+    /// Image columns and rows.
+    pub(super) width: u32,
+    pub(super) height: u32,
+    /// Distance from the camera to the gel's outer face, and the gel's thickness (metres).
+    pub(super) gel_face: f64,
+    pub(super) thickness: f64,
+    /// Half sizes (x, y) of the housing and of the gel (metres).
+    pub(super) housing: [f64; 2],
+    pub(super) gel: [f64; 2],
+    /// The optical model's parameters (lights, metres per pixel, …); its depths are set from
+    /// `gel_face` and `thickness`.
+    pub(super) model: fn() -> PhongParams,
+    /// Frames per second by default: the real sensor's.
+    pub(super) fps: f64,
+}
+
+impl Spec {
+    /// The optical model's parameters for this geometry.
+    fn params(&self) -> PhongParams {
+        PhongParams {
+            elastomer_thickness: self.thickness,
+            min_depth: self.gel_face - self.thickness,
+            ..(self.model)()
+        }
+    }
+
+    /// The camera's vertical field of view (degrees) that spans the model's image at the gel.
+    fn fovy(&self) -> f64 {
+        let half = f64::from(self.height) / 2.0 * self.params().px2m_ratio;
+        2.0 * (half / self.gel_face).atan().to_degrees()
+    }
+}
+
+impl SensorKind for Spec {
+    fn declaration(&self) -> Declaration {
+        Declaration::new(self.tag)
+            .default("pos", [0.0; 3])
+            .default("quat", [1.0, 0.0, 0.0, 0.0])
+            .default("fps", self.fps)
+            .default("noise", true)
+            .default("gel_face", self.gel_face)
+            .default("thickness", self.thickness)
+            .default("housing", self.housing)
+            .default("gel", self.gel)
+            .default("fovy", self.fovy())
+            .template(include_str!("phong.xml"))
+    }
+
+    fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    fn optics(&self, seed: u64, noise: bool) -> Result<Box<dyn Optics>, String> {
+        let base = self.params();
+        let params = PhongParams {
+            seed,
+            texture_sigma: if noise { base.texture_sigma } else { 0.0 },
+            ..base
+        };
+        Ok(Box::new(PhongOptics {
+            pixel: params.px2m_ratio,
+            model: PhongModel::new(params),
+            spec: *self,
+        }))
+    }
+}
+
+/// A flat gel `gel_face` in front of the camera, seen through the Phong model.
+struct PhongOptics {
+    spec: Spec,
+    model: PhongModel,
+    /// Metres a pixel spans on the gel.
+    pixel: f64,
+}
+
+impl Optics for PhongOptics {
+    fn surface(&self, _: usize) -> f32 {
+        self.spec.gel_face as f32
+    }
+
+    fn thickness(&self) -> f64 {
+        self.spec.thickness
+    }
+
+    fn pixel_area(&self) -> f64 {
+        self.pixel * self.pixel
+    }
+
+    fn render(
+        &mut self,
+        depth: &[f32],
+        background: &[u8],
+        out: &mut [u8],
+    ) -> Result<(), SizeError> {
+        self.model
+            .render_into(depth, self.spec.width as usize, background, out)
+    }
+}

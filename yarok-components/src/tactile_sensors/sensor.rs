@@ -1,0 +1,274 @@
+//! [`TactileSensor`]: a camera-based tactile sensor in the world — its internal camera renders
+//! the depth of what presses into the gel, at the sensor's frame rate on the platform's ticks,
+//! and an optical model turns that depth into the sensor's image.
+
+use std::cell::RefCell;
+use std::rc::Rc;
+
+use image::RgbImage;
+use yarok_core::component::{Bind, BindError, Declaration, Environment};
+use yarok_core::time::Clock;
+use yarok_mjc::{Camera, DepthImage, RenderPreset, Sim, SimBind};
+
+use crate::tactile::{SizeError, default_background};
+
+/// Indentation (metres) above which a pixel counts as touched.
+const TOUCHED: f64 = 2e-5;
+
+/// What the sensor feels: whether something presses into the gel, how deep and over how much
+/// of it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Contact {
+    /// Whether anything presses into the gel.
+    pub in_contact: bool,
+    /// The deepest indentation (metres).
+    pub max_indentation: f64,
+    /// The imprint's area (square metres).
+    pub area: f64,
+}
+
+/// The optical side of one kind of sensor: the untouched gel as its camera sees it, and the
+/// model that makes the image.
+pub(super) trait Optics {
+    /// The untouched gel's depth (metres along the camera axis) at pixel `index`: what the
+    /// camera sees when nothing presses, and how far it sees.
+    fn surface(&self, index: usize) -> f32;
+    /// The gel's thickness (metres): the deepest a press can go.
+    fn thickness(&self) -> f64;
+    /// The area (square metres) a pixel covers on the gel.
+    fn pixel_area(&self) -> f64;
+    /// The image of the gel at `depth` (clamped to the untouched surface) over `background`.
+    ///
+    /// # Errors
+    ///
+    /// When the sizes do not match the model's.
+    fn render(&mut self, depth: &[f32], background: &[u8], out: &mut [u8])
+    -> Result<(), SizeError>;
+}
+
+/// One kind of sensor: its component's declaration, image size and optics.
+pub(super) trait SensorKind {
+    fn declaration(&self) -> Declaration;
+    /// Image columns and rows.
+    fn size(&self) -> (u32, u32);
+    /// The optics, with the gel's texture noise seeded by `seed` (none when `noise` is off).
+    ///
+    /// # Errors
+    ///
+    /// When the model cannot be made for this geometry.
+    fn optics(&self, seed: u64, noise: bool) -> Result<Box<dyn Optics>, String>;
+}
+
+/// A camera-based tactile sensor: `read()` gives its colour image (the sensor's optical model
+/// over the depth its internal camera sees, on [`default_background`]), `read_depth()` that
+/// depth, `contact()` what it feels. Frames are made at the sensor's rate on the platform's
+/// ticks: after a tick that was due a frame, `read()` returns that frame.
+/// [`Digit`](super::Digit), [`GelSight2014`](super::GelSight2014) and
+/// [`GelTip`](super::GelTip) deref to one.
+#[derive(Clone)]
+pub struct TactileSensor {
+    inner: Rc<Inner>,
+}
+
+struct Inner {
+    camera: Option<Camera>,
+    clock: Clock,
+    period: f64,
+    state: RefCell<State>,
+}
+
+struct State {
+    optics: Box<dyn Optics>,
+    background: Vec<u8>,
+    frame: RgbImage,
+    depth: DepthImage,
+    /// The depth the model sees: nothing beyond the untouched gel, which is all the camera sees
+    /// of what lies farther.
+    gel: Vec<f32>,
+    /// Platform time the next frame is due.
+    due: f64,
+    failed: Option<String>,
+}
+
+impl std::fmt::Debug for TactileSensor {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("TactileSensor")
+            .field("period", &self.inner.period)
+            .finish()
+    }
+}
+
+impl TactileSensor {
+    /// The latest frame, RGB.
+    pub fn read(&self) -> RgbImage {
+        self.inner.state.borrow().frame.clone()
+    }
+
+    /// The depth the internal camera saw for the latest frame (metres along its axis).
+    pub fn read_depth(&self) -> DepthImage {
+        self.inner.state.borrow().depth.clone()
+    }
+
+    /// What the latest frame feels.
+    pub fn contact(&self) -> Contact {
+        let state = self.inner.state.borrow();
+        let optics = &state.optics;
+        let (mut deepest, mut touched) = (0.0f64, 0usize);
+        for (index, depth) in state.depth.as_raw().iter().enumerate() {
+            let indentation = (f64::from(optics.surface(index)) - f64::from(*depth))
+                .clamp(0.0, optics.thickness());
+            deepest = deepest.max(indentation);
+            touched += usize::from(indentation > TOUCHED);
+        }
+        Contact {
+            in_contact: touched > 0,
+            max_indentation: deepest,
+            area: touched as f64 * optics.pixel_area(),
+        }
+    }
+
+    /// Binds a sensor of `kind` in `sim`: its internal camera renders depth with the fast
+    /// preset, without the sensor's own geoms (group 3).
+    pub(super) fn bind_sim(kind: &dyn SensorKind, bind: &mut Bind<Sim>) -> Result<Self, BindError> {
+        let (width, height) = kind.size();
+        let camera = bind
+            .camera_with("camera", width, height, RenderPreset::Fast)?
+            .hiding_groups(&[3]);
+        Self::bind(kind, bind, Some(camera))
+    }
+
+    /// Binds a sensor of `kind` whose internal camera is `camera` (none in `mock`: its frame is
+    /// the untouched gel).
+    pub(super) fn bind<E: Environment>(
+        kind: &dyn SensorKind,
+        bind: &mut Bind<E>,
+        camera: Option<Camera>,
+    ) -> Result<Self, BindError> {
+        let fps: f64 = bind.config_value("fps")?;
+        if !(fps > 0.0 && fps.is_finite()) {
+            return Err(bind.error(format!("fps must be a positive number, not {fps}")));
+        }
+        let noise: bool = bind.config_value("noise")?;
+        let optics = kind.optics(bind.seed(), noise).map_err(|e| bind.error(e))?;
+        let (width, height) = kind.size();
+        let pixels = (width * height) as usize;
+        let background = default_background(width as usize, height as usize);
+        let untouched = DepthImage::from_fn(width, height, |x, y| {
+            image::Luma([optics.surface((y * width + x) as usize)])
+        });
+        let inner = Rc::new(Inner {
+            camera,
+            clock: bind.clock(),
+            period: 1.0 / fps,
+            state: RefCell::new(State {
+                optics,
+                frame: RgbImage::new(width, height),
+                background,
+                depth: untouched,
+                gel: Vec::with_capacity(pixels),
+                due: 0.0,
+                failed: None,
+            }),
+        });
+        inner.frame(inner.clock.time(), true);
+        if let Some(error) = inner.state.borrow_mut().failed.take() {
+            return Err(bind.error(error));
+        }
+        let ticking = Rc::clone(&inner);
+        bind.on_tick(move || {
+            // After a step the clock still reads the time before it.
+            ticking.frame(ticking.clock.time() + ticking.clock.timestep(), false);
+            match ticking.state.borrow_mut().failed.take() {
+                Some(error) => Err(error.into()),
+                None => Ok(()),
+            }
+        });
+        Ok(Self { inner })
+    }
+}
+
+impl Inner {
+    /// Makes a frame if one is due at platform time `now` (or `force`d).
+    fn frame(&self, now: f64, force: bool) {
+        let mut state = self.state.borrow_mut();
+        if !force && now + 1e-9 < state.due {
+            return;
+        }
+        state.due = now + self.period;
+        if let Some(camera) = &self.camera {
+            match camera.depth() {
+                Ok(depth) => state.depth = depth,
+                Err(error) => {
+                    state.failed = Some(error.to_string());
+                    return;
+                }
+            }
+        }
+        let State {
+            optics,
+            background,
+            frame,
+            gel,
+            depth,
+            failed,
+            ..
+        } = &mut *state;
+        gel.clear();
+        gel.extend(
+            depth
+                .as_raw()
+                .iter()
+                .enumerate()
+                .map(|(index, d)| d.min(optics.surface(index))),
+        );
+        if let Err(error) = optics.render(gel, background, frame) {
+            *failed = Some(error.to_string());
+        }
+    }
+}
+
+/// A component newtype over [`TactileSensor`] for one [`SensorKind`]: `sim` and `mock`
+/// interfaces.
+macro_rules! tactile_sensor_component {
+    ($(#[$doc:meta])* $name:ident, $kind:expr) => {
+        $(#[$doc])*
+        #[derive(Debug, Clone)]
+        pub struct $name(TactileSensor);
+
+        impl std::ops::Deref for $name {
+            type Target = TactileSensor;
+
+            fn deref(&self) -> &TactileSensor {
+                &self.0
+            }
+        }
+
+        impl yarok_core::component::Component for $name {
+            fn declaration() -> yarok_core::component::Declaration {
+                SensorKind::declaration(&$kind)
+            }
+
+            fn interfaces(interfaces: &mut yarok_core::component::Interfaces<Self>) {
+                interfaces.add::<yarok_mjc::Sim>().add::<yarok_core::component::Mock>();
+            }
+        }
+
+        impl yarok_core::component::Interface<yarok_mjc::Sim> for $name {
+            async fn bind(
+                bind: &mut yarok_core::component::Bind<yarok_mjc::Sim>,
+            ) -> Result<Self, yarok_core::component::BindError> {
+                TactileSensor::bind_sim(&$kind, bind).map($name)
+            }
+        }
+
+        impl yarok_core::component::Interface<yarok_core::component::Mock> for $name {
+            async fn bind(
+                bind: &mut yarok_core::component::Bind<yarok_core::component::Mock>,
+            ) -> Result<Self, yarok_core::component::BindError> {
+                TactileSensor::bind(&$kind, bind, None).map($name)
+            }
+        }
+    };
+}
+
+pub(super) use tactile_sensor_component;
