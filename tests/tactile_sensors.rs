@@ -325,3 +325,74 @@ fn frames_come_at_the_sensor_rate_and_are_never_stale() {
         .run()
         .unwrap();
 }
+
+/// A GelTip pointing up (its base at z = 0.1 m, its tip at 0.145 m) and a 5 mm sphere pressed
+/// 1 mm into it at `at` (`tip` or `side`: 20 mm up its tube, on +x).
+struct GelTipWorld;
+
+impl Component for GelTipWorld {
+    fn declaration() -> Declaration {
+        Declaration::new("geltip_press_world")
+            .extends::<EmptyWorld>()
+            .uses::<yarok::components::tactile_sensors::GelTip>()
+            .default("press", 0.001)
+            .default("side", false)
+            .template(
+                r#"<mujoco><worldbody>
+                  <geltip name="sensor" pos="{[0, 0, 0.1]}"/>
+                  <geom type="sphere" size="0.005" contype="0" conaffinity="0"
+                        pos="{[0.015 + 0.005 - press, 0, 0.12] if side else [0, 0, 0.145 + 0.005 - press]}"/>
+                </worldbody></mujoco>"#,
+            )
+    }
+}
+
+#[test]
+fn a_geltip_shows_presses_on_its_tip_and_on_its_side_where_they_are() {
+    use yarok::components::tactile_sensors::GelTip;
+    let run = |settings: &'static [&'static str]| {
+        let out = std::rc::Rc::new(std::cell::RefCell::new(None));
+        let result = std::rc::Rc::clone(&out);
+        let mut builder = yarok::platform().world::<GelTipWorld>();
+        for setting in settings {
+            builder = builder.set(setting).unwrap();
+        }
+        builder
+            .behaviour(move |pl| async move {
+                let sensor: GelTip = pl.get("/sensor")?;
+                pl.tick().await?;
+                *result.borrow_mut() = Some((sensor.read(), sensor.contact()));
+                Ok(())
+            })
+            .run()
+            .unwrap();
+        let taken = out.borrow_mut().take();
+        taken.unwrap()
+    };
+    let (untouched, free) = run(&["press=-0.01"]);
+    assert!(!free.in_contact, "{free:?}");
+    assert_eq!(untouched.dimensions(), (320, 240));
+    let f = 240.0 / (2.0 * 35f64.to_radians().tan());
+    for (settings, expected) in [
+        (&["press=0.001"][..], (159.5, 119.5)),
+        (
+            &["press=0.001", "side=true"][..],
+            (159.5 + f * 0.014 / 0.02, 119.5),
+        ),
+    ] {
+        let (frame, contact) = run(settings);
+        assert!(
+            contact.in_contact && contact.max_indentation > 5e-4,
+            "{settings:?}: {contact:?}"
+        );
+        let (count, column, row) = imprint(&frame, &untouched);
+        assert!(count > 20, "{settings:?}: only {count} pixels changed");
+        // On the tube the surface slants away from the camera, and the imprint's shading
+        // with it: its centroid sits up to 1 mm (10 px) towards the image's centre.
+        assert!(
+            (column - expected.0).abs() < 12.0 && (row - expected.1).abs() < 6.0,
+            "{settings:?}: imprint at ({column:.1}, {row:.1}), expected {expected:?}"
+        );
+    }
+}
+

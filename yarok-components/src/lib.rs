@@ -35,6 +35,7 @@ pub fn catalogue() -> Vec<ComponentType> {
         ComponentType::of::<grippers::Robotiq2f85>(),
         ComponentType::of::<tactile_sensors::Digit>(),
         ComponentType::of::<tactile_sensors::GelSight2014>(),
+        ComponentType::of::<tactile_sensors::GelTip>(),
         ComponentType::of::<toys::TumbleTower>(),
         ComponentType::of::<toys::Block>(),
         ComponentType::of::<toys::Spot>(),

@@ -3,9 +3,11 @@
 
 mod digit;
 mod gelsight;
+mod geltip;
 mod phong;
 mod sensor;
 
 pub use digit::Digit;
 pub use gelsight::GelSight2014;
+pub use geltip::GelTip;
 pub use sensor::{Contact, TactileSensor};

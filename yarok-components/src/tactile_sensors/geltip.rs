@@ -1,0 +1,153 @@
+//! [`GelTip`]: the GelTip finger-shaped tactile sensor (Gomes, Lin and Luo, IROS 2020) in the
+//! world.
+
+use yarok_core::component::Declaration;
+
+use super::sensor::{Optics, SensorKind, TactileSensor, tactile_sensor_component};
+use crate::tactile::SizeError;
+use crate::tactile::geltip::{GelTipModel, GelTipParams};
+use crate::tactile::light_fields::{LightFieldMethod, led_ring};
+
+/// Image columns and rows, and the camera's vertical field of view (degrees).
+const WIDTH: u32 = 320;
+const HEIGHT: u32 = 240;
+const FOVY: f64 = 70.0;
+
+/// The membrane's outer surface (metres, along the axis from the camera): a tube of this radius
+/// from `START`, closed by a dome whose top is at `TIP`.
+const RADIUS: f64 = 0.015;
+const START: f64 = 0.005;
+const TIP: f64 = 0.045;
+
+/// The elastomer's thickness: the deepest a press can go.
+const THICKNESS: f64 = 0.004;
+
+/// The LEDs: three on a 12.6 mm ring around the camera, in its plane.
+const LED_RADIUS: f64 = 0.0126;
+
+/// The GelTip's geometry and model.
+struct Kind;
+
+const GELTIP: Kind = Kind;
+
+impl Kind {
+    /// The untouched membrane's depth along the camera axis, pixel by pixel: where each pixel's
+    /// ray meets the tube, or the dome beyond it.
+    fn membrane() -> Vec<f32> {
+        let f = f64::from(HEIGHT) / (2.0 * (FOVY.to_radians() / 2.0).tan());
+        let (cx, cy) = (
+            (f64::from(WIDTH) - 1.0) / 2.0,
+            (f64::from(HEIGHT) - 1.0) / 2.0,
+        );
+        let dome = TIP - RADIUS;
+        let mut depth = Vec::with_capacity((WIDTH * HEIGHT) as usize);
+        for v in 0..HEIGHT {
+            for u in 0..WIDTH {
+                let spread = ((f64::from(u) - cx) / f).hypot((f64::from(v) - cy) / f);
+                let tube = if spread > 0.0 {
+                    RADIUS / spread
+                } else {
+                    f64::INFINITY
+                };
+                let along = if tube <= dome {
+                    tube.max(START)
+                } else {
+                    // The far root of |t·(a, b, 1) − (0, 0, dome)| = RADIUS.
+                    let scale = spread * spread + 1.0;
+                    let reach = RADIUS * RADIUS - spread * spread * (dome * dome - RADIUS * RADIUS);
+                    (dome + reach.max(0.0).sqrt()) / scale
+                };
+                depth.push(along as f32);
+            }
+        }
+        depth
+    }
+}
+
+impl SensorKind for Kind {
+    fn declaration(&self) -> Declaration {
+        Declaration::new("geltip")
+            .default("pos", [0.0; 3])
+            .default("quat", [1.0, 0.0, 0.0, 0.0])
+            .default("fps", 30.0)
+            .default("noise", false)
+            .default("radius", RADIUS)
+            .default("start", START)
+            .default("tip", TIP)
+            .default("fovy", FOVY)
+            .template(include_str!("geltip.xml"))
+    }
+
+    fn size(&self) -> (u32, u32) {
+        (WIDTH, HEIGHT)
+    }
+
+    fn optics(&self, _seed: u64, _noise: bool) -> Result<Box<dyn Optics>, String> {
+        let membrane = Self::membrane();
+        let params = GelTipParams {
+            fov_deg: FOVY,
+            clamp_diffuse: true,
+            ..GelTipParams::default()
+        };
+        let leds = led_ring(params.lights.len(), LED_RADIUS, 0.0);
+        let model = GelTipModel::from_geometry(
+            params,
+            &membrane,
+            WIDTH as usize,
+            &leds,
+            LightFieldMethod::Plane,
+        )
+        .map_err(|error| error.to_string())?;
+        let f = f64::from(HEIGHT) / (2.0 * (FOVY.to_radians() / 2.0).tan());
+        let mean = membrane.iter().map(|d| f64::from(*d)).sum::<f64>() / membrane.len() as f64;
+        Ok(Box::new(GelTipOptics {
+            model,
+            membrane,
+            pixel_area: (mean / f) * (mean / f),
+        }))
+    }
+}
+
+/// The membrane and the GelTip model over it.
+struct GelTipOptics {
+    model: GelTipModel,
+    membrane: Vec<f32>,
+    /// The mean area a pixel covers on the membrane.
+    pixel_area: f64,
+}
+
+impl Optics for GelTipOptics {
+    fn surface(&self, index: usize) -> f32 {
+        self.membrane.get(index).copied().unwrap_or(f32::INFINITY)
+    }
+
+    fn thickness(&self) -> f64 {
+        THICKNESS
+    }
+
+    fn pixel_area(&self) -> f64 {
+        self.pixel_area
+    }
+
+    fn render(
+        &mut self,
+        depth: &[f32],
+        background: &[u8],
+        out: &mut [u8],
+    ) -> Result<(), SizeError> {
+        self.model.render_into(depth, background, out)
+    }
+}
+
+tactile_sensor_component! {
+    /// A GelTip finger-shaped tactile sensor (a [`TactileSensor`]: `read()`, `read_depth()`,
+    /// `contact()`): a 30 mm tube with a domed tip, 45 mm long, sensing all over; 320 × 240
+    /// frames at 30 fps from the GelTip model (light fields computed from this geometry, the
+    /// "plane" method, diffuse light clamped) over the depth its base camera (70°) renders.
+    ///
+    /// Tag `geltip`; config `pos` and `quat` (placement; its axis is +z), `fps`. The model has no
+    /// texture noise, so `noise` changes nothing.
+    ///
+    /// Environments: `sim`; `mock` (always the untouched membrane).
+    GelTip, GELTIP
+}
