@@ -3,7 +3,7 @@
 //! on the gripper's pads both sensors feel a grasped block. The GelSight 2014 shows its imprint
 //! where pressed too.
 
-use yarok::components::tactile_sensors::Digit;
+use yarok::components::tactile_sensors::{Contact, Digit, TactileSensor};
 use yarok::components::worlds::EmptyWorld;
 use yarok::prelude::*;
 
@@ -31,25 +31,35 @@ impl Component for PressWorld {
     }
 }
 
-/// The first frame of a world pressed as `settings` say, and the DIGIT's contact then.
-fn press(settings: &[&str]) -> (image::RgbImage, yarok::components::tactile_sensors::Contact) {
+/// The first frame of world `W` set up as `settings` say, and what the sensor `S` at `path`
+/// feels then.
+fn first_frame<W, S>(path: &'static str, settings: &[&str]) -> (image::RgbImage, Contact)
+where
+    W: Component,
+    S: Clone + std::ops::Deref<Target = TactileSensor> + 'static,
+{
     let out = std::rc::Rc::new(std::cell::RefCell::new(None));
     let result = std::rc::Rc::clone(&out);
-    let mut builder = yarok::platform().world::<PressWorld>();
+    let mut builder = yarok::platform().world::<W>();
     for setting in settings {
         builder = builder.set(setting).unwrap();
     }
     builder
         .behaviour(move |pl| async move {
-            let digit: Digit = pl.get("/digit")?;
+            let sensor: S = pl.get(path)?;
             pl.tick().await?;
-            *result.borrow_mut() = Some((digit.read(), digit.contact()));
+            *result.borrow_mut() = Some((sensor.read(), sensor.contact()));
             Ok(())
         })
         .run()
         .unwrap();
     let taken = out.borrow_mut().take();
     taken.unwrap()
+}
+
+/// The first frame of the DIGIT in [`PressWorld`] set up as `settings` say.
+fn press(settings: &[&str]) -> (image::RgbImage, Contact) {
+    first_frame::<PressWorld, Digit>("/digit", settings)
 }
 
 /// Pixels that differ from the untouched frame: their count and centroid (column, row).
@@ -205,24 +215,9 @@ impl Component for GelSightWorld {
 #[test]
 fn a_gelsight_shows_the_imprint_where_the_object_presses() {
     use yarok::components::tactile_sensors::GelSight2014;
-    let frames = std::rc::Rc::new(std::cell::RefCell::new(Vec::new()));
-    for press in ["press=-0.01", "press=0.001"] {
-        let out = std::rc::Rc::clone(&frames);
-        yarok::platform()
-            .world::<GelSightWorld>()
-            .set(press)
-            .unwrap()
-            .behaviour(move |pl| async move {
-                let sensor: GelSight2014 = pl.get("/sensor")?;
-                pl.tick().await?;
-                out.borrow_mut().push((sensor.read(), sensor.contact()));
-                Ok(())
-            })
-            .run()
-            .unwrap();
-    }
-    let frames = frames.borrow();
-    let ((untouched, free), (pressed, contact)) = (&frames[0], &frames[1]);
+    let run = |settings| first_frame::<GelSightWorld, GelSight2014>("/sensor", settings);
+    let ((untouched, free), (pressed, contact)) = (run(&["press=-0.01"]), run(&["press=0.001"]));
+    let (untouched, pressed) = (&untouched, &pressed);
     assert!(
         !free.in_contact && contact.in_contact,
         "{free:?} {contact:?}"
@@ -350,25 +345,7 @@ impl Component for GelTipWorld {
 #[test]
 fn a_geltip_shows_presses_on_its_tip_and_on_its_side_where_they_are() {
     use yarok::components::tactile_sensors::GelTip;
-    let run = |settings: &'static [&'static str]| {
-        let out = std::rc::Rc::new(std::cell::RefCell::new(None));
-        let result = std::rc::Rc::clone(&out);
-        let mut builder = yarok::platform().world::<GelTipWorld>();
-        for setting in settings {
-            builder = builder.set(setting).unwrap();
-        }
-        builder
-            .behaviour(move |pl| async move {
-                let sensor: GelTip = pl.get("/sensor")?;
-                pl.tick().await?;
-                *result.borrow_mut() = Some((sensor.read(), sensor.contact()));
-                Ok(())
-            })
-            .run()
-            .unwrap();
-        let taken = out.borrow_mut().take();
-        taken.unwrap()
-    };
+    let run = |settings| first_frame::<GelTipWorld, GelTip>("/sensor", settings);
     let (untouched, free) = run(&["press=-0.01"]);
     assert!(!free.in_contact, "{free:?}");
     assert_eq!(untouched.dimensions(), (320, 240));
@@ -395,4 +372,3 @@ fn a_geltip_shows_presses_on_its_tip_and_on_its_side_where_they_are() {
         );
     }
 }
-
