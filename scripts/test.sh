@@ -49,4 +49,6 @@ echo "== the manipulation examples in release, as the README runs them"
 cargo run --release --locked --example pick_and_place
 cargo run --release --locked --example digit_world -- --set "behaviour/out=\"$out\""
 test -s "$out/digit_left.png" || { echo "error: digit_world wrote no tactile image" >&2; exit 1; }
+cargo run --release --locked --example geltip_world -- --set "behaviour/out=\"$out\""
+test -s "$out/geltip_left.png" || { echo "error: geltip_world wrote no tactile image" >&2; exit 1; }
 echo "== all checks passed"

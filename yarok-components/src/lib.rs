@@ -28,6 +28,7 @@ pub fn catalogue() -> Vec<ComponentType> {
         ComponentType::of::<worlds::TowerWorld>(),
         ComponentType::of::<worlds::PickAndPlaceWorld>(),
         ComponentType::of::<worlds::DigitWorld>(),
+        ComponentType::of::<worlds::GelTipWorld>(),
         ComponentType::of::<cameras::Cam>(),
         ComponentType::of::<robots::AnetA30>(),
         ComponentType::of::<robots::ur::Ur5>(),
@@ -39,5 +40,6 @@ pub fn catalogue() -> Vec<ComponentType> {
         ComponentType::of::<toys::TumbleTower>(),
         ComponentType::of::<toys::Block>(),
         ComponentType::of::<toys::Spot>(),
+        ComponentType::of::<toys::Rope>(),
     ]
 }

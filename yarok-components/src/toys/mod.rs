@@ -1,8 +1,10 @@
 //! Toys: props to push, grasp and knock over.
 
 mod block;
+mod rope;
 
 pub use block::{Block, Spot};
+pub use rope::Rope;
 use yarok_core::component::{Component, Declaration};
 
 /// A tumble tower of `rows` layers (default 8) of three 0.08 × 0.24 × 0.056 m wooden blocks of

@@ -6,8 +6,8 @@ use crate::cameras::Cam;
 use crate::grippers::Robotiq2f85;
 use crate::robots::AnetA30;
 use crate::robots::ur::Ur5e;
-use crate::tactile_sensors::Digit;
-use crate::toys::{Block, Spot, TumbleTower};
+use crate::tactile_sensors::{Digit, GelTip};
+use crate::toys::{Block, Rope, Spot, TumbleTower};
 
 /// A floor (`floor_size` metres from the centre to each edge, default 2), a sky and a sun;
 /// angles in radians. Extend it (`Declaration::extends::<EmptyWorld>()`) to build a world.
@@ -66,8 +66,10 @@ impl Component for TowerWorld {
 
 /// Pick and place: a table (top at `table_height`, default 0.4 m) with a UR5e on a stand at its
 /// edge and a Robotiq 2F-85 on the arm's flange, its TCP at the gripper's pinch point; three
-/// blocks (`sizes`, default 5, 4 and 3 cm) on the table and a spot to stack them on at `target`
-/// (x, y); with `digits`, a DIGIT on each pad ([`DigitWorld`]).
+/// blocks (`sizes`, default 5, 4 and 3 cm; `blocks = false` leaves them out) on the table and a
+/// spot to stack them on at `target` (x, y); `sensors = "digit"` puts a DIGIT on each pad
+/// ([`DigitWorld`]), `"geltip"` a GelTip along each finger; `rope` lays a rope on the table
+/// ([`GelTipWorld`]).
 ///
 /// Paths: `/arm`, `/arm/gripper`, `/large`, `/medium`, `/small`, `/target`. The arm's base frame
 /// is the world frame raised to the table top.
@@ -83,9 +85,13 @@ impl Component for PickAndPlaceWorld {
             .uses::<Block>()
             .uses::<Spot>()
             .uses::<Digit>()
+            .uses::<GelTip>()
+            .uses::<Rope>()
             .default("table_height", 0.4)
             .default("sizes", [0.05, 0.04, 0.03])
-            .default("digits", false)
+            .default("blocks", true)
+            .default("sensors", "none")
+            .default("rope", false)
             .default("target", [0.42, 0.38])
             .default("start", [0.0, -1.9, 1.9, -1.57, -1.57, 0.0])
             .template(include_str!("pick_and_place.xml"))
@@ -102,8 +108,26 @@ impl Component for DigitWorld {
     fn declaration() -> Declaration {
         Declaration::new("digit_world")
             .extends::<PickAndPlaceWorld>()
-            .default("digits", true)
+            .default("sensors", "digit")
             .default("sizes", [0.04, 0.035, 0.03])
+            .template("<mujoco/>")
+    }
+}
+
+/// [`PickAndPlaceWorld`] with a GelTip along each of the gripper's fingers
+/// (`/arm/gripper/left_geltip`, `/arm/gripper/right_geltip`; each tube takes 30 mm of its
+/// finger's stroke) and, instead of the blocks, a rope of 20 segments lying along +x on the table
+/// (`/rope`), to grasp by one end and pull.
+#[derive(Debug, Clone)]
+pub struct GelTipWorld;
+
+impl Component for GelTipWorld {
+    fn declaration() -> Declaration {
+        Declaration::new("geltip_world")
+            .extends::<PickAndPlaceWorld>()
+            .default("sensors", "geltip")
+            .default("blocks", false)
+            .default("rope", true)
             .template("<mujoco/>")
     }
 }
