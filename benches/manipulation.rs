@@ -8,11 +8,13 @@
 //! ```
 
 use std::f64::consts::{PI, TAU};
+use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
 use yarok::components::robots::ur::{DhParameters, Joints, Kinematics};
 use yarok::components::tactile::noise::SplitMix64;
 use yarok::components::worlds::PickAndPlaceWorld;
+use yarok::core::compose::compose;
 use yarok::mjc::Data;
 
 mod measure;
@@ -20,15 +22,27 @@ mod versus_raw;
 use measure::mean_times;
 use versus_raw::{Comparison, compare};
 
-/// The arm's joints as `PickAndPlaceWorld` starts them, for raw stepping from the same state.
-const START: Joints = [0.0, -1.9, 1.9, -1.57, -1.57, 0.0];
+/// The arm's joints as `PickAndPlaceWorld` starts them (its `/arm` config), read once.
+fn start() -> Joints {
+    static START: OnceLock<Joints> = OnceLock::new();
+    *START.get_or_init(|| {
+        let composition = compose::<PickAndPlaceWorld>().expect("compose");
+        let arm = composition.instance("/arm").expect("the world's arm");
+        arm.config
+            .get("start")
+            .expect("the arm's start")
+            .deserialize()
+            .expect("six joint angles")
+    })
+}
 
+/// The arm placed and held where the platform starts it, for raw stepping from the same state.
 fn arm_at_start(data: &mut Data) {
     let model = std::sync::Arc::clone(data.model());
     for (name, angle) in yarok::components::robots::ur::ArmNames::YAROK
         .joints
         .iter()
-        .zip(START)
+        .zip(start())
     {
         let joint = model.joint(&format!("arm/{name}")).expect("joint");
         data.qpos_mut(joint)[0] = angle;
@@ -41,8 +55,7 @@ fn arm_at_start(data: &mut Data) {
 fn ik_solve() -> Duration {
     let kinematics = Kinematics::new(DhParameters::UR5E);
     let mut random = SplitMix64::new(1);
-    let mut angle =
-        |limit: f64| -limit + 2.0 * limit * (random.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+    let mut angle = |limit: f64| random.uniform(-limit, limit);
     let cases: Vec<_> = (0..4096)
         .map(|_| {
             let q: Joints = std::array::from_fn(|i| angle(if i == 2 { PI } else { TAU }));

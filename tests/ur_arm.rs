@@ -37,10 +37,6 @@ impl<A: Component> Component for ArmWorld<A> {
     }
 }
 
-fn uniform(random: &mut SplitMix64, lower: f64, upper: f64) -> f64 {
-    lower + (upper - lower) * (random.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-}
-
 #[test]
 fn the_flange_site_is_tool0_of_the_kinematics() {
     fn check<A: Component>(dh: DhParameters) {
@@ -53,7 +49,7 @@ fn the_flange_site_is_tool0_of_the_kinematics() {
         for _ in 0..1000 {
             let q: Joints = std::array::from_fn(|i| {
                 let limit = if i == 2 { PI } else { TAU };
-                uniform(&mut random, -limit, limit)
+                random.uniform(-limit, limit)
             });
             for (joint, angle) in joints.iter().zip(q) {
                 data.qpos_mut(*joint)[0] = angle;

@@ -10,15 +10,10 @@ use yarok_components::robots::ur::{
 };
 use yarok_components::tactile::noise::SplitMix64;
 
-/// Uniform in [lower, upper).
-fn uniform(random: &mut SplitMix64, lower: f64, upper: f64) -> f64 {
-    lower + (upper - lower) * (random.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-}
-
 fn random_joints(random: &mut SplitMix64) -> Joints {
     std::array::from_fn(|i| {
         let limit = if i == 2 { PI } else { TAU };
-        uniform(random, -limit, limit)
+        random.uniform(-limit, limit)
     })
 }
 
@@ -207,8 +202,8 @@ fn the_tcp_offsets_forward_and_inverse_kinematics_alike() {
 fn ur_pose_vectors_round_trip() {
     let mut random = SplitMix64::new(3);
     for _ in 0..1000 {
-        let axis = Vector3::from_fn(|_, _| uniform(&mut random, -1.0, 1.0)).normalize();
-        let angle = uniform(&mut random, 0.0, PI);
+        let axis = Vector3::from_fn(|_, _| random.uniform(-1.0, 1.0)).normalize();
+        let angle = random.uniform(0.0, PI);
         let vector = [
             0.1,
             -0.2,

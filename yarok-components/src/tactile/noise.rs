@@ -21,6 +21,11 @@ impl SplitMix64 {
         z ^ (z >> 31)
     }
 
+    /// A uniform number in [`lower`, `upper`).
+    pub fn uniform(&mut self, lower: f64, upper: f64) -> f64 {
+        lower + (upper - lower) * (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+    }
+
     /// A uniform number in (0, 1].
     fn unit(&mut self) -> f64 {
         ((self.next_u64() >> 11) as f64 + 1.0) / (1u64 << 53) as f64
