@@ -13,15 +13,18 @@ use std::time::Instant;
 
 use yarok::components::tactile_sensors::{Digit, GelSight2014, GelTip};
 use yarok::components::worlds::{DigitWorld, EmptyWorld};
-use yarok::core::compose::compose;
-use yarok::mjc::{Data, Model, RenderPreset, Renderer};
+use yarok::core::component::ComponentType;
+use yarok::core::compose::compose_configured;
+use yarok::core::config::RunConfig;
+use yarok::mjc::{Data, DepthImage, Model, RenderPreset, Renderer};
 use yarok::{Component, Declaration};
 
 /// Ticks each platform measurement runs.
 const TICKS: u64 = 400;
 
-/// A sensor of tag `T` facing up at z = 0.1 m with a sphere pressed into it, making a frame
-/// every tick (`fps` 500 at 2 ms) or once (`fps` tiny).
+/// A sensor of tag `T` facing up at z = 0.1 m with a 5 mm sphere pressed 1 mm into its gel
+/// (whose outer face is `face` above the camera), making a frame every tick (`fps` 500 at 2 ms)
+/// or once (`fps` tiny).
 struct Pressed<S>(std::marker::PhantomData<S>);
 
 impl<S: Component> Component for Pressed<S> {
@@ -31,10 +34,12 @@ impl<S: Component> Component for Pressed<S> {
             .extends::<EmptyWorld>()
             .uses::<S>()
             .default("fps", 500.0)
+            .default("face", 0.018)
             .template(format!(
                 r#"<mujoco><worldbody>
                   <{tag} name="sensor" pos="{{[0, 0, 0.1]}}" fps="{{fps}}"/>
-                  <geom type="sphere" size="0.005" pos="0.002 0.001 0.116" contype="0" conaffinity="0"/>
+                  <geom type="sphere" size="0.005" pos="{{[0.002, 0.001, 0.1 + face - 0.001 + 0.005]}}"
+                        contype="0" conaffinity="0"/>
                 </worldbody></mujoco>"#
             ))
     }
@@ -61,10 +66,14 @@ fn seconds_per_tick<W: Component>(settings: &[&str]) -> f64 {
     elapsed.get()
 }
 
-/// Seconds per depth render of the sensor's camera in world `W`, as the sensor renders it.
-fn render_seconds<W: Component>(width: u32, height: u32) -> f64 {
-    let model =
-        Arc::new(Model::from_composition(&compose::<W>().expect("compose")).expect("compile"));
+/// Seconds per depth render of the sensor's camera in world `W`, as the sensor renders it: only
+/// geoms within `reach` (the farthest point of its gel from its camera).
+fn render_seconds<W: Component>(setting: &str, width: u32, height: u32, reach: f64) -> f64 {
+    let mut config = RunConfig::default();
+    config.set(setting).expect("setting");
+    let composition =
+        compose_configured(ComponentType::of::<W>(), &config.settings("sim")).expect("compose");
+    let model = Arc::new(Model::from_composition(&composition).expect("compile"));
     let mut data = Data::new(&model).expect("data");
     data.forward();
     let camera = model.camera("sensor/camera").expect("camera");
@@ -74,20 +83,28 @@ fn render_seconds<W: Component>(width: u32, height: u32) -> f64 {
         .build(&model)
         .expect("renderer");
     renderer.set_visible_groups([true, true, true, false, true, true]);
-    renderer.render_depth(&mut data, camera).expect("render");
+    renderer.set_reach(Some(reach));
+    let mut depth = DepthImage::new(width, height);
+    renderer
+        .render_depth_into(&mut data, camera, &mut depth)
+        .expect("render");
     let started = Instant::now();
     let renders = 100;
     for _ in 0..renders {
-        std::hint::black_box(renderer.render_depth(&mut data, camera).expect("render"));
+        renderer
+            .render_depth_into(&mut data, camera, &mut depth)
+            .expect("render");
     }
     started.elapsed().as_secs_f64() / f64::from(renders)
 }
 
-fn sensor<S: Component>(name: &str, width: u32, height: u32) {
-    let framing = seconds_per_tick::<Pressed<S>>(&[]);
-    let plain = seconds_per_tick::<Pressed<S>>(&["fps=0.000001"]);
+/// Times a frame of sensor `S` (image `size`, gel face `face` from its camera, `reach`).
+fn sensor<S: Component>(name: &str, (width, height): (u32, u32), face: f64, reach: f64) {
+    let face = format!("face={face}");
+    let framing = seconds_per_tick::<Pressed<S>>(&[&face]);
+    let plain = seconds_per_tick::<Pressed<S>>(&[&face, "fps=0.000001"]);
     let frame = (framing - plain).max(0.0);
-    let render = render_seconds::<Pressed<S>>(width, height);
+    let render = render_seconds::<Pressed<S>>(&face, width, height, reach);
     println!(
         "{name:<14} {:>8.2} ms a frame = {:>6.2} render + {:>6.2} model ({width} × {height})",
         frame * 1e3,
@@ -98,9 +115,9 @@ fn sensor<S: Component>(name: &str, width: u32, height: u32) {
 
 fn main() {
     println!("per frame, each sensor pressed by a sphere, frames every 2 ms tick\n");
-    sensor::<Digit>("DIGIT", 240, 320);
-    sensor::<GelSight2014>("GelSight 2014", 640, 480);
-    sensor::<GelTip>("GelTip", 320, 240);
+    sensor::<Digit>("DIGIT", (240, 320), 0.018, 0.022);
+    sensor::<GelSight2014>("GelSight 2014", (640, 480), 0.034, 0.041);
+    sensor::<GelTip>("GelTip", (320, 240), 0.045, 0.048);
     let per_tick = seconds_per_tick::<DigitWorld>(&[]);
     let timestep = 0.002;
     println!(

@@ -144,6 +144,7 @@ pub struct Camera {
     renderer: SharedRenderer,
     id: crate::CameraId,
     visible: [bool; 6],
+    reach: Option<f64>,
 }
 
 #[cfg(feature = "render")]
@@ -166,10 +167,19 @@ impl Camera {
         self
     }
 
-    /// The renderer, set to this camera's visible groups.
+    /// The same camera, drawing only geoms that may come within `reach` metres of it (see
+    /// [`Renderer::set_reach`](crate::Renderer::set_reach)).
+    #[must_use]
+    pub fn within(mut self, reach: f64) -> Self {
+        self.reach = Some(reach);
+        self
+    }
+
+    /// The renderer, set to this camera's visible groups and reach.
     fn renderer(&self) -> std::cell::RefMut<'_, crate::Renderer> {
         let mut renderer = self.renderer.borrow_mut();
         renderer.set_visible_groups(self.visible);
+        renderer.set_reach(self.reach);
         renderer
     }
 
@@ -191,6 +201,17 @@ impl Camera {
     pub fn depth(&self) -> Result<crate::DepthImage, crate::RenderError> {
         self.renderer()
             .render_depth(&mut self.data.borrow_mut(), self.id)
+    }
+
+    /// The current depth image into `depth`, reusing its memory (see
+    /// [`Renderer::render_depth_into`](crate::Renderer::render_depth_into)).
+    ///
+    /// # Errors
+    ///
+    /// When rendering fails.
+    pub fn depth_into(&self, depth: &mut crate::DepthImage) -> Result<(), crate::RenderError> {
+        self.renderer()
+            .render_depth_into(&mut self.data.borrow_mut(), self.id, depth)
     }
 }
 
@@ -340,6 +361,7 @@ impl SimBind for Bind<Sim> {
             renderer,
             id,
             visible: [true; 6],
+            reach: None,
         })
     }
 }

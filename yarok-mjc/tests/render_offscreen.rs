@@ -97,7 +97,18 @@ fn rgb_and_depth_alone_match_the_combined_render() {
         .unwrap();
     let (rgb, depth) = renderer.render(&mut data, camera).unwrap();
     assert_eq!(renderer.render_rgb(&mut data, camera).unwrap(), rgb);
-    assert_eq!(renderer.render_depth(&mut data, camera).unwrap(), depth);
+    let alone = renderer.render_depth(&mut data, camera).unwrap();
+    let differing: Vec<_> = alone
+        .enumerate_pixels()
+        .filter(|(x, y, d)| d[0] != depth.get_pixel(*x, *y)[0])
+        .map(|(x, y, d)| (x, y, d[0], depth.get_pixel(x, y)[0]))
+        .collect();
+    assert!(
+        differing.is_empty(),
+        "{} pixels differ, e.g. {:?}",
+        differing.len(),
+        &differing[..differing.len().min(5)]
+    );
 }
 
 #[test]
@@ -255,5 +266,101 @@ fn buffers_beyond_the_gl_limits_are_refused() {
     assert!(
         matches!(error, RenderError::TooManyGeoms { .. }),
         "{error:?}"
+    );
+}
+
+#[test]
+fn a_reach_draws_only_what_comes_near_the_camera() {
+    let (model, mut data) = scene();
+    let camera = model.camera("down").unwrap();
+    let mut renderer = Renderer::builder()
+        .size(WIDTH, HEIGHT)
+        .preset(RenderPreset::Fast)
+        .build(&model)
+        .unwrap();
+    let everything = renderer.render_depth(&mut data, camera).unwrap();
+    // The boxes' tops are 1.9 m from the camera, the floor 2 m.
+    renderer.set_reach(Some(1.95));
+    let mut near = yarok_mjc::DepthImage::new(1, 1);
+    renderer
+        .render_depth_into(&mut data, camera, &mut near)
+        .unwrap();
+    assert_eq!(near.dimensions(), (WIDTH, HEIGHT));
+    let (floor_x, floor_y) = (WIDTH / 2, HEIGHT / 2);
+    assert!((everything.get_pixel(floor_x, floor_y)[0] - 2.0).abs() < 1e-3);
+    assert!(
+        near.get_pixel(floor_x, floor_y)[0] > 10.0,
+        "the floor is beyond reach: {}",
+        near.get_pixel(floor_x, floor_y)[0]
+    );
+    let box_pixels: Vec<_> = everything
+        .enumerate_pixels()
+        .filter(|(_, _, depth)| (depth[0] - 1.9).abs() < 1e-3)
+        .map(|(x, y, _)| (x, y))
+        .collect();
+    assert!(!box_pixels.is_empty());
+    for &(x, y) in &box_pixels {
+        assert_eq!(
+            near.get_pixel(x, y),
+            everything.get_pixel(x, y),
+            "box at ({x}, {y})"
+        );
+    }
+    renderer.set_reach(None);
+    assert_eq!(
+        renderer.render_depth(&mut data, camera).unwrap(),
+        everything
+    );
+}
+
+#[test]
+fn depth_alone_skips_the_skybox_that_colour_draws() {
+    let model = Arc::new(
+        Model::from_xml_str(
+            r#"<mujoco>
+              <visual><global offwidth="320" offheight="240"/><map zfar="50"/></visual>
+              <statistic extent="1"/>
+              <asset><texture type="skybox" builtin="gradient" rgb1="1 1 1" rgb2="0 0 1"
+                              width="64" height="64"/></asset>
+              <worldbody>
+                <camera name="horizon" pos="0 0 1" xyaxes="1 0 0 0 0 1"/>
+                <geom type="plane" size="5 5 0.1" rgba="0 1 0 1"/>
+              </worldbody>
+            </mujoco>"#,
+        )
+        .unwrap(),
+    );
+    let mut data = Data::new(&model).unwrap();
+    data.forward();
+    let camera = model.camera("horizon").unwrap();
+    let mut renderer = Renderer::builder()
+        .size(WIDTH, HEIGHT)
+        .preset(RenderPreset::Fast)
+        .build(&model)
+        .unwrap();
+    let (rgb, depth) = renderer.render(&mut data, camera).unwrap();
+    let alone = renderer.render_depth(&mut data, camera).unwrap();
+    let (mut floor, mut sky) = (0, 0);
+    for (x, y, colour) in rgb.enumerate_pixels() {
+        let (combined, alone) = (depth.get_pixel(x, y)[0], alone.get_pixel(x, y)[0]);
+        // Looking level from 1 m up: the floor below the horizon, the sky above.
+        if y > 3 * HEIGHT / 4 {
+            floor += 1;
+            assert_eq!(alone, combined, "the floor at ({x}, {y})");
+        } else if y < HEIGHT / 4 {
+            sky += 1;
+            assert!(
+                colour.0[2] > 100,
+                "the sky is drawn at ({x}, {y}): {colour:?}"
+            );
+            assert!(
+                (alone - 50.0).abs() < 1e-3,
+                "no depth at ({x}, {y}): {alone}"
+            );
+        }
+    }
+    assert!(
+        floor > 1000 && sky > 1000,
+        "{floor} floor and {sky} sky pixels"
     );
 }

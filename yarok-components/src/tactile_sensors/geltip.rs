@@ -70,6 +70,7 @@ impl SensorKind for Kind {
             .default("pos", [0.0; 3])
             .default("quat", [1.0, 0.0, 0.0, 0.0])
             .default("fps", 30.0)
+            .default("parallel", cfg!(feature = "parallel"))
             .default("noise", false)
             .default("radius", RADIUS)
             .default("start", START)
@@ -80,6 +81,10 @@ impl SensorKind for Kind {
 
     fn size(&self) -> (u32, u32) {
         (WIDTH, HEIGHT)
+    }
+
+    fn reach(&self) -> f64 {
+        TIP.hypot(RADIUS)
     }
 
     fn optics(&self, _seed: u64, _noise: bool) -> Result<Box<dyn Optics>, String> {
@@ -117,8 +122,8 @@ struct GelTipOptics {
 }
 
 impl Optics for GelTipOptics {
-    fn surface(&self, index: usize) -> f32 {
-        self.membrane.get(index).copied().unwrap_or(f32::INFINITY)
+    fn surface(&self) -> &[f32] {
+        &self.membrane
     }
 
     fn thickness(&self) -> f64 {
@@ -136,6 +141,11 @@ impl Optics for GelTipOptics {
         out: &mut [u8],
     ) -> Result<(), SizeError> {
         self.model.render_into(depth, background, out)
+    }
+
+    #[cfg(feature = "parallel")]
+    fn set_parallel(&mut self, parallel: bool) {
+        self.model.set_parallel(parallel);
     }
 }
 

@@ -50,6 +50,7 @@ impl SensorKind for Spec {
             .default("pos", [0.0; 3])
             .default("quat", [1.0, 0.0, 0.0, 0.0])
             .default("fps", self.fps)
+            .default("parallel", cfg!(feature = "parallel"))
             .default("noise", true)
             .default("gel_face", self.gel_face)
             .default("thickness", self.thickness)
@@ -63,6 +64,12 @@ impl SensorKind for Spec {
         (self.width, self.height)
     }
 
+    fn reach(&self) -> f64 {
+        let pixel = self.params().px2m_ratio;
+        let half = [self.width, self.height].map(|side| f64::from(side) / 2.0 * pixel);
+        self.gel_face.hypot(half[0].hypot(half[1]))
+    }
+
     fn optics(&self, seed: u64, noise: bool) -> Result<Box<dyn Optics>, String> {
         let base = self.params();
         let params = PhongParams {
@@ -74,6 +81,7 @@ impl SensorKind for Spec {
             pixel: params.px2m_ratio,
             model: PhongModel::new(params),
             spec: *self,
+            surface: vec![self.gel_face as f32; (self.width * self.height) as usize],
         }))
     }
 }
@@ -84,11 +92,13 @@ struct PhongOptics {
     model: PhongModel,
     /// Metres a pixel spans on the gel.
     pixel: f64,
+    /// The gel's face, at every pixel.
+    surface: Vec<f32>,
 }
 
 impl Optics for PhongOptics {
-    fn surface(&self, _: usize) -> f32 {
-        self.spec.gel_face as f32
+    fn surface(&self) -> &[f32] {
+        &self.surface
     }
 
     fn thickness(&self) -> f64 {
@@ -107,5 +117,10 @@ impl Optics for PhongOptics {
     ) -> Result<(), SizeError> {
         self.model
             .render_into(depth, self.spec.width as usize, background, out)
+    }
+
+    #[cfg(feature = "parallel")]
+    fn set_parallel(&mut self, parallel: bool) {
+        self.model.set_parallel(parallel);
     }
 }

@@ -30,9 +30,9 @@ pub struct Contact {
 /// The optical side of one kind of sensor: the untouched gel as its camera sees it, and the
 /// model that makes the image.
 pub(super) trait Optics {
-    /// The untouched gel's depth (metres along the camera axis) at pixel `index`: what the
-    /// camera sees when nothing presses, and how far it sees.
-    fn surface(&self, index: usize) -> f32;
+    /// The untouched gel's depth (metres along the camera axis) pixel by pixel, row-major: what
+    /// the camera sees when nothing presses, and how far it sees.
+    fn surface(&self) -> &[f32];
     /// The gel's thickness (metres): the deepest a press can go.
     fn thickness(&self) -> f64;
     /// The area (square metres) a pixel covers on the gel.
@@ -44,6 +44,9 @@ pub(super) trait Optics {
     /// When the sizes do not match the model's.
     fn render(&mut self, depth: &[f32], background: &[u8], out: &mut [u8])
     -> Result<(), SizeError>;
+    /// Splits each image's work across rayon's threads (`true`) or not.
+    #[cfg(feature = "parallel")]
+    fn set_parallel(&mut self, parallel: bool);
 }
 
 /// One kind of sensor: its component's declaration, image size and optics.
@@ -51,6 +54,9 @@ pub(super) trait SensorKind {
     fn declaration(&self) -> Declaration;
     /// Image columns and rows.
     fn size(&self) -> (u32, u32);
+    /// The farthest any point of the untouched gel lies from the camera (metres): nothing
+    /// beyond it can show in the image.
+    fn reach(&self) -> f64;
     /// The optics, with the gel's texture noise seeded by `seed` (none when `noise` is off).
     ///
     /// # Errors
@@ -114,9 +120,9 @@ impl TactileSensor {
         let state = self.inner.state.borrow();
         let optics = &state.optics;
         let (mut deepest, mut touched) = (0.0f64, 0usize);
-        for (index, depth) in state.depth.as_raw().iter().enumerate() {
-            let indentation = (f64::from(optics.surface(index)) - f64::from(*depth))
-                .clamp(0.0, optics.thickness());
+        for (surface, depth) in optics.surface().iter().zip(state.depth.as_raw()) {
+            let indentation =
+                (f64::from(*surface) - f64::from(*depth)).clamp(0.0, optics.thickness());
             deepest = deepest.max(indentation);
             touched += usize::from(indentation > TOUCHED);
         }
@@ -128,12 +134,13 @@ impl TactileSensor {
     }
 
     /// Binds a sensor of `kind` in `sim`: its internal camera renders depth with the fast
-    /// preset, without the sensor's own geoms (group 3).
+    /// preset, without the sensor's own geoms (group 3) and only what can reach the gel.
     pub(super) fn bind_sim(kind: &dyn SensorKind, bind: &mut Bind<Sim>) -> Result<Self, BindError> {
         let (width, height) = kind.size();
         let camera = bind
             .camera_with("camera", width, height, RenderPreset::Fast)?
-            .hiding_groups(&[3]);
+            .hiding_groups(&[3])
+            .within(kind.reach());
         Self::bind(kind, bind, Some(camera))
     }
 
@@ -149,12 +156,21 @@ impl TactileSensor {
             return Err(bind.error(format!("fps must be a positive number, not {fps}")));
         }
         let noise: bool = bind.config_value("noise")?;
-        let optics = kind.optics(bind.seed(), noise).map_err(|e| bind.error(e))?;
+        let parallel: bool = bind.config_value("parallel")?;
+        #[cfg_attr(not(feature = "parallel"), expect(unused_mut))]
+        let mut optics = kind.optics(bind.seed(), noise).map_err(|e| bind.error(e))?;
+        #[cfg(feature = "parallel")]
+        optics.set_parallel(parallel);
+        if parallel && !cfg!(feature = "parallel") {
+            return Err(bind.error(
+                "parallel = true needs yarok-components' `parallel` feature, which is off",
+            ));
+        }
         let (width, height) = kind.size();
         let pixels = (width * height) as usize;
         let background = default_background(width as usize, height as usize);
         let untouched = DepthImage::from_fn(width, height, |x, y| {
-            image::Luma([optics.surface((y * width + x) as usize)])
+            image::Luma([optics.surface()[(y * width + x) as usize]])
         });
         let inner = Rc::new(Inner {
             camera,
@@ -195,14 +211,11 @@ impl Inner {
             return;
         }
         state.due = now + self.period;
-        if let Some(camera) = &self.camera {
-            match camera.depth() {
-                Ok(depth) => state.depth = depth,
-                Err(error) => {
-                    state.failed = Some(error.to_string());
-                    return;
-                }
-            }
+        if let Some(camera) = &self.camera
+            && let Err(error) = camera.depth_into(&mut state.depth)
+        {
+            state.failed = Some(error.to_string());
+            return;
         }
         let State {
             optics,
@@ -218,8 +231,8 @@ impl Inner {
             depth
                 .as_raw()
                 .iter()
-                .enumerate()
-                .map(|(index, d)| d.min(optics.surface(index))),
+                .zip(optics.surface())
+                .map(|(depth, surface)| depth.min(*surface)),
         );
         if let Err(error) = optics.render(gel, background, frame) {
             *failed = Some(error.to_string());

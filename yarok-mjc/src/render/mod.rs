@@ -1,6 +1,7 @@
 //! [`Renderer`]: headless offscreen rendering of a model's cameras to RGB and metric depth.
 
 mod egl;
+mod reach;
 
 use std::fmt;
 use std::marker::PhantomData;
@@ -216,6 +217,7 @@ impl RendererBuilder {
             scene.flags[sys::mjRND_SHADOW as usize] = 0;
             scene.flags[sys::mjRND_REFLECTION as usize] = 0;
         }
+        let skybox = scene.flags[sys::mjRND_SKYBOX as usize];
         let extent = model.raw().stat.extent;
         let map = model.raw().vis.map;
         let pixels = width as usize * height as usize;
@@ -228,6 +230,8 @@ impl RendererBuilder {
             model: Arc::clone(model),
             width,
             height,
+            skybox,
+            reach: None,
             near: f64::from(map.znear) * extent,
             far: f64::from(map.zfar) * extent,
             rgb: vec![0; 3 * pixels],
@@ -241,7 +245,9 @@ impl RendererBuilder {
 ///
 /// The OpenGL context belongs to the thread that built the renderer, so a `Renderer` is neither
 /// `Send` nor `Sync`. Images come top row first, as a camera sees them. Depth is planar distance
-/// along the camera axis in metres.
+/// along the camera axis in metres; where nothing is drawn it is the far clipping plane
+/// (`visual/map/@zfar` × the model's extent). Depth-only renders skip the skybox; renders with
+/// colour draw it, and there the sky's depth is the skybox's own distance.
 ///
 /// # Examples
 ///
@@ -272,6 +278,9 @@ pub struct Renderer {
     model: Arc<Model>,
     width: u32,
     height: u32,
+    /// Whether colour renders draw the skybox (depth-only renders never do: it has no depth).
+    skybox: u8,
+    reach: Option<f64>,
     near: f64,
     far: f64,
     rgb: Vec<u8>,
@@ -301,6 +310,14 @@ impl Renderer {
         self.option.geomgroup = visible.map(u8::from);
     }
 
+    /// Draws only geoms that may come within `reach` metres of the camera (by their bounding
+    /// spheres; planes by their distance), or every geom (`None`, the default). A tactile
+    /// sensor's camera, which sees a few millimetres into its gel, skips the rest of the world
+    /// this way.
+    pub fn set_reach(&mut self, reach: Option<f64>) {
+        self.reach = reach;
+    }
+
     /// Renders the colour image of `camera`.
     ///
     /// # Errors
@@ -326,8 +343,26 @@ impl Renderer {
         data: &mut Data,
         camera: CameraId,
     ) -> Result<DepthImage, RenderError> {
+        let mut depth = DepthImage::new(self.width, self.height);
+        self.render_depth_into(data, camera, &mut depth)?;
+        Ok(depth)
+    }
+
+    /// Renders the depth image of `camera` into `depth`, reusing its memory (it is resized to
+    /// the renderer's size if it differs).
+    ///
+    /// # Errors
+    ///
+    /// As [`Renderer::render_rgb`].
+    pub fn render_depth_into(
+        &mut self,
+        data: &mut Data,
+        camera: CameraId,
+        depth: &mut DepthImage,
+    ) -> Result<(), RenderError> {
         self.draw(data, camera, Channels::Depth)?;
-        Ok(self.depth_image())
+        self.depth_into(depth);
+        Ok(())
     }
 
     /// Renders colour and depth of `camera` from one draw.
@@ -341,7 +376,9 @@ impl Renderer {
         camera: CameraId,
     ) -> Result<(RgbImage, DepthImage), RenderError> {
         self.draw(data, camera, Channels::Both)?;
-        Ok((self.rgb_image(), self.depth_image()))
+        let mut depth = DepthImage::new(self.width, self.height);
+        self.depth_into(&mut depth);
+        Ok((self.rgb_image(), depth))
     }
 
     fn draw(
@@ -375,6 +412,7 @@ impl Renderer {
         } else {
             std::ptr::null_mut()
         };
+        self.scene.flags[sys::mjRND_SKYBOX as usize] = if channels.rgb() { self.skybox } else { 0 };
         let mj = self.model.mj();
         // SAFETY: this renderer's GL context is current; model, data, option, perturbation,
         // camera and scene are valid and belong to the same model (checked above); the pixel
@@ -389,6 +427,12 @@ impl Renderer {
                 sys::mjCAT_ALL as i32,
                 &mut *self.scene,
             );
+        }
+        if let Some(reach) = self.reach {
+            reach::keep_within(&mut self.scene, reach);
+        }
+        // SAFETY: as above; the scene holds a subset of the geoms mjv_updateScene made.
+        unsafe {
             mj.mjr_render(viewport, &mut *self.scene, &*self.context);
             mj.mjr_readPixels(rgb, depth, viewport, &*self.context);
         }
@@ -407,18 +451,19 @@ impl Renderer {
         RgbImage::from_raw(self.width, self.height, flipped).expect("buffer sized width·height·3")
     }
 
-    fn depth_image(&self) -> DepthImage {
+    fn depth_into(&self, out: &mut DepthImage) {
+        if out.dimensions() != (self.width, self.height) {
+            *out = DepthImage::new(self.width, self.height);
+        }
         let (near, far) = (self.near, self.far);
-        let metres = |d: &f32| (near * far / (near + f64::from(*d) * (far - near))) as f32;
+        let metres = |d: f32| (near * far / (near + f64::from(d) * (far - near))) as f32;
         let row = self.width as usize;
-        let flipped = self
-            .depth
-            .chunks_exact(row)
-            .rev()
-            .flatten()
-            .map(metres)
-            .collect();
-        DepthImage::from_raw(self.width, self.height, flipped).expect("buffer sized width·height")
+        let rows = self.depth.chunks_exact(row).rev();
+        for (out, row) in out.chunks_exact_mut(row).zip(rows) {
+            for (out, d) in out.iter_mut().zip(row) {
+                *out = metres(*d);
+            }
+        }
     }
 }
 
