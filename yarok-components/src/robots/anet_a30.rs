@@ -4,7 +4,7 @@ use std::cell::Cell;
 use std::rc::Rc;
 
 use yarok_core::component::{Bind, BindError, Component, Declaration, Interface, Interfaces, Mock};
-use yarok_mjc::{Actuator, Sensor, Sim, SimBind};
+use yarok_mjc::{Actuator, Joint, Sensor, Sim, SimBind};
 
 /// The work volume of the [`AnetA30`], in millimetres.
 pub const WORK_VOLUME_MM: [f64; 3] = [320.0, 320.0, 420.0];
@@ -26,11 +26,15 @@ pub struct AnetA30 {
 
 #[derive(Clone)]
 enum Axes {
-    Sim {
-        servos: [Actuator; 3],
-        positions: [Sensor; 3],
-    },
+    Sim(Rc<SimAxes>),
     Mock(Rc<Cell<[f64; 3]>>),
+}
+
+/// The axes in MuJoCo: position servos, their measured positions, and the joints themselves.
+struct SimAxes {
+    servos: [Actuator; 3],
+    positions: [Sensor; 3],
+    joints: [Joint; 3],
 }
 
 impl std::fmt::Debug for AnetA30 {
@@ -51,8 +55,8 @@ impl AnetA30 {
         }
         let clamped = clamp(target);
         match &self.axes {
-            Axes::Sim { servos, .. } => {
-                for (servo, mm) in servos.iter().zip(clamped) {
+            Axes::Sim(axes) => {
+                for (servo, mm) in axes.servos.iter().zip(clamped) {
                     servo.set(mm / 1000.0);
                 }
             }
@@ -61,10 +65,25 @@ impl AnetA30 {
         clamped
     }
 
+    /// Puts the head at `target` (millimetres, clamped to the work volume) at once and at rest,
+    /// and holds it there; returns the clamped target. In `sim` the axes are set rather than
+    /// driven, so where the head is afterwards does not depend on earlier moves: for setting a
+    /// scene up, or collecting data that must not depend on the order it is collected in.
+    /// `mock` as [`AnetA30::move_to`].
+    pub fn place(&self, target: [f64; 3]) -> [f64; 3] {
+        let clamped = self.move_to(target);
+        if let Axes::Sim(axes) = &self.axes {
+            for (joint, mm) in axes.joints.iter().zip(clamped) {
+                joint.set_position(mm / 1000.0);
+            }
+        }
+        clamped
+    }
+
     /// Where the head is, in millimetres.
     pub fn at(&self) -> [f64; 3] {
         match &self.axes {
-            Axes::Sim { positions, .. } => positions.each_ref().map(|axis| axis.value() * 1000.0),
+            Axes::Sim(axes) => axes.positions.each_ref().map(|axis| axis.value() * 1000.0),
             Axes::Mock(at) => at.get(),
         }
     }
@@ -105,10 +124,11 @@ impl Interface<Sim> for AnetA30 {
     async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
         let [x, y, z] = ["x", "y", "z"];
         Ok(AnetA30 {
-            axes: Axes::Sim {
+            axes: Axes::Sim(Rc::new(SimAxes {
                 servos: [bind.actuator(x)?, bind.actuator(y)?, bind.actuator(z)?],
                 positions: [bind.sensor(x)?, bind.sensor(y)?, bind.sensor(z)?],
-            },
+                joints: [bind.joint(x)?, bind.joint(y)?, bind.joint(z)?],
+            })),
         })
     }
 }

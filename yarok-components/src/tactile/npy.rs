@@ -1,4 +1,4 @@
-//! Reading float arrays from NumPy `.npy` files, plain or gzip-compressed (`.npy.gz`).
+//! Float arrays in NumPy `.npy` files: read plain or gzip-compressed (`.npy.gz`), written plain.
 
 use std::io::Read;
 use std::path::Path;
@@ -132,6 +132,58 @@ pub fn parse(bytes: &[u8]) -> Result<NpyArray, String> {
     Ok(NpyArray { shape, data })
 }
 
+impl NpyArray {
+    /// The bytes of a `.npy` file (version 1.0, little-endian float32, C order) holding this
+    /// array: what `numpy.load` reads.
+    ///
+    /// ```
+    /// use yarok_components::tactile::npy::{NpyArray, parse};
+    ///
+    /// let array = NpyArray { shape: vec![2, 3], data: vec![0.5; 6] };
+    /// assert_eq!(parse(&array.to_bytes())?, array);
+    /// # Ok::<(), String>(())
+    /// ```
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let dimensions: String = self.shape.iter().map(|d| format!("{d}, ")).collect();
+        let shape = match self.shape.len() {
+            1 => dimensions.trim_end_matches(' ').to_owned(),
+            _ => dimensions.trim_end_matches(", ").to_owned(),
+        };
+        let mut header =
+            format!("{{'descr': '<f4', 'fortran_order': False, 'shape': ({shape}), }}");
+        // The magic, version and length take 10 bytes; the header ends in a newline and pads
+        // the data to a multiple of 64 bytes.
+        let padded = (10 + header.len() + 1).div_ceil(64) * 64 - 10;
+        header.extend(std::iter::repeat_n(' ', padded - header.len() - 1));
+        header.push('\n');
+        let mut bytes = Vec::with_capacity(10 + header.len() + 4 * self.data.len());
+        bytes.extend_from_slice(b"\x93NUMPY\x01\x00");
+        bytes.extend_from_slice(
+            &u16::try_from(header.len())
+                .unwrap_or(u16::MAX)
+                .to_le_bytes(),
+        );
+        bytes.extend_from_slice(header.as_bytes());
+        for value in &self.data {
+            bytes.extend_from_slice(&value.to_le_bytes());
+        }
+        bytes
+    }
+
+    /// Writes this array to a `.npy` file (see [`NpyArray::to_bytes`]).
+    ///
+    /// # Errors
+    ///
+    /// [`NpyError::Io`] naming the file.
+    pub fn write(&self, path: impl AsRef<Path>) -> Result<(), NpyError> {
+        let path = path.as_ref();
+        std::fs::write(path, self.to_bytes()).map_err(|source| NpyError::Io {
+            path: path.display().to_string(),
+            source,
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     #[test]
@@ -150,5 +202,31 @@ mod tests {
                 .contains("data bytes")
         );
         assert!(super::parse(b"hello").is_err());
+    }
+
+    #[test]
+    fn written_arrays_read_back_with_an_aligned_header() {
+        for shape in [vec![3], vec![2, 1], vec![4, 3, 2]] {
+            let count = shape.iter().product();
+            let array = super::NpyArray {
+                shape: shape.clone(),
+                data: (0..count).map(|i| i as f32 / 3.0).collect(),
+            };
+            let bytes = array.to_bytes();
+            assert_eq!((bytes.len() - 4 * count) % 64, 0, "{shape:?}");
+            assert_eq!(super::parse(&bytes).unwrap(), array);
+        }
+        let header = String::from_utf8_lossy(
+            &super::NpyArray {
+                shape: vec![3],
+                data: vec![0.0; 3],
+            }
+            .to_bytes()[10..],
+        )
+        .into_owned();
+        assert!(
+            header.starts_with("{'descr': '<f4', 'fortran_order': False, 'shape': (3,), }"),
+            "{header}"
+        );
     }
 }

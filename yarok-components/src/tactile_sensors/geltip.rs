@@ -134,6 +134,11 @@ impl Optics for GelTipOptics {
         self.pixel_area
     }
 
+    fn surface_distance(&self, x: f64, y: f64) -> Option<f64> {
+        let across = x.hypot(y);
+        (across < RADIUS).then(|| TIP - RADIUS + (RADIUS * RADIUS - across * across).sqrt())
+    }
+
     fn render(
         &mut self,
         depth: &[f32],

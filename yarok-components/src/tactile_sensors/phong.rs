@@ -109,6 +109,11 @@ impl Optics for PhongOptics {
         self.pixel * self.pixel
     }
 
+    fn surface_distance(&self, x: f64, y: f64) -> Option<f64> {
+        let [half_x, half_y] = self.spec.gel;
+        (x.abs() <= half_x && y.abs() <= half_y).then_some(self.spec.gel_face)
+    }
+
     fn render(
         &mut self,
         depth: &[f32],

@@ -37,6 +37,9 @@ pub(super) trait Optics {
     fn thickness(&self) -> f64;
     /// The area (square metres) a pixel covers on the gel.
     fn pixel_area(&self) -> f64;
+    /// How far (metres, along the sensor's axis from its camera) the untouched gel's outer
+    /// surface is at `(x, y)` metres across the axis, if the gel is there.
+    fn surface_distance(&self, x: f64, y: f64) -> Option<f64>;
     /// The image of the gel at `depth` (clamped to the untouched surface) over `background`.
     ///
     /// # Errors
@@ -67,7 +70,7 @@ pub(super) trait SensorKind {
 
 /// A camera-based tactile sensor: `read()` gives its colour image (the sensor's optical model
 /// over the depth its internal camera sees, on [`default_background`]), `read_depth()` that
-/// depth, `contact()` what it feels. Frames are made at the sensor's rate on the platform's
+/// depth (the gel's: no farther than its untouched surface), `contact()` what it feels. Frames are made at the sensor's rate on the platform's
 /// ticks: after a tick that was due a frame, `read()` returns that frame.
 /// [`Digit`](super::Digit), [`GelSight2014`](super::GelSight2014) and
 /// [`GelTip`](super::GelTip) deref to one.
@@ -87,12 +90,12 @@ struct State {
     optics: Box<dyn Optics>,
     background: Vec<u8>,
     frame: RgbImage,
+    /// The gel's depth: what the camera sees, but nothing beyond the untouched gel, which is
+    /// all it sees of what lies farther.
     depth: DepthImage,
-    /// The depth the model sees: nothing beyond the untouched gel, which is all the camera sees
-    /// of what lies farther.
-    gel: Vec<f32>,
-    /// Platform time the next frame is due.
+    /// Platform time the next frame is due, and the latest frame's.
     due: f64,
+    time: f64,
     failed: Option<String>,
 }
 
@@ -110,9 +113,24 @@ impl TactileSensor {
         self.inner.state.borrow().frame.clone()
     }
 
-    /// The depth the internal camera saw for the latest frame (metres along its axis).
+    /// The gel's depth for the latest frame (metres along the internal camera's axis): the
+    /// untouched surface, and nearer where something presses into it. This is what the optical
+    /// model turns into the image.
     pub fn read_depth(&self) -> DepthImage {
         self.inner.state.borrow().depth.clone()
+    }
+
+    /// The platform time of the latest frame (seconds).
+    pub fn frame_time(&self) -> f64 {
+        self.inner.state.borrow().time
+    }
+
+    /// Where the untouched gel's outer surface is at `(x, y)` metres across the sensor's axis
+    /// (its frame's x and y): its distance (metres) from the sensor's camera along the axis, or
+    /// `None` where there is no gel. A press `d` metres deep at `(x, y)` puts the object's tip
+    /// at `surface_distance(x, y) − d` along the axis.
+    pub fn surface_distance(&self, x: f64, y: f64) -> Option<f64> {
+        self.inner.state.borrow().optics.surface_distance(x, y)
     }
 
     /// What the latest frame feels.
@@ -167,7 +185,6 @@ impl TactileSensor {
             ));
         }
         let (width, height) = kind.size();
-        let pixels = (width * height) as usize;
         let background = default_background(width as usize, height as usize);
         let untouched = DepthImage::from_fn(width, height, |x, y| {
             image::Luma([optics.surface()[(y * width + x) as usize]])
@@ -181,8 +198,8 @@ impl TactileSensor {
                 frame: RgbImage::new(width, height),
                 background,
                 depth: untouched,
-                gel: Vec::with_capacity(pixels),
                 due: 0.0,
+                time: 0.0,
                 failed: None,
             }),
         });
@@ -211,6 +228,7 @@ impl Inner {
             return;
         }
         state.due = now + self.period;
+        state.time = now;
         if let Some(camera) = &self.camera
             && let Err(error) = camera.depth_into(&mut state.depth)
         {
@@ -221,20 +239,14 @@ impl Inner {
             optics,
             background,
             frame,
-            gel,
             depth,
             failed,
             ..
         } = &mut *state;
-        gel.clear();
-        gel.extend(
-            depth
-                .as_raw()
-                .iter()
-                .zip(optics.surface())
-                .map(|(depth, surface)| depth.min(*surface)),
-        );
-        if let Err(error) = optics.render(gel, background, frame) {
+        for (depth, surface) in depth.iter_mut().zip(optics.surface()) {
+            *depth = depth.min(*surface);
+        }
+        if let Err(error) = optics.render(depth, background, frame) {
             *failed = Some(error.to_string());
         }
     }

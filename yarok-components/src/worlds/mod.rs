@@ -1,5 +1,9 @@
 //! Worlds: roots to build environments on.
 
+mod tactile_rig;
+
+pub use tactile_rig::{Press, PressError, Sample, TactileRigWorld};
+
 use yarok_core::component::{Component, Declaration};
 
 use crate::cameras::Cam;

@@ -1,0 +1,210 @@
+//! [`TactileRigWorld`]: a printer pressing an indenter into a tactile sensor, to collect
+//! tactile data.
+
+use image::RgbImage;
+use yarok_core::component::{Bind, BindError, Component, Declaration, Interface, Interfaces};
+use yarok_core::time::{Clock, WaitError};
+use yarok_mjc::{DepthImage, Sim};
+
+use super::EmptyWorld;
+use crate::robots::{AnetA30, WORK_VOLUME_MM};
+use crate::tactile_sensors::{Contact, Digit, GelSight2014, GelTip, TactileSensor};
+
+/// A printer (an [`AnetA30`] at the world's origin, its coordinates the world's in millimetres)
+/// whose head carries an indenter, over an upright tactile sensor: a rig that presses the
+/// indenter into the gel at chosen points and depths, as the GelTip simulation dataset was
+/// collected. [`TactileRigWorld::press`] places the head exactly and returns the sensor's next
+/// frame, so a sample depends only on its press, not on the presses before it: rigs on several
+/// threads collect the same samples, byte for byte, as one rig does.
+///
+/// Config: `sensor` (`"geltip"`, default; `"digit"`; `"gelsight"`), `sensor_pos` (metres,
+/// default 0.16, 0.16, 0: under the middle of the work volume), `indenter` (an MJCF geom type,
+/// default `"sphere"`) and `indenter_size` (its MJCF size, default 4 mm radius; the last value is
+/// the tip's height above its centre), `parallel` (the sensor's model across threads: on by
+/// default with the `parallel` feature; turn it off when rigs run on every core).
+///
+/// Paths: `/printer`, `/sensor`. Environment: `sim`.
+///
+/// ```no_run
+/// use yarok::components::worlds::{Press, TactileRigWorld};
+///
+/// yarok::platform()
+///     .world::<TactileRigWorld>()
+///     .behaviour(|pl| async move {
+///         let rig: TactileRigWorld = pl.get("/")?;
+///         let sample = rig.press(Press { at: [0.002, 0.0], depth: 0.001 }).await?;
+///         println!("{:.2} mm deep", sample.contact.max_indentation * 1e3);
+///         Ok(())
+///     })
+///     .run()?;
+/// # Ok::<(), yarok::RuntimeError>(())
+/// ```
+#[derive(Debug, Clone)]
+pub struct TactileRigWorld {
+    printer: AnetA30,
+    sensor: TactileSensor,
+    sensor_kind: String,
+    /// Where the sensor stands (metres).
+    sensor_pos: [f64; 3],
+    clock: Clock,
+}
+
+/// A press of the rig's indenter: where across the sensor's axis (metres, in the sensor's x and
+/// y) and how deep below the untouched gel's surface there (metres).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Press {
+    /// The indenter tip's offset across the sensor's axis.
+    pub at: [f64; 2],
+    /// How deep the tip goes below the gel's surface.
+    pub depth: f64,
+}
+
+/// What the rig records for a press: the sensor's frame and depth, what it feels, and where the
+/// printer's head was.
+#[derive(Debug, Clone)]
+pub struct Sample {
+    /// The press.
+    pub press: Press,
+    /// The printer head's position (millimetres).
+    pub head: [f64; 3],
+    /// The sensor's image.
+    pub image: RgbImage,
+    /// The depth its camera saw (metres along its axis).
+    pub depth: DepthImage,
+    /// What it felt.
+    pub contact: Contact,
+}
+
+/// Why a press could not be made.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum PressError {
+    /// The press is not over the gel, or its depth is not a finite number.
+    #[error("no press at {at:?} m, {depth} m deep: {reason}")]
+    Impossible {
+        /// Where the press was asked for.
+        at: [f64; 2],
+        /// How deep.
+        depth: f64,
+        /// What is wrong.
+        reason: &'static str,
+    },
+    /// The platform stopped while the press waited for the sensor's frame.
+    #[error(transparent)]
+    Wait(#[from] WaitError),
+}
+
+impl TactileRigWorld {
+    /// The printer.
+    pub fn printer(&self) -> &AnetA30 {
+        &self.printer
+    }
+
+    /// The tactile sensor.
+    pub fn sensor(&self) -> &TactileSensor {
+        &self.sensor
+    }
+
+    /// Which sensor the rig holds: `"geltip"`, `"digit"` or `"gelsight"` (config `sensor`).
+    pub fn sensor_kind(&self) -> &str {
+        &self.sensor_kind
+    }
+
+    /// Places the printer's head so that the indenter presses as `press` says (see
+    /// [`AnetA30::place`]), and returns the sensor's first frame after that.
+    ///
+    /// # Errors
+    ///
+    /// [`PressError::Impossible`] for a press off the gel, NaN or negative, or out of the
+    /// printer's reach; [`PressError::Wait`] when the platform stops meanwhile.
+    ///
+    /// # Cancel safety
+    ///
+    /// Dropping the future leaves the head where it was placed.
+    pub async fn press(&self, press: Press) -> Result<Sample, PressError> {
+        let head = self.head_for(press)?;
+        let placed = self.printer.place(head);
+        let placed_at = self.clock.time();
+        self.clock
+            .wait(|| self.sensor.frame_time() > placed_at)
+            .await?;
+        Ok(Sample {
+            press,
+            head: placed,
+            image: self.sensor.read(),
+            depth: self.sensor.read_depth(),
+            contact: self.sensor.contact(),
+        })
+    }
+
+    /// The head's position (millimetres) for `press`.
+    fn head_for(&self, press: Press) -> Result<[f64; 3], PressError> {
+        let impossible = |reason| PressError::Impossible {
+            at: press.at,
+            depth: press.depth,
+            reason,
+        };
+        let [x, y] = press.at;
+        if !(press.depth >= 0.0 && press.depth.is_finite()) {
+            return Err(impossible("the depth must be a finite number ≥ 0"));
+        }
+        let surface = self
+            .sensor
+            .surface_distance(x, y)
+            .ok_or_else(|| impossible("the sensor has no gel there"))?;
+        let [px, py, pz] = self.sensor_pos;
+        let head = [px + x, py + y, pz + surface - press.depth].map(|m| m * 1000.0);
+        if head
+            .iter()
+            .zip(WORK_VOLUME_MM)
+            .any(|(mm, max)| !(0.0..=max).contains(mm))
+        {
+            return Err(impossible("the printer cannot reach it"));
+        }
+        Ok(head)
+    }
+}
+
+impl Component for TactileRigWorld {
+    fn declaration() -> Declaration {
+        Declaration::new("tactile_rig_world")
+            .extends::<EmptyWorld>()
+            .uses::<AnetA30>()
+            .uses::<GelTip>()
+            .uses::<Digit>()
+            .uses::<GelSight2014>()
+            .default("sensor", "geltip")
+            .default("sensor_pos", [0.16, 0.16, 0.0])
+            .default("indenter", "sphere")
+            .default("indenter_size", [0.004])
+            .default("parallel", cfg!(feature = "parallel"))
+            .template(include_str!("tactile_rig.xml"))
+    }
+
+    fn interfaces(interfaces: &mut Interfaces<Self>) {
+        interfaces.add::<Sim>();
+    }
+}
+
+impl Interface<Sim> for TactileRigWorld {
+    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
+        let kind: String = bind.config_value("sensor")?;
+        let sensor = match kind.as_str() {
+            "geltip" => (*bind.child::<GelTip>("sensor")?).clone(),
+            "digit" => (*bind.child::<Digit>("sensor")?).clone(),
+            "gelsight" => (*bind.child::<GelSight2014>("sensor")?).clone(),
+            other => {
+                return Err(bind.error(format!(
+                    "sensor must be \"geltip\", \"digit\" or \"gelsight\", not {other:?}"
+                )));
+            }
+        };
+        Ok(Self {
+            printer: bind.child("printer")?,
+            sensor,
+            sensor_kind: kind,
+            sensor_pos: bind.config_value("sensor_pos")?,
+            clock: bind.clock(),
+        })
+    }
+}
