@@ -107,3 +107,41 @@ fn the_camera_rides_on_the_printer_head() {
         .run()
         .unwrap();
 }
+
+#[test]
+fn a_fast_camera_gives_colour_and_depth_of_one_instant_from_one_draw() {
+    yarok::platform()
+        .world::<PrinterWorld>()
+        .set("/printer/cam/preset=\"fast\"")
+        .unwrap()
+        .behaviour(|pl| async move {
+            let printer: AnetA30 = pl.get("printer")?;
+            let camera: Cam = pl.get("/printer/cam")?;
+            let target = printer.move_to([160.0, 160.0, 420.0]);
+            pl.wait(|| printer.is_at(target)).timeout(10.0).await?;
+            let (rgb, depth) = camera.read_rgbd()?;
+            assert!(
+                rgb == camera.read()?,
+                "the colour differs from a colour-only draw"
+            );
+            let alone = camera.read_depth()?;
+            let centre = depth.get_pixel(160, 120)[0];
+            assert!((centre - 0.18).abs() < 0.02, "tower top {centre} m below");
+            assert_eq!(alone.get_pixel(160, 120), depth.get_pixel(160, 120));
+            Ok(())
+        })
+        .run()
+        .unwrap();
+    let error = yarok::platform()
+        .world::<PrinterWorld>()
+        .set("/printer/cam/preset=\"pretty\"")
+        .unwrap()
+        .behaviour(|_| async { Ok(()) })
+        .run()
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("/printer/cam") && error.contains("\"pretty\""),
+        "{error}"
+    );
+}

@@ -372,3 +372,59 @@ fn a_geltip_shows_presses_on_its_tip_and_on_its_side_where_they_are() {
         );
     }
 }
+
+/// A probe a plugin read: its component, name, image size, and whether it showed the latest
+/// frame.
+type ProbeSeen = (String, String, (u32, u32), bool);
+
+/// Lists the probes it sees and reads each one after the first tick.
+#[derive(Default)]
+struct ProbeReader {
+    seen: std::rc::Rc<std::cell::RefCell<Vec<ProbeSeen>>>,
+}
+
+impl yarok::Plugin for ProbeReader {
+    fn step(&mut self, world: &yarok::World<'_>) -> Result<(), yarok::BoxError> {
+        if world.pl().ticks() == 1 {
+            let digit: Digit = world.pl().get("/digit")?;
+            for probe in world.probes() {
+                let image = probe.read()?;
+                let current = match &image {
+                    yarok::core::component::ProbeImage::Rgb { pixels, .. } => {
+                        *pixels == digit.read().into_raw()
+                    }
+                    yarok::core::component::ProbeImage::Depth { metres, .. } => {
+                        *metres == digit.read_depth().into_raw()
+                    }
+                    _ => false,
+                };
+                self.seen.borrow_mut().push((
+                    probe.component().to_owned(),
+                    probe.name().to_owned(),
+                    image.size(),
+                    current,
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+#[test]
+fn plugins_see_the_sensors_probes() {
+    let reader = ProbeReader::default();
+    let seen = std::rc::Rc::clone(&reader.seen);
+    yarok::platform()
+        .world::<PressWorld>()
+        .plugin(reader)
+        .behaviour(|pl| async move { pl.wait(|| pl.ticks() >= 2).await.map_err(Into::into) })
+        .run()
+        .unwrap();
+    assert_eq!(
+        *seen.borrow(),
+        [
+            ("/digit".to_owned(), "image".to_owned(), (240, 320), true),
+            ("/digit".to_owned(), "depth".to_owned(), (240, 320), true),
+        ]
+    );
+}

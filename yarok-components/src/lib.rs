@@ -12,6 +12,7 @@ pub use nalgebra;
 pub mod cameras;
 pub mod grippers;
 pub mod plugins;
+mod probe_images;
 pub mod robots;
 pub mod tactile;
 pub mod tactile_sensors;

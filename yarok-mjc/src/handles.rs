@@ -203,6 +203,15 @@ impl Camera {
             .render_depth(&mut self.data.borrow_mut(), self.id)
     }
 
+    /// The current colour and depth images from one draw.
+    ///
+    /// # Errors
+    ///
+    /// When rendering fails.
+    pub fn rgbd(&self) -> Result<(image::RgbImage, crate::DepthImage), crate::RenderError> {
+        self.renderer().render(&mut self.data.borrow_mut(), self.id)
+    }
+
     /// The current depth image into `depth`, reusing its memory (see
     /// [`Renderer::render_depth_into`](crate::Renderer::render_depth_into)).
     ///
@@ -306,8 +315,9 @@ pub trait SimBind {
     }
 
     /// [`SimBind::camera`] rendering with `preset` (cameras of one size and preset share a
-    /// renderer): [`RenderPreset::Fast`](crate::RenderPreset::Fast) for a sensor's camera whose
-    /// images no one looks at directly.
+    /// renderer): [`RenderPreset::Fast`](crate::RenderPreset::Fast) for a camera whose images
+    /// no one looks at closely, [`RenderPreset::Depth`](crate::RenderPreset::Depth) for one
+    /// whose depth alone is used.
     ///
     /// # Errors
     ///

@@ -41,7 +41,11 @@ fn pixels_of(rgb: &image::RgbImage, colour: [u8; 3]) -> Vec<(u32, u32)> {
 #[test]
 fn depth_colour_and_orientation_of_a_known_scene() {
     let (model, mut data) = scene();
-    for preset in [RenderPreset::Quality, RenderPreset::Fast] {
+    for preset in [
+        RenderPreset::Quality,
+        RenderPreset::Fast,
+        RenderPreset::Depth,
+    ] {
         let mut renderer = Renderer::builder()
             .size(WIDTH, HEIGHT)
             .preset(preset)
@@ -112,22 +116,18 @@ fn rgb_and_depth_alone_match_the_combined_render() {
 }
 
 #[test]
-fn sizes_beyond_the_offscreen_buffer_are_refused() {
-    let (model, _) = scene();
-    let error = Renderer::builder()
+fn images_larger_than_the_models_offscreen_buffer_render_and_empty_ones_are_refused() {
+    let (model, mut data) = scene();
+    let camera = model.camera("down").unwrap();
+    // The model asks for a 400x300 offscreen buffer; each renderer makes its own.
+    let mut renderer = Renderer::builder()
         .size(640, 480)
+        .preset(RenderPreset::Fast)
         .build(&model)
-        .unwrap_err();
-    assert_eq!(
-        error,
-        RenderError::TooLarge {
-            width: 640,
-            height: 480,
-            max_width: 400,
-            max_height: 300
-        }
-    );
-    assert!(error.to_string().contains("offwidth"), "{error}");
+        .unwrap();
+    let depth = renderer.render_depth(&mut data, camera).unwrap();
+    assert_eq!(depth.dimensions(), (640, 480));
+    assert!((depth.get_pixel(320, 240)[0] - 2.0).abs() < 1e-3);
     let error = Renderer::builder().size(0, 10).build(&model).unwrap_err();
     assert_eq!(
         error,
@@ -234,10 +234,10 @@ fn renderers_made_and_dropped_on_many_threads_at_once() {
 /// fatal "framebuffer is not complete" abort; so is a scene too large to allocate.
 #[test]
 fn buffers_beyond_the_gl_limits_are_refused() {
-    for visual in [
-        r#"<global offwidth="1000000" offheight="64"/>"#,
-        r#"<global offwidth="64" offheight="1000000"/>"#,
-        r#"<global offwidth="64" offheight="64"/><quality offsamples="1000"/>"#,
+    for (visual, (width, height)) in [
+        ("", (1_000_000, 64)),
+        ("", (64, 1_000_000)),
+        (r#"<quality offsamples="1000"/>"#, (32, 32)),
     ] {
         let model = Arc::new(
             Model::from_xml_str(&format!(
@@ -246,16 +246,16 @@ fn buffers_beyond_the_gl_limits_are_refused() {
             .unwrap(),
         );
         let error = Renderer::builder()
-            .size(32, 32)
+            .size(width, height)
             .preset(RenderPreset::Quality)
             .build(&model)
             .unwrap_err();
         assert!(
             matches!(error, RenderError::BeyondGl { max_width, max_height, .. }
                 if max_width >= 1024 && max_height >= 1024),
-            "{visual}: {error:?}"
+            "{visual} {width}x{height}: {error:?}"
         );
-        assert!(error.to_string().contains("offwidth"), "{error}");
+        assert!(error.to_string().contains("offsamples"), "{error}");
     }
     let (model, _) = scene();
     let error = Renderer::builder()
@@ -362,5 +362,56 @@ fn depth_alone_skips_the_skybox_that_colour_draws() {
     assert!(
         floor > 1000 && sky > 1000,
         "{floor} floor and {sky} sky pixels"
+    );
+}
+
+#[test]
+fn the_depth_preset_sees_the_same_depth_without_textures() {
+    let model = Arc::new(
+        Model::from_xml_str(
+            r#"<mujoco>
+              <asset>
+                <texture name="sky" type="skybox" builtin="gradient" rgb1="1 1 1" rgb2="0 0 1"
+                         width="64" height="64"/>
+                <texture name="checker" type="2d" builtin="checker" rgb1="1 1 1" rgb2="0 0 0"
+                         width="64" height="64"/>
+                <material name="checker" texture="checker" texrepeat="8 8"/>
+              </asset>
+              <worldbody>
+                <camera name="down" pos="0 0 2"/>
+                <geom type="plane" size="3 3 0.1" material="checker"/>
+                <geom type="box" pos="0.3 0.2 0.1" size="0.1 0.1 0.1" material="checker"/>
+              </worldbody>
+            </mujoco>"#,
+        )
+        .unwrap(),
+    );
+    let mut data = Data::new(&model).unwrap();
+    data.forward();
+    let camera = model.camera("down").unwrap();
+    let build = |preset| {
+        Renderer::builder()
+            .size(WIDTH, HEIGHT)
+            .preset(preset)
+            .build(&model)
+            .unwrap()
+    };
+    let (fast_rgb, fast_depth) = build(RenderPreset::Fast).render(&mut data, camera).unwrap();
+    let (depth_rgb, depth) = build(RenderPreset::Depth)
+        .render(&mut data, camera)
+        .unwrap();
+    assert!(depth == fast_depth, "the depth differs");
+    let colours = |rgb: &image::RgbImage| {
+        let mut seen: Vec<[u8; 3]> = rgb.pixels().map(|p| p.0).collect();
+        seen.sort_unstable();
+        seen.dedup();
+        seen.len()
+    };
+    // The checker shows in the fast preset's colours; untextured, the floor is one shade.
+    assert!(
+        colours(&fast_rgb) > 2 * colours(&depth_rgb),
+        "{} vs {}",
+        colours(&fast_rgb),
+        colours(&depth_rgb)
     );
 }

@@ -10,6 +10,7 @@ use yarok_core::component::{Bind, BindError, Declaration, Environment};
 use yarok_core::time::Clock;
 use yarok_mjc::{Camera, DepthImage, RenderPreset, Sim, SimBind};
 
+use crate::probe_images;
 use crate::tactile::{SizeError, default_background};
 
 /// Indentation (metres) above which a pixel counts as touched.
@@ -70,7 +71,8 @@ pub(super) trait SensorKind {
 
 /// A camera-based tactile sensor: `read()` gives its colour image (the sensor's optical model
 /// over the depth its internal camera sees, on [`default_background`]), `read_depth()` that
-/// depth (the gel's: no farther than its untouched surface), `contact()` what it feels. Frames are made at the sensor's rate on the platform's
+/// depth (the gel's: no farther than its untouched surface), `contact()` what it feels; its
+/// probes `image` and `depth` show the latest frame. Frames are made at the sensor's rate on the platform's
 /// ticks: after a tick that was due a frame, `read()` returns that frame.
 /// [`Digit`](super::Digit), [`GelSight2014`](super::GelSight2014) and
 /// [`GelTip`](super::GelTip) deref to one.
@@ -151,12 +153,12 @@ impl TactileSensor {
         }
     }
 
-    /// Binds a sensor of `kind` in `sim`: its internal camera renders depth with the fast
+    /// Binds a sensor of `kind` in `sim`: its internal camera renders depth with the depth
     /// preset, without the sensor's own geoms (group 3) and only what can reach the gel.
     pub(super) fn bind_sim(kind: &dyn SensorKind, bind: &mut Bind<Sim>) -> Result<Self, BindError> {
         let (width, height) = kind.size();
         let camera = bind
-            .camera_with("camera", width, height, RenderPreset::Fast)?
+            .camera_with("camera", width, height, RenderPreset::Depth)?
             .hiding_groups(&[3])
             .within(kind.reach());
         Self::bind(kind, bind, Some(camera))
@@ -207,6 +209,13 @@ impl TactileSensor {
         if let Some(error) = inner.state.borrow_mut().failed.take() {
             return Err(bind.error(error));
         }
+        let sensor = Self {
+            inner: Rc::clone(&inner),
+        };
+        let shown = sensor.clone();
+        bind.probe("image", move || Ok(probe_images::rgb(shown.read())));
+        let shown = sensor.clone();
+        bind.probe("depth", move || Ok(probe_images::depth(shown.read_depth())));
         let ticking = Rc::clone(&inner);
         bind.on_tick(move || {
             // After a step the clock still reads the time before it.
@@ -216,7 +225,7 @@ impl TactileSensor {
                 None => Ok(()),
             }
         });
-        Ok(Self { inner })
+        Ok(sensor)
     }
 }
 

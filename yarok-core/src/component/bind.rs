@@ -6,7 +6,10 @@ use std::rc::Rc;
 
 use serde::de::DeserializeOwned;
 
-use super::{Backend, Environment, HandleError, Handles, Lifecycle, NameKind, NameMap, StopAction};
+use super::{
+    Backend, Environment, HandleError, Handles, Lifecycle, NameKind, NameMap, Probe, ProbeImage,
+    StopAction,
+};
 use crate::BoxError;
 use crate::config::ConfigOrigins;
 use crate::suggest::did_you_mean;
@@ -268,6 +271,17 @@ impl<E: Environment> Bind<E> {
         self.context.lifecycle.borrow_mut().tasks.push((
             self.context.path.clone(),
             Box::pin(tracing::Instrument::instrument(task, span)),
+        ));
+    }
+
+    /// Registers a probe: an image of what the component senses, named `name` within it, which
+    /// `read` makes when an inspector or a recorder asks (see
+    /// [`World::probes`](crate::runtime::World::probes)).
+    pub fn probe(&mut self, name: &str, read: impl Fn() -> Result<ProbeImage, BoxError> + 'static) {
+        self.context.lifecycle.borrow_mut().probes.push(Probe::new(
+            self.context.path.clone(),
+            name.to_owned(),
+            Box::new(read),
         ));
     }
 

@@ -1,8 +1,9 @@
-//! What interfaces register while they bind: per-tick steps, tasks and stop actions.
+//! What interfaces register while they bind: per-tick steps, tasks, stop actions and probes.
 
 use std::future::Future;
 use std::pin::Pin;
 
+use super::Probe;
 use crate::BoxError;
 
 /// A per-tick step an interface registered.
@@ -24,4 +25,5 @@ pub(crate) struct Lifecycle {
     pub(crate) ticks: Vec<(String, tracing::Span, TickStep)>,
     pub(crate) tasks: Vec<(String, LocalFuture)>,
     pub(crate) stops: Vec<StopAction>,
+    pub(crate) probes: Vec<Probe>,
 }

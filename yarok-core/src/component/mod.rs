@@ -59,6 +59,7 @@ mod handles;
 mod interface;
 mod lifecycle;
 mod names;
+mod probe;
 
 use std::any::TypeId;
 use std::fmt;
@@ -75,6 +76,7 @@ pub(crate) use interface::BindFn;
 pub use interface::{Interface, Interfaces};
 pub(crate) use lifecycle::{Lifecycle, LocalFuture, StopAction, TickStep};
 pub use names::{NameKind, NameMap};
+pub use probe::{Probe, ProbeImage};
 
 /// A component: a Rust type with an MJCF template and an interface per environment it runs in.
 ///

@@ -13,7 +13,7 @@ use tokio::task::LocalSet;
 use super::executor::{Executor, Owner};
 use super::interrupt::Interrupt;
 use super::{BehaviourResult, Pl, PlatformBuilder, Plugin, RuntimeError, World};
-use crate::component::{Backend, BindContext, Handles, Lifecycle, StopAction, TickStep};
+use crate::component::{Backend, BindContext, Handles, Lifecycle, Probe, StopAction, TickStep};
 use crate::compose::Composition;
 use crate::config::{PlatformSettings, Settings};
 use crate::time::Clock;
@@ -70,6 +70,7 @@ pub struct Platform {
     handles: Rc<RefCell<Handles>>,
     lifecycle: Rc<RefCell<Lifecycle>>,
     ticks: Vec<(String, tracing::Span, TickStep)>,
+    probes: Vec<Probe>,
     executor: Executor,
     phase: Phase,
     ctrl_c: bool,
@@ -131,6 +132,7 @@ impl Platform {
             handles,
             lifecycle: Rc::default(),
             ticks: Vec::new(),
+            probes: Vec::new(),
             executor,
             phase: Phase::Built,
             ctrl_c: prepared.ctrl_c,
@@ -308,14 +310,16 @@ impl Platform {
             let handle = bind(context).await?;
             self.handles.borrow_mut().insert(&instance.path, handle);
         }
-        let (ticks, tasks) = {
+        let (ticks, tasks, probes) = {
             let mut lifecycle = self.lifecycle.borrow_mut();
             (
                 std::mem::take(&mut lifecycle.ticks),
                 std::mem::take(&mut lifecycle.tasks),
+                std::mem::take(&mut lifecycle.probes),
             )
         };
         self.ticks = ticks;
+        self.probes = probes;
         for (component, task) in tasks {
             self.executor.spawn(Owner::Component(component), task);
         }
@@ -447,6 +451,7 @@ impl Platform {
             backend: self.backend.as_ref(),
             composition: &self.composition,
             settings: &self.settings,
+            probes: &self.probes,
         };
         (&mut self.plugins, world)
     }

@@ -3,7 +3,7 @@
 
 use super::Pl;
 use crate::BoxError;
-use crate::component::Backend;
+use crate::component::{Backend, Probe};
 use crate::compose::Composition;
 use crate::config::Settings;
 
@@ -16,6 +16,7 @@ pub struct World<'a> {
     pub(crate) backend: &'a dyn Backend,
     pub(crate) composition: &'a Composition,
     pub(crate) settings: &'a Settings,
+    pub(crate) probes: &'a [Probe],
 }
 
 impl std::fmt::Debug for World<'_> {
@@ -45,6 +46,11 @@ impl<'a> World<'a> {
     /// The run's settings.
     pub fn settings(&self) -> &'a Settings {
         self.settings
+    }
+
+    /// Every component's probes (images of what it senses), in binding order.
+    pub fn probes(&self) -> &'a [Probe] {
+        self.probes
     }
 }
 

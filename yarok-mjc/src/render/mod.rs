@@ -32,33 +32,17 @@ pub enum RenderError {
         /// What EGL said.
         reason: String,
     },
-    /// The requested image is larger than the model's offscreen buffer.
+    /// The image size, or the model's multisampling (`visual/quality/@offsamples`), is beyond
+    /// what this OpenGL implementation can allocate for the renderer's offscreen buffer.
     #[error(
-        "{width}x{height} exceeds the model's offscreen buffer of {max_width}x{max_height}; \
-         raise <visual><global offwidth=\"..\" offheight=\"..\"/></visual> in the MJCF"
+        "an offscreen buffer of {width}x{height} with {samples} samples is beyond what this \
+         OpenGL implementation supports ({max_width}x{max_height}, {max_samples} samples); \
+         render smaller images or lower <visual><quality offsamples=\"..\"/></visual>"
     )]
-    TooLarge {
+    BeyondGl {
         /// Requested width in pixels.
         width: u32,
         /// Requested height in pixels.
-        height: u32,
-        /// `visual/global/@offwidth`.
-        max_width: u32,
-        /// `visual/global/@offheight`.
-        max_height: u32,
-    },
-    /// The model's offscreen buffer (`visual/global/@offwidth`, `@offheight`) or its
-    /// multisampling (`visual/quality/@offsamples`) is beyond what this OpenGL implementation can
-    /// allocate.
-    #[error(
-        "the model's offscreen buffer of {width}x{height} with {samples} samples is beyond what \
-         this OpenGL implementation supports ({max_width}x{max_height}, {max_samples} samples); \
-         lower <visual><global offwidth=\"..\" offheight=\"..\"/><quality offsamples=\"..\"/></visual>"
-    )]
-    BeyondGl {
-        /// `visual/global/@offwidth`.
-        width: u32,
-        /// `visual/global/@offheight`.
         height: u32,
         /// `visual/quality/@offsamples` (0 with [`RenderPreset::Fast`]).
         samples: u32,
@@ -111,6 +95,10 @@ pub enum RenderPreset {
     Quality,
     /// No shadows, reflections or multisampling: several times faster on a CPU renderer.
     Fast,
+    /// For cameras whose depth alone is used (a tactile sensor's): as [`RenderPreset::Fast`],
+    /// and the model's textures are not uploaded, which makes the renderer start several times
+    /// faster; colour images come untextured.
+    Depth,
 }
 
 /// Builds a [`Renderer`]; see [`Renderer::builder`].
@@ -123,7 +111,8 @@ pub struct RendererBuilder {
 }
 
 impl RendererBuilder {
-    /// Image size in pixels (default 640×480), at most the model's offscreen buffer.
+    /// Image size in pixels (default 640×480). The renderer's offscreen buffer is this size,
+    /// whatever the model's `visual/global/@offwidth` and `@offheight`.
     pub fn size(mut self, width: u32, height: u32) -> Self {
         (self.width, self.height) = (width, height);
         self
@@ -147,24 +136,13 @@ impl RendererBuilder {
     ///
     /// # Errors
     ///
-    /// [`RenderError::Empty`] or [`RenderError::TooLarge`] for a bad size,
-    /// [`RenderError::BeyondGl`] when the model's offscreen buffer is more than OpenGL can
-    /// allocate, [`RenderError::TooManyGeoms`], [`RenderError::Egl`] when no OpenGL context can be
+    /// [`RenderError::Empty`] for a zero size, [`RenderError::BeyondGl`] when the offscreen
+    /// buffer is more than OpenGL can allocate, [`RenderError::TooManyGeoms`], [`RenderError::Egl`] when no OpenGL context can be
     /// made.
     pub fn build(self, model: &Arc<Model>) -> Result<Renderer, RenderError> {
-        let global = model.raw().vis.global;
-        let (max_width, max_height) = (to_u32(global.offwidth), to_u32(global.offheight));
         let (width, height) = (self.width, self.height);
         if width == 0 || height == 0 {
             return Err(RenderError::Empty { width, height });
-        }
-        if width > max_width || height > max_height {
-            return Err(RenderError::TooLarge {
-                width,
-                height,
-                max_width,
-                max_height,
-            });
         }
         if self.max_geoms > MAX_GEOMS {
             return Err(RenderError::TooManyGeoms {
@@ -173,23 +151,27 @@ impl RendererBuilder {
         }
         let gl = GlContext::new()?;
         let mj = model.mj();
-        // mjr_makeContext reads the multisampling from the model; the fast preset hands it a
-        // shallow copy that asks for none. The copy shares the model's arrays and is only read.
+        // mjr_makeContext reads the offscreen buffer's size and multisampling, and the textures
+        // to upload, from the model: it gets a shallow copy that asks for a buffer of the image's
+        // size, no multisampling unless in quality, and no textures for depth. The copy shares
+        // the model's arrays and is only read.
         let mut context_model = *model.raw();
-        if self.preset == RenderPreset::Fast {
+        context_model.vis.global.offwidth = i32::try_from(width).unwrap_or(i32::MAX);
+        context_model.vis.global.offheight = i32::try_from(height).unwrap_or(i32::MAX);
+        if self.preset != RenderPreset::Quality {
             context_model.vis.quality.offsamples = 0;
         }
+        if self.preset == RenderPreset::Depth {
+            context_model.ntex = 0;
+        }
         // MuJoCo treats a framebuffer it cannot complete as a fatal error (the process aborts),
-        // so the model's buffer is checked against the implementation's limits first.
+        // so the buffer is checked against the implementation's limits first.
         let samples = to_u32(context_model.vis.quality.offsamples);
         let limits = gl.limits()?;
-        if max_width > limits.max_size.0
-            || max_height > limits.max_size.1
-            || samples > limits.max_samples
-        {
+        if width > limits.max_size.0 || height > limits.max_size.1 || samples > limits.max_samples {
             return Err(RenderError::BeyondGl {
-                width: max_width,
-                height: max_height,
+                width,
+                height,
                 samples,
                 max_width: limits.max_size.0,
                 max_height: limits.max_size.1,
@@ -213,7 +195,7 @@ impl RendererBuilder {
             mj.mjr_setBuffer(sys::mjFB_OFFSCREEN as i32, &mut *context);
         }
         context.readDepthMap = sys::mjDEPTH_ZEROFAR as i32;
-        if self.preset == RenderPreset::Fast {
+        if self.preset != RenderPreset::Quality {
             scene.flags[sys::mjRND_SHADOW as usize] = 0;
             scene.flags[sys::mjRND_REFLECTION as usize] = 0;
         }

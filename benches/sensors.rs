@@ -1,13 +1,17 @@
-//! Measures, side by side in one run, tactile sensors in the world: per sensor, ms per frame
+//! Measures, side by side in one run, sensors in the world. Cameras: a `Cam` of 640×480 looking
+//! at a tumble tower, frames a second for colour, for colour and depth from one draw
+//! (`read_rgbd`) and from two, in the quality and fast presets; the start-up of a renderer (OpenGL
+//! context, MuJoCo's render context with the world's textures, first frame) in each preset.
+//! Tactile sensors: per sensor, ms per frame
 //! (a platform tick that makes a frame, less one that does not) split into the depth render (the
-//! sensor's camera alone, fast preset, its own geoms hidden) and the rest (the optical model);
+//! sensor's camera alone, depth preset, its own geoms hidden) and the rest (the optical model);
 //! `DigitWorld` with both DIGITs at 60 Hz as a real-time factor; and the samples a second of
 //! one and of two `TactileRigWorld`s on threads of their own, with llvmpipe's rasteriser
 //! threads and without (`LP_NUM_THREADS=0`, measured in a child process). Targets (on a 2-core
 //! machine): a DIGIT frame ≤ 3 ms; DigitWorld ≥ 2× real time; 2 rigs ≥ 1.7× one.
 //!
 //! ```text
-//! cargo bench --bench tactile_world
+//! cargo bench --bench sensors
 //! ```
 
 use std::cell::Cell;
@@ -15,13 +19,16 @@ use std::rc::Rc;
 use std::sync::{Arc, Barrier};
 use std::time::Instant;
 
+use yarok::components::cameras::Cam;
 use yarok::components::tactile_sensors::{Digit, GelSight2014, GelTip};
-use yarok::components::worlds::{DigitWorld, EmptyWorld, Press, TactileRigWorld};
+use yarok::components::worlds::{DigitWorld, EmptyWorld, Press, TactileRigWorld, TowerWorld};
 use yarok::core::component::ComponentType;
-use yarok::core::compose::compose_configured;
+use yarok::core::compose::{compose, compose_configured};
 use yarok::core::config::RunConfig;
 use yarok::mjc::{Data, DepthImage, Model, RenderPreset, Renderer};
 use yarok::{Component, Declaration};
+
+mod measure;
 
 /// Rounds of each measurement, of which the fastest counts (the least disturbed by the rest of
 /// the machine), and ticks or renders a round.
@@ -90,7 +97,7 @@ fn render_seconds<W: Component>(setting: &str, width: u32, height: u32, reach: f
     let camera = model.camera("sensor/camera").expect("camera");
     let mut renderer = Renderer::builder()
         .size(width, height)
-        .preset(RenderPreset::Fast)
+        .preset(RenderPreset::Depth)
         .build(&model)
         .expect("renderer");
     renderer.set_visible_groups([true, true, true, false, true, true]);
@@ -173,6 +180,100 @@ fn rig_throughput(rigs: usize, presses: usize) -> f64 {
     (rigs * presses) as f64 / (ended - started).as_secs_f64()
 }
 
+/// The tower world with a 640×480 `Cam` 1.5 m away looking at the tower.
+struct CameraWorld;
+
+impl Component for CameraWorld {
+    fn declaration() -> Declaration {
+        Declaration::new("camera_world")
+            .extends::<TowerWorld>()
+            .uses::<Cam>()
+            .default("preset", "quality")
+            .template(
+                r#"<mujoco><worldbody>
+                  <body pos="1.1 -1.1 0.7" xyaxes="0.7071 0.7071 0 -0.2 0.2 0.96">
+                    <cam name="cam" preset="{preset}"/>
+                  </body>
+                </worldbody></mujoco>"#,
+            )
+    }
+}
+
+/// Frames a second of the world's camera in `preset`: colour, colour + depth from one draw, and
+/// from two.
+fn frames_per_second(preset: &str) -> [f64; 3] {
+    let rates = std::rc::Rc::new(std::cell::Cell::new([0.0; 3]));
+    let out = std::rc::Rc::clone(&rates);
+    yarok::platform()
+        .world::<CameraWorld>()
+        .set(&format!("preset=\"{preset}\""))
+        .expect("setting")
+        .behaviour(move |pl| async move {
+            let cam: Cam = pl.get("/cam")?;
+            let times: [_; 3] = measure::mean_times(|variant| match variant {
+                0 => cam.read().map(|_| ()),
+                1 => cam.read_rgbd().map(|_| ()),
+                _ => cam.read().and_then(|_| cam.read_depth()).map(|_| ()),
+            });
+            out.set(times.map(|time| 1.0 / time.as_secs_f64()));
+            Ok(())
+        })
+        .run()
+        .expect("run");
+    rates.get()
+}
+
+/// Milliseconds to build a renderer of the world's camera size in `preset` and draw its first
+/// frame: the fastest of three.
+fn start_up_ms(model: &Arc<Model>, data: &mut Data, preset: RenderPreset) -> f64 {
+    let camera = model.camera("cam/camera").expect("camera");
+    (0..3)
+        .map(|_| {
+            let started = Instant::now();
+            let mut renderer = Renderer::builder()
+                .size(640, 480)
+                .preset(preset)
+                .build(model)
+                .expect("renderer");
+            renderer.render_rgb(data, camera).expect("render");
+            started.elapsed().as_secs_f64() * 1e3
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Prints the cameras' start-up and frame rates.
+fn cameras() {
+    let model = Arc::new(
+        Model::from_composition(&compose::<CameraWorld>().expect("compose")).expect("compile"),
+    );
+    let mut data = Data::new(&model).expect("data");
+    data.forward();
+    let started = Instant::now();
+    let first = Renderer::builder()
+        .size(640, 480)
+        .preset(RenderPreset::Fast)
+        .build(&model)
+        .expect("renderer");
+    let first_ms = started.elapsed().as_secs_f64() * 1e3;
+    drop(first);
+    println!("renderer start-up (ms): the process's first {first_ms:.0} (fast, with EGL's set-up)");
+    for (name, preset) in [
+        ("quality", RenderPreset::Quality),
+        ("fast", RenderPreset::Fast),
+        ("depth", RenderPreset::Depth),
+    ] {
+        println!(
+            "  {name:<8} {:>6.0} (build and first frame)",
+            start_up_ms(&model, &mut data, preset)
+        );
+    }
+    println!("\nCam 640×480, frames/s   colour   colour+depth (one draw)   (two draws)");
+    for preset in ["quality", "fast"] {
+        let [rgb, rgbd, both] = frames_per_second(preset);
+        println!("  {preset:<8} {rgb:>19.1} {rgbd:>14.1} {both:>21.1}");
+    }
+}
+
 /// Prints the rigs' throughput with 1 and with 2 rigs, labelled `how`.
 fn rigs(how: &str) {
     let presses = 150;
@@ -189,7 +290,8 @@ fn main() {
         rigs("LP_NUM_THREADS=0 (llvmpipe rasterises on each rig's thread)");
         return;
     }
-    println!("per frame, each sensor pressed by a sphere, frames every 2 ms tick\n");
+    cameras();
+    println!("\ntactile sensors, per frame, each pressed by a sphere, frames every 2 ms tick\n");
     sensor::<Digit>("DIGIT", (240, 320), 0.018, 0.022);
     sensor::<GelSight2014>("GelSight 2014", (640, 480), 0.034, 0.041);
     sensor::<GelTip>("GelTip", (320, 240), 0.045, 0.048);
