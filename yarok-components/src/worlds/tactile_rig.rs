@@ -25,19 +25,23 @@ use crate::tactile_sensors::{Contact, Digit, GelSight2014, GelTip, TactileSensor
 ///
 /// Paths: `/printer`, `/sensor`. Environment: `sim`.
 ///
-/// ```no_run
-/// use yarok::components::worlds::{Press, TactileRigWorld};
+/// ```
+/// use yarok_components::worlds::{Press, TactileRigWorld};
+/// use yarok_core::runtime::Platform;
+/// use yarok_mjc::{Sim, SimBackend};
 ///
-/// yarok::platform()
+/// Platform::builder()
 ///     .world::<TactileRigWorld>()
+///     .backend::<Sim>(SimBackend::from_settings)
 ///     .behaviour(|pl| async move {
 ///         let rig: TactileRigWorld = pl.get("/")?;
-///         let sample = rig.press(Press { at: [0.002, 0.0], depth: 0.001 }).await?;
-///         println!("{:.2} mm deep", sample.contact.max_indentation * 1e3);
+///         let sample = rig.press(Press { at: [0.0, 0.0], depth: 0.001 }).await?;
+///         assert!((sample.contact.max_indentation - 0.001).abs() < 1e-4);
+///         assert_eq!(sample.image.dimensions(), (320, 240));
 ///         Ok(())
 ///     })
 ///     .run()?;
-/// # Ok::<(), yarok::RuntimeError>(())
+/// # Ok::<(), yarok_core::runtime::RuntimeError>(())
 /// ```
 #[derive(Debug, Clone)]
 pub struct TactileRigWorld {
