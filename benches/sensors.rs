@@ -256,16 +256,25 @@ fn cameras() {
         .expect("renderer");
     let first_ms = started.elapsed().as_secs_f64() * 1e3;
     drop(first);
-    println!("renderer start-up (ms): the process's first {first_ms:.0} (fast, with EGL's set-up)");
+    println!(
+        "renderer start-up, build and first frame (ms); the process's first {first_ms:.0} (fast, \
+         with EGL's set-up)"
+    );
+    println!("           alone (its own OpenGL context)   beside another (the thread's context)");
     for (name, preset) in [
         ("quality", RenderPreset::Quality),
         ("fast", RenderPreset::Fast),
         ("depth", RenderPreset::Depth),
     ] {
-        println!(
-            "  {name:<8} {:>6.0} (build and first frame)",
-            start_up_ms(&model, &mut data, preset)
-        );
+        let alone = start_up_ms(&model, &mut data, preset);
+        let other = Renderer::builder()
+            .size(320, 240)
+            .preset(RenderPreset::Fast)
+            .build(&model)
+            .expect("renderer");
+        let beside = start_up_ms(&model, &mut data, preset);
+        drop(other);
+        println!("  {name:<8} {alone:>18.0} {beside:>38.0}");
     }
     println!("\nCam 640×480, frames/s   colour   colour+depth (one draw)   (two draws)");
     for preset in ["quality", "fast"] {

@@ -161,7 +161,7 @@ fn data_or_camera_of_another_model_is_refused() {
 }
 
 #[test]
-fn two_renderers_on_one_thread_keep_their_own_contexts() {
+fn renderers_sharing_a_thread_keep_their_own_buffers_and_images() {
     let (model, mut data) = scene();
     let camera = model.camera("down").unwrap();
     let mut small = Renderer::builder()
@@ -175,10 +175,23 @@ fn two_renderers_on_one_thread_keep_their_own_contexts() {
         .build(&model)
         .unwrap();
     let first = small.render_rgb(&mut data, camera).unwrap();
-    large.render_rgb(&mut data, camera).unwrap();
+    let large_first = large.render(&mut data, camera).unwrap();
     assert_eq!(small.render_rgb(&mut data, camera).unwrap(), first);
+    // A renderer made while the others live, on the thread's one OpenGL context.
+    let mut quality = Renderer::builder()
+        .size(WIDTH, HEIGHT)
+        .preset(RenderPreset::Quality)
+        .build(&model)
+        .unwrap();
+    quality.render_rgb(&mut data, camera).unwrap();
+    assert!(large.render(&mut data, camera).unwrap() == large_first);
     drop(large);
     assert_eq!(small.render_rgb(&mut data, camera).unwrap(), first);
+    drop(small);
+    assert_eq!(
+        quality.render_rgb(&mut data, camera).unwrap().dimensions(),
+        (WIDTH, HEIGHT)
+    );
 }
 
 #[test]

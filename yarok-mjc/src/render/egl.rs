@@ -1,7 +1,9 @@
 //! A headless OpenGL context through EGL: the device platform first, Mesa's surfaceless
 //! platform as the fallback. Works with Mesa's llvmpipe on machines without a GPU.
 
+use std::cell::RefCell;
 use std::ffi::c_void;
+use std::rc::{Rc, Weak};
 use std::sync::OnceLock;
 
 use khronos_egl as egl;
@@ -59,6 +61,11 @@ fn egl_library() -> Result<&'static Egl, RenderError> {
     .map_err(Clone::clone)
 }
 
+thread_local! {
+    /// The thread's OpenGL context while any renderer of the thread holds it.
+    static THREAD_CONTEXT: RefCell<Weak<GlContext>> = const { RefCell::new(Weak::new()) };
+}
+
 /// An OpenGL (compatibility profile) context with no surface, current on the creating thread.
 pub(super) struct GlContext {
     egl: &'static Egl,
@@ -67,7 +74,22 @@ pub(super) struct GlContext {
 }
 
 impl GlContext {
-    pub(super) fn new() -> Result<Self, RenderError> {
+    /// The calling thread's context, current: the one its other renderers hold, or a new one.
+    /// Renderers of a thread share it because an OpenGL implementation compiles its shaders
+    /// per context: on Mesa's llvmpipe a second renderer then starts in a fraction of the time.
+    pub(super) fn for_this_thread() -> Result<Rc<Self>, RenderError> {
+        THREAD_CONTEXT.with(|shared| {
+            if let Some(gl) = shared.borrow().upgrade() {
+                gl.make_current()?;
+                return Ok(gl);
+            }
+            let gl = Rc::new(Self::new()?);
+            *shared.borrow_mut() = Rc::downgrade(&gl);
+            Ok(gl)
+        })
+    }
+
+    fn new() -> Result<Self, RenderError> {
         let egl = egl_library()?;
         let display = open_display(egl)?;
         let config = egl

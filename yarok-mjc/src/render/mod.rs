@@ -5,6 +5,7 @@ mod reach;
 
 use std::fmt;
 use std::marker::PhantomData;
+use std::rc::Rc;
 use std::sync::Arc;
 
 use image::{ImageBuffer, Luma, RgbImage};
@@ -149,7 +150,7 @@ impl RendererBuilder {
                 requested: self.max_geoms,
             });
         }
-        let gl = GlContext::new()?;
+        let gl = GlContext::for_this_thread()?;
         let mj = model.mj();
         // mjr_makeContext reads the offscreen buffer's size and multisampling, and the textures
         // to upload, from the model: it gets a shallow copy that asks for a buffer of the image's
@@ -252,7 +253,7 @@ impl RendererBuilder {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub struct Renderer {
-    gl: GlContext,
+    gl: Rc<GlContext>,
     scene: Box<sys::mjvScene>,
     context: Box<sys::mjrContext>,
     option: sys::mjvOption,
@@ -413,8 +414,10 @@ impl Renderer {
         if let Some(reach) = self.reach {
             reach::keep_within(&mut self.scene, reach);
         }
-        // SAFETY: as above; the scene holds a subset of the geoms mjv_updateScene made.
+        // SAFETY: as above; the scene holds a subset of the geoms mjv_updateScene made. The
+        // thread's other renderers share the GL context, so this one binds its own buffer first.
         unsafe {
+            mj.mjr_setBuffer(sys::mjFB_OFFSCREEN as i32, &mut *self.context);
             mj.mjr_render(viewport, &mut *self.scene, &*self.context);
             mj.mjr_readPixels(rgb, depth, viewport, &*self.context);
         }
