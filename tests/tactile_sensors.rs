@@ -428,3 +428,23 @@ fn plugins_see_the_sensors_probes() {
         ]
     );
 }
+
+#[test]
+fn the_gel_geometry_of_the_optical_model_cannot_be_changed() {
+    let error = yarok::platform()
+        .world::<PressWorld>()
+        .set("/digit/gel_face=0.02")
+        .unwrap()
+        .behaviour(|_| async { Ok(()) })
+        .run()
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("/digit") && error.contains("gel_face") && error.contains("0.018"),
+        "{error}"
+    );
+    // The housing is the sensor's own and may change.
+    let (_, contact) =
+        first_frame::<PressWorld, Digit>("/digit", &["/digit/housing=[0.015, 0.012]"]);
+    assert!(contact.in_contact);
+}

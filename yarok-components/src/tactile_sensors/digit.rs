@@ -23,7 +23,10 @@ tactile_sensor_component! {
     ///
     /// Tag `digit`; config `pos` and `quat` (placement; it senses along its +z), `fps` (default 60,
     /// the DIGIT's QVGA rate), `noise` (the gel's texture, default on, seeded from the platform's
-    /// seed). Mount it on a gripper pad with `parent=` and a `quat` that turns +z inward.
+    /// seed), `parallel` (its model across threads), `housing` (half sizes, m). Mount it on a
+    /// gripper pad with `parent=` and a `quat` that turns +z inward. The gel's and camera's
+    /// geometry (`gel_face`, `thickness`, `gel`, `fovy`) is the optical model's and cannot be
+    /// set.
     ///
     /// Environments: `sim`; `mock` (always the untouched gel).
     Digit, DIGIT

@@ -23,7 +23,10 @@ tactile_sensor_component! {
     /// `contact()`).
     ///
     /// Tag `gelsight2014`; config `pos` and `quat` (placement; it senses along its +z), `fps`
-    /// (default 30), `noise` (the gel's texture, default on, seeded from the platform's seed).
+    /// (default 30), `noise` (the gel's texture, default on, seeded from the platform's seed),
+    /// `parallel` (its model across threads), `housing` (half sizes, m). The gel's and camera's
+    /// geometry (`gel_face`, `thickness`, `gel`, `fovy`) is the optical model's and cannot be
+    /// set.
     ///
     /// Environments: `sim`; `mock` (always the untouched gel).
     GelSight2014, GELSIGHT_2014

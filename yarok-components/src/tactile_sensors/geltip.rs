@@ -83,6 +83,15 @@ impl SensorKind for Kind {
         (WIDTH, HEIGHT)
     }
 
+    fn geometry(&self) -> Vec<(&'static str, Vec<f64>)> {
+        vec![
+            ("radius", vec![RADIUS]),
+            ("start", vec![START]),
+            ("tip", vec![TIP]),
+            ("fovy", vec![FOVY]),
+        ]
+    }
+
     fn reach(&self) -> f64 {
         TIP.hypot(RADIUS)
     }
@@ -160,8 +169,10 @@ tactile_sensor_component! {
     /// frames at 30 fps from the GelTip model (light fields computed from this geometry, the
     /// "plane" method, diffuse light clamped) over the depth its base camera (70°) renders.
     ///
-    /// Tag `geltip`; config `pos` and `quat` (placement; its axis is +z), `fps`. The model has no
-    /// texture noise, so `noise` changes nothing.
+    /// Tag `geltip`; config `pos` and `quat` (placement; its axis is +z), `fps`, `parallel` (its
+    /// model across threads). The model has no texture noise, so `noise` changes nothing; the
+    /// membrane's and camera's geometry (`radius`, `start`, `tip`, `fovy`) is the model's and
+    /// cannot be set.
     ///
     /// Environments: `sim`; `mock` (always the untouched membrane).
     GelTip, GELTIP

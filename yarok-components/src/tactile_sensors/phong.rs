@@ -64,6 +64,15 @@ impl SensorKind for Spec {
         (self.width, self.height)
     }
 
+    fn geometry(&self) -> Vec<(&'static str, Vec<f64>)> {
+        vec![
+            ("gel_face", vec![self.gel_face]),
+            ("thickness", vec![self.thickness]),
+            ("gel", self.gel.to_vec()),
+            ("fovy", vec![self.fovy()]),
+        ]
+    }
+
     fn reach(&self) -> f64 {
         let pixel = self.params().px2m_ratio;
         let half = [self.width, self.height].map(|side| f64::from(side) / 2.0 * pixel);

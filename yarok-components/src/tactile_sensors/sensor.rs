@@ -61,6 +61,9 @@ pub(super) trait SensorKind {
     /// The farthest any point of the untouched gel lies from the camera (metres): nothing
     /// beyond it can show in the image.
     fn reach(&self) -> f64;
+    /// The config keys the optical model fixes (the gel's and the camera's geometry), with
+    /// their values.
+    fn geometry(&self) -> Vec<(&'static str, Vec<f64>)>;
     /// The optics, with the gel's texture noise seeded by `seed` (none when `noise` is off).
     ///
     /// # Errors
@@ -175,6 +178,7 @@ impl TactileSensor {
         if !(fps > 0.0 && fps.is_finite()) {
             return Err(bind.error(format!("fps must be a positive number, not {fps}")));
         }
+        check_geometry(kind, bind)?;
         let noise: bool = bind.config_value("noise")?;
         let parallel: bool = bind.config_value("parallel")?;
         #[cfg_attr(not(feature = "parallel"), expect(unused_mut))]
@@ -227,6 +231,28 @@ impl TactileSensor {
         });
         Ok(sensor)
     }
+}
+
+/// Refuses config that changes the geometry the optical model is made for.
+fn check_geometry<E: Environment>(kind: &dyn SensorKind, bind: &Bind<E>) -> Result<(), BindError> {
+    for (key, fixed) in kind.geometry() {
+        let set: Vec<f64> = match fixed.len() {
+            1 => vec![bind.config_value::<f64>(key)?],
+            _ => bind.config_value(key)?,
+        };
+        let same = set.len() == fixed.len()
+            && set
+                .iter()
+                .zip(&fixed)
+                .all(|(set, fixed)| (set - fixed).abs() <= 1e-12 * fixed.abs().max(1.0));
+        if !same {
+            return Err(bind.error(format!(
+                "{key} = {set:?}, but the optical model is made for {fixed:?}: the gel's and the \
+                 camera's geometry cannot be changed"
+            )));
+        }
+    }
+    Ok(())
 }
 
 impl Inner {
