@@ -4,8 +4,10 @@
 //! async drivers generic over their transport (Marlin G-code over serial, the UR controller's
 //! URScript and RTDE, the Robotiq gripper socket, cameras).
 //!
-//! This crate is being built up issue by issue; today it holds the hardware backend.
+//! This crate is being built up issue by issue; today it holds the hardware backend and the
+//! Marlin driver.
 
 mod backend;
+pub mod marlin;
 
 pub use backend::{DEFAULT_TICK_HZ, HardwareBackend, InvalidTickRate, Real};

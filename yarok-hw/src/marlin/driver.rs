@@ -1,0 +1,395 @@
+//! [`Marlin`]: an async G-code driver for Marlin printers, generic over its transport.
+
+use std::time::Duration;
+
+use tokio::io::{AsyncBufReadExt, AsyncRead, AsyncWrite, AsyncWriteExt, BufReader};
+use tokio::time::Instant;
+
+use super::MarlinError;
+use super::line::numbered_line;
+use super::reply::{Position, Reply};
+
+/// The longest line kept from the printer; the rest of a longer one is dropped.
+const MAX_LINE: usize = 512;
+
+/// How the driver talks to a printer; every wait is bounded by one of these.
+#[derive(Debug, Clone)]
+#[non_exhaustive]
+pub struct MarlinSettings {
+    /// The printer's name in errors (its port).
+    pub name: String,
+    /// The longest the printer may send nothing at all, not even a keep-alive (Marlin sends
+    /// `busy` every 2 s during long commands).
+    pub silence: Duration,
+    /// How long the board may take to boot after the port opens (many reset on open).
+    pub boot_timeout: Duration,
+    /// How long the line must stay quiet for the boot to count as over.
+    pub boot_quiet: Duration,
+    /// The longest an ordinary command may take to be acknowledged.
+    pub command_timeout: Duration,
+    /// The longest homing (`G28`) or finishing the moves (`M400`) may take.
+    pub motion_timeout: Duration,
+    /// How many times in a row a command may be asked for again before the line counts as
+    /// broken.
+    pub max_resends: u32,
+}
+
+impl MarlinSettings {
+    /// Defaults for the printer called `name`: 5 s of silence, 10 s to boot (quiet for 1.5 s),
+    /// 10 s a command, 5 min for homing and moves, 8 resends.
+    pub fn new(name: impl Into<String>) -> Self {
+        Self {
+            name: name.into(),
+            silence: Duration::from_secs(5),
+            boot_timeout: Duration::from_secs(10),
+            boot_quiet: Duration::from_millis(1500),
+            command_timeout: Duration::from_secs(10),
+            motion_timeout: Duration::from_secs(300),
+            max_resends: 8,
+        }
+    }
+}
+
+/// What the printer answered to a command besides its `ok`.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[non_exhaustive]
+pub struct Answer {
+    /// A position it reported (`M114`), in either firmware's format.
+    pub position: Option<Position>,
+}
+
+/// A command sent whose answer is still to be read.
+#[derive(Debug)]
+struct InFlight {
+    number: u64,
+    command: String,
+    limit: Duration,
+    deadline: Instant,
+    /// The line the printer asked for again, to send once it acknowledges the bad one.
+    resend: Option<u64>,
+    resends: u32,
+    error: Option<String>,
+    position: Option<Position>,
+}
+
+/// An async driver for a Marlin printer over any byte transport (a serial port, a pseudo-
+/// terminal, an in-memory pipe in tests): numbered, checksummed lines, one command in flight,
+/// `Resend` handled, keep-alives (`busy`, `wait`) tolerated, errors and halts surfaced to the
+/// caller, and every wait bounded by [`MarlinSettings`] (in tokio's time, which is platform
+/// time on hardware).
+///
+/// `ok` means a move was *queued*; [`Marlin::finish_moves`] (`M400`) is the arrival barrier.
+///
+/// # Cancel safety
+///
+/// Every method is cancel safe: the answer to a command whose future was dropped after it was
+/// sent is read (within its time limit) before the next command goes out, and a partly read
+/// line is kept for the next read.
+#[derive(Debug)]
+pub struct Marlin<T> {
+    stream: BufReader<T>,
+    settings: MarlinSettings,
+    next_number: u64,
+    in_flight: Option<InFlight>,
+    partial: Vec<u8>,
+    halted: Option<String>,
+}
+
+impl<T: AsyncRead + AsyncWrite + Unpin> Marlin<T> {
+    /// Starts talking to a printer over `transport`: lets the board boot (until the line is
+    /// quiet for [`MarlinSettings::boot_quiet`] or the printer says `wait`, within
+    /// [`MarlinSettings::boot_timeout`]), then resets the line numbers (`M110 N0`).
+    ///
+    /// # Errors
+    ///
+    /// [`MarlinError`] when the printer does not acknowledge `M110` in time, or the transport
+    /// fails.
+    pub async fn connect(transport: T, settings: MarlinSettings) -> Result<Self, MarlinError> {
+        let mut marlin = Self {
+            stream: BufReader::new(transport),
+            settings,
+            next_number: 0,
+            in_flight: None,
+            partial: Vec::new(),
+            halted: None,
+        };
+        marlin.let_boot().await?;
+        marlin.command("M110 N0").await?;
+        Ok(marlin)
+    }
+
+    /// The settings it was made with.
+    pub fn settings(&self) -> &MarlinSettings {
+        &self.settings
+    }
+
+    /// Homes every axis (`G28`), then sets absolute coordinates (`G90`).
+    ///
+    /// # Errors
+    ///
+    /// [`MarlinError`] naming the printer and the command.
+    pub async fn home(&mut self) -> Result<(), MarlinError> {
+        self.command("G28").await?;
+        self.command("G90").await.map(drop)
+    }
+
+    /// Queues a straight move of the head to `[x, y, z]` millimetres at `feed` mm/s (`G1`,
+    /// absolute coordinates as after [`Marlin::home`]); returns once the printer accepted it,
+    /// not when the head arrives.
+    ///
+    /// # Errors
+    ///
+    /// [`MarlinError`]; a non-finite coordinate or feed is an
+    /// [`MarlinError::InvalidCommand`].
+    pub async fn move_to(&mut self, [x, y, z]: [f64; 3], feed: f64) -> Result<(), MarlinError> {
+        let command = format!("G1 X{x:.3} Y{y:.3} Z{z:.3} F{:.0}", feed * 60.0);
+        if ![x, y, z, feed].iter().all(|v| v.is_finite()) || feed <= 0.0 {
+            return Err(MarlinError::InvalidCommand { command });
+        }
+        self.command(&command).await.map(drop)
+    }
+
+    /// Waits until every queued move has finished (`M400`).
+    ///
+    /// # Errors
+    ///
+    /// [`MarlinError`], [`MarlinError::Timeout`] after [`MarlinSettings::motion_timeout`].
+    pub async fn finish_moves(&mut self) -> Result<(), MarlinError> {
+        self.command("M400").await.map(drop)
+    }
+
+    /// The head's position (`M114`), in stock Marlin's format or the VirtualPrinter's. Marlin
+    /// 2 reports the planned position: call [`Marlin::finish_moves`] first for where the head
+    /// is.
+    ///
+    /// # Errors
+    ///
+    /// [`MarlinError`], [`MarlinError::NoPosition`] when the answer holds none.
+    pub async fn position(&mut self) -> Result<Position, MarlinError> {
+        let answer = self.command("M114").await?;
+        answer.position.ok_or_else(|| MarlinError::NoPosition {
+            printer: self.settings.name.clone(),
+            command: "M114".into(),
+        })
+    }
+
+    /// Stops every move at once, dropping the queued ones (`M410`): what to send at shutdown.
+    ///
+    /// # Errors
+    ///
+    /// [`MarlinError`].
+    pub async fn quick_stop(&mut self) -> Result<(), MarlinError> {
+        self.command("M410").await.map(drop)
+    }
+
+    /// Sends `command` as the next numbered line and waits for its `ok`, sending it again when
+    /// the printer asks; returns what came with it.
+    ///
+    /// # Errors
+    ///
+    /// [`MarlinError`] naming the printer and the command: the printer's own error, a halt, a
+    /// restart, silence, a time limit, a resend storm, or the transport's failure.
+    pub async fn command(&mut self, command: &str) -> Result<Answer, MarlinError> {
+        if self.in_flight.is_some() {
+            // A dropped command's answer comes first; its outcome was nobody's to see.
+            let _earlier = self.answer().await;
+        }
+        if let Some(message) = &self.halted {
+            return Err(MarlinError::Halted {
+                printer: self.settings.name.clone(),
+                message: message.clone(),
+            });
+        }
+        let number = self.next_number;
+        let line = numbered_line(number, command)?;
+        let limit = if matches!(command.split_whitespace().next(), Some("G28" | "M400")) {
+            self.settings.motion_timeout
+        } else {
+            self.settings.command_timeout
+        };
+        self.next_number += 1;
+        self.in_flight = Some(InFlight {
+            number,
+            command: command.to_owned(),
+            limit,
+            deadline: Instant::now() + limit,
+            resend: None,
+            resends: 0,
+            error: None,
+            position: None,
+        });
+        self.write(&line).await?;
+        self.answer().await
+    }
+
+    /// Reads until the command in flight is answered.
+    async fn answer(&mut self) -> Result<Answer, MarlinError> {
+        let result = self.read_answer().await;
+        self.in_flight = None;
+        result
+    }
+
+    async fn read_answer(&mut self) -> Result<Answer, MarlinError> {
+        loop {
+            let line = self.next_line().await?;
+            let printer = self.settings.name.clone();
+            let Some(sent) = self.in_flight.as_mut() else {
+                return Ok(Answer::default());
+            };
+            match Reply::parse(&line) {
+                Reply::Ok { position } => {
+                    if let Some(number) = sent.resend.take() {
+                        // This `ok` acknowledges the line that was refused; now send it again.
+                        let line = numbered_line(number, &sent.command)?;
+                        sent.number = number;
+                        self.next_number = number + 1;
+                        self.write(&line).await?;
+                        continue;
+                    }
+                    if let Some(message) = sent.error.take() {
+                        return Err(MarlinError::Printer {
+                            printer,
+                            command: sent.command.clone(),
+                            message,
+                        });
+                    }
+                    return Ok(Answer {
+                        position: position.or(sent.position),
+                    });
+                }
+                Reply::Resend(number) => {
+                    sent.resends += 1;
+                    if sent.resends > self.settings.max_resends {
+                        return Err(MarlinError::ResendStorm {
+                            printer,
+                            command: sent.command.clone(),
+                            resends: sent.resends,
+                        });
+                    }
+                    // The error that came with it was about the line, not the command.
+                    sent.error = None;
+                    sent.resend = Some(number);
+                }
+                Reply::Position(position) => sent.position = Some(position),
+                Reply::Error(message) => sent.error = Some(message),
+                Reply::Halted(message) => {
+                    self.halted = Some(message.clone());
+                    return Err(MarlinError::Halted { printer, message });
+                }
+                Reply::Start => {
+                    self.next_number = 0;
+                    return Err(MarlinError::Restarted {
+                        printer,
+                        command: sent.command.clone(),
+                    });
+                }
+                Reply::Busy | Reply::Wait | Reply::Other => {}
+            }
+        }
+    }
+
+    /// The next line for the command in flight, within its deadline and the silence limit.
+    async fn next_line(&mut self) -> Result<String, MarlinError> {
+        let (command, limit, deadline) = self.in_flight.as_ref().map_or_else(
+            || (String::new(), Duration::ZERO, Instant::now()),
+            |sent| (sent.command.clone(), sent.limit, sent.deadline),
+        );
+        let silence = self.settings.silence;
+        let now = Instant::now();
+        let printer = self.settings.name.clone();
+        let timeout = |command| MarlinError::Timeout {
+            printer: printer.clone(),
+            command,
+            seconds: limit.as_secs_f64(),
+        };
+        if now >= deadline {
+            return Err(timeout(command));
+        }
+        let wait = silence.min(deadline - now);
+        match tokio::time::timeout(wait, self.read_line()).await {
+            Ok(Ok(Some(line))) => Ok(line),
+            Ok(Ok(None)) => Err(MarlinError::Closed {
+                printer: self.settings.name.clone(),
+                command,
+            }),
+            Ok(Err(source)) => Err(MarlinError::Io {
+                printer: self.settings.name.clone(),
+                source,
+            }),
+            Err(_) if wait < silence => Err(timeout(command)),
+            Err(_) => Err(MarlinError::Silent {
+                printer: self.settings.name.clone(),
+                command,
+                seconds: silence.as_secs_f64(),
+            }),
+        }
+    }
+
+    /// Reads boot lines until the line is quiet, the printer says `wait`, or the boot time is
+    /// up.
+    async fn let_boot(&mut self) -> Result<(), MarlinError> {
+        let until = Instant::now() + self.settings.boot_timeout;
+        loop {
+            let now = Instant::now();
+            if now >= until {
+                return Ok(());
+            }
+            let quiet = self.settings.boot_quiet.min(until - now);
+            let line = match tokio::time::timeout(quiet, self.read_line()).await {
+                Err(_) => return Ok(()),
+                Ok(line) => line.map_err(|source| MarlinError::Io {
+                    printer: self.settings.name.clone(),
+                    source,
+                })?,
+            };
+            match line.as_deref().map(Reply::parse) {
+                None => {
+                    return Err(MarlinError::Closed {
+                        printer: self.settings.name.clone(),
+                        command: "start-up".into(),
+                    });
+                }
+                Some(Reply::Wait) => return Ok(()),
+                Some(_) => {}
+            }
+        }
+    }
+
+    /// The next line, without its ending, lossily decoded and cut at [`MAX_LINE`] bytes;
+    /// `None` at the end of the stream. Cancel safe: a partly read line stays in `partial`.
+    async fn read_line(&mut self) -> std::io::Result<Option<String>> {
+        loop {
+            let available = self.stream.fill_buf().await?;
+            if available.is_empty() {
+                return Ok(None);
+            }
+            let (taken, ended) = match available.iter().position(|b| *b == b'\n') {
+                Some(end) => (end + 1, true),
+                None => (available.len(), false),
+            };
+            let room = MAX_LINE.saturating_sub(self.partial.len());
+            self.partial
+                .extend_from_slice(&available[..taken.min(room)]);
+            self.stream.consume(taken);
+            if ended {
+                let line = String::from_utf8_lossy(&self.partial)
+                    .trim_end_matches(['\r', '\n'])
+                    .to_owned();
+                self.partial.clear();
+                return Ok(Some(line));
+            }
+        }
+    }
+
+    async fn write(&mut self, line: &[u8]) -> Result<(), MarlinError> {
+        let stream = self.stream.get_mut();
+        let written = async {
+            stream.write_all(line).await?;
+            stream.flush().await
+        };
+        written.await.map_err(|source| MarlinError::Io {
+            printer: self.settings.name.clone(),
+            source,
+        })
+    }
+}

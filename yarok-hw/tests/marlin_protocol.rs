@@ -1,0 +1,323 @@
+//! The Marlin driver against scripted printers, byte for byte: start-up, homing with
+//! keep-alives, moves, the arrival barrier, positions in both firmwares' formats, resends,
+//! errors, halts, restarts, silence, time limits, a closed line and a dropped command. Time is
+//! tokio's paused clock, so the time limits pass instantly.
+
+use std::time::Duration;
+
+use tokio::io::{AsyncBufReadExt, AsyncWriteExt, BufReader, DuplexStream};
+use yarok_hw::marlin::{Marlin, MarlinError, MarlinSettings, Position};
+
+/// One step of a scripted printer.
+enum Step {
+    /// The next line the driver must send, byte for byte (without the newline).
+    Expect(&'static str),
+    /// Lines the printer sends.
+    Send(&'static [&'static str]),
+    /// Raw bytes the printer sends.
+    Bytes(&'static [u8]),
+    /// Seconds the printer lets pass.
+    Sleep(f64),
+    /// The printer goes away.
+    Close,
+}
+
+use Step::{Bytes, Close, Expect, Send, Sleep};
+
+/// Plays `script` as the printer on `io`; panics (failing the test) on an unexpected line.
+async fn printer(io: DuplexStream, script: Vec<Step>) {
+    let mut io = BufReader::new(io);
+    for step in script {
+        match step {
+            Expect(expected) => {
+                let mut line = String::new();
+                io.read_line(&mut line).await.unwrap();
+                assert_eq!(line, format!("{expected}\n"), "the driver sent");
+            }
+            Send(lines) => {
+                for line in lines {
+                    io.get_mut()
+                        .write_all(format!("{line}\n").as_bytes())
+                        .await
+                        .unwrap();
+                }
+            }
+            Bytes(bytes) => io.get_mut().write_all(bytes).await.unwrap(),
+            Sleep(seconds) => tokio::time::sleep(Duration::from_secs_f64(seconds)).await,
+            Close => return,
+        }
+    }
+    // Keep the line open until the driver is done with it.
+    let mut rest = String::new();
+    let _ = io.read_line(&mut rest).await;
+}
+
+/// A driver connected to a printer playing `script` after its boot (`start`, an `echo:` line,
+/// then quiet) and the `M110` handshake.
+async fn connected(script: Vec<Step>) -> (Marlin<DuplexStream>, tokio::task::JoinHandle<()>) {
+    let (ours, theirs) = tokio::io::duplex(4096);
+    let mut whole = vec![
+        Send(&[
+            "start",
+            "echo:Marlin 2.1.2",
+            "echo: Last Updated: 2023-01-01",
+        ]),
+        Expect("N0 M110 N0*125"),
+        Send(&["ok"]),
+    ];
+    whole.extend(script);
+    let printer = tokio::spawn(printer(theirs, whole));
+    let marlin = Marlin::connect(ours, MarlinSettings::new("/dev/ttyTEST"))
+        .await
+        .unwrap();
+    (marlin, printer)
+}
+
+#[tokio::test(start_paused = true)]
+async fn homing_with_keepalives_moves_and_the_arrival_barrier() {
+    let (mut marlin, printer) = connected(vec![
+        Expect("N1 G28*18"),
+        Sleep(2.0),
+        Send(&["echo:busy: processing"]),
+        Sleep(2.0),
+        Send(&[
+            "echo:busy: processing",
+            " T:21.30 /0.00 B:21.30 /0.00 @:0 B@:0",
+        ]),
+        Sleep(2.0),
+        Send(&["ok"]),
+        Expect("N2 G90*18"),
+        Send(&["echo:Unknown command: \"G90\"", "ok"]),
+        Expect("N3 G1 X10.000 Y20.000 Z5.000 F3000*29"),
+        Send(&["ok N3 P15 B3"]),
+        Expect("N4 M400*35"),
+        Sleep(3.0),
+        Send(&["wait", "ok"]),
+        Expect("N5 M114*34"),
+        Send(&[
+            "X:10.00 Y:20.00 Z:5.00 E:0.00 Count X:800 Y:1600 Z:2000",
+            "ok",
+        ]),
+        Expect("N6 M410*32"),
+        Send(&["ok"]),
+    ])
+    .await;
+    marlin.home().await.unwrap();
+    marlin.move_to([10.0, 20.0, 5.0], 50.0).await.unwrap();
+    marlin.finish_moves().await.unwrap();
+    let at = marlin.position().await.unwrap();
+    assert_eq!(
+        at,
+        Position {
+            x: 10.0,
+            y: 20.0,
+            z: 5.0
+        }
+    );
+    marlin.quick_stop().await.unwrap();
+    drop(marlin);
+    printer.await.unwrap();
+}
+
+#[tokio::test(start_paused = true)]
+async fn the_virtual_printers_position_comes_on_its_ok_line() {
+    let (mut marlin, printer) = connected(vec![
+        Expect("N1 M114*38"),
+        Send(&["ok X:10.0 Y:20.0 Z:5.0 E:0 Count: A:1000 B:2000 C:500"]),
+        Expect("N2 M105*37"),
+        Send(&["ok T:21.30/ 0.00 B:21.30/ 0.00 @:64"]),
+    ])
+    .await;
+    assert_eq!(
+        marlin.position().await.unwrap(),
+        Position {
+            x: 10.0,
+            y: 20.0,
+            z: 5.0
+        }
+    );
+    let answer = marlin.command("M105").await.unwrap();
+    assert_eq!(answer.position, None, "a temperature report is no position");
+    drop(marlin);
+    printer.await.unwrap();
+}
+
+#[tokio::test(start_paused = true)]
+async fn a_refused_line_is_sent_again_after_the_printer_acknowledges_it() {
+    let (mut marlin, printer) = connected(vec![
+        Expect("N1 G28*18"),
+        // Stock Marlin's form, then the VirtualPrinter's.
+        Send(&["Error:checksum mismatch, Last Line: 0", "Resend: 1", "ok"]),
+        Expect("N1 G28*18"),
+        Send(&["Error: expected line 1 got 2", "Resend:1", "ok"]),
+        Expect("N1 G28*18"),
+        Send(&["ok"]),
+        Expect("N2 G90*18"),
+        Send(&["ok"]),
+    ])
+    .await;
+    marlin.home().await.unwrap();
+    drop(marlin);
+    printer.await.unwrap();
+}
+
+#[tokio::test(start_paused = true)]
+async fn a_resend_storm_is_an_error_naming_the_command() {
+    let mut script = vec![Expect("N1 M114*38")];
+    for _ in 0..9 {
+        script.push(Send(&["Resend: 1", "ok"]));
+        script.push(Expect("N1 M114*38"));
+    }
+    let (mut marlin, printer) = connected(script).await;
+    let error = marlin.position().await.unwrap_err();
+    assert!(
+        matches!(&error, MarlinError::ResendStorm { command, resends: 9, .. } if command == "M114"),
+        "{error}"
+    );
+    drop(marlin);
+    printer.abort();
+}
+
+#[tokio::test(start_paused = true)]
+async fn the_printers_errors_and_halts_reach_the_caller() {
+    let (mut marlin, printer) = connected(vec![
+        Expect("N1 G1 X1.000 Y2.000 Z3.000 F1200*25"),
+        Send(&["!! Move out of range", "ok"]),
+        Expect("N2 M400*37"),
+        Send(&[
+            "Error:Thermal Runaway, system stopped! Heater_ID: 0",
+            "Error:Printer halted. kill() called!",
+        ]),
+    ])
+    .await;
+    let error = marlin.move_to([1.0, 2.0, 3.0], 20.0).await.unwrap_err();
+    assert!(
+        matches!(&error, MarlinError::Printer { message, .. } if message == "Move out of range"),
+        "{error}"
+    );
+    assert!(error.to_string().contains("/dev/ttyTEST") && error.to_string().contains("G1 X1"));
+    let error = marlin.finish_moves().await.unwrap_err();
+    assert!(matches!(error, MarlinError::Halted { .. }), "{error}");
+    // Halted: nothing more is sent.
+    let error = marlin.position().await.unwrap_err();
+    assert!(matches!(error, MarlinError::Halted { .. }), "{error}");
+    drop(marlin);
+    printer.await.unwrap();
+}
+
+#[tokio::test(start_paused = true)]
+async fn silence_time_limits_restarts_and_a_closed_line_are_errors_not_hangs() {
+    // Silent: no answer at all.
+    let (mut marlin, printer) = connected(vec![Expect("N1 M114*38")]).await;
+    let started = tokio::time::Instant::now();
+    let error = marlin.position().await.unwrap_err();
+    assert!(matches!(error, MarlinError::Silent { .. }), "{error}");
+    assert_eq!(started.elapsed(), Duration::from_secs(5));
+    drop(marlin);
+    printer.await.unwrap();
+
+    // Busy forever: the command's time limit (10 s) ends it.
+    let mut script = vec![Expect("N1 M114*38")];
+    for _ in 0..10 {
+        script.push(Sleep(2.0));
+        script.push(Send(&["echo:busy: processing"]));
+    }
+    let (mut marlin, printer) = connected(script).await;
+    let started = tokio::time::Instant::now();
+    let error = marlin.position().await.unwrap_err();
+    assert!(matches!(error, MarlinError::Timeout { .. }), "{error}");
+    assert_eq!(started.elapsed(), Duration::from_secs(10));
+    drop(marlin);
+    printer.abort();
+
+    // Restarted mid-command, and unplugged.
+    let (mut marlin, printer) = connected(vec![
+        Expect("N1 M400*38"),
+        Send(&["start"]),
+        Expect("N0 M110 N0*125"),
+        Close,
+    ])
+    .await;
+    let error = marlin.finish_moves().await.unwrap_err();
+    assert!(matches!(error, MarlinError::Restarted { .. }), "{error}");
+    let error = marlin.command("M110 N0").await.unwrap_err();
+    assert!(matches!(error, MarlinError::Closed { .. }), "{error}");
+    printer.await.unwrap();
+}
+
+#[tokio::test(start_paused = true)]
+async fn a_dropped_commands_answer_is_read_before_the_next_command() {
+    let (mut marlin, printer) = connected(vec![
+        Expect("N1 M400*38"),
+        Sleep(3.0),
+        Send(&["ok"]),
+        Expect("N2 M114*37"),
+        Send(&["X:1.00 Y:2.00 Z:3.00 E:0.00 Count X:80 Y:160 Z:1200", "ok"]),
+    ])
+    .await;
+    let cut = tokio::time::timeout(Duration::from_secs(1), marlin.finish_moves()).await;
+    assert!(cut.is_err(), "M400 answered before its ok");
+    assert_eq!(
+        marlin.position().await.unwrap(),
+        Position {
+            x: 1.0,
+            y: 2.0,
+            z: 3.0
+        }
+    );
+    drop(marlin);
+    printer.await.unwrap();
+}
+
+#[tokio::test(start_paused = true)]
+async fn commands_the_line_format_cannot_carry_are_refused_unsent() {
+    let (mut marlin, printer) =
+        connected(vec![Expect("N1 M114*38"), Send(&["ok X:0 Y:0 Z:0"])]).await;
+    for bad in [
+        "",
+        "G1 X1*5",
+        "M117 hi\nG28",
+        "M117 ünïcode",
+        "G1 X1 ; comment",
+    ] {
+        let error = marlin.command(bad).await.unwrap_err();
+        assert!(
+            matches!(error, MarlinError::InvalidCommand { .. }),
+            "{bad:?}: {error}"
+        );
+    }
+    let error = marlin
+        .move_to([f64::NAN, 0.0, 0.0], 10.0)
+        .await
+        .unwrap_err();
+    assert!(
+        matches!(error, MarlinError::InvalidCommand { .. }),
+        "{error}"
+    );
+    // The next good command is still line 1.
+    marlin.position().await.unwrap();
+    drop(marlin);
+    printer.await.unwrap();
+}
+
+#[tokio::test(start_paused = true)]
+async fn boot_noise_endless_lines_and_crlf_are_survived() {
+    const LONG: &[u8] = &[b'#'; 5000];
+    let (mut marlin, printer) = connected(vec![
+        Expect("N1 M114*38"),
+        Bytes(b"\x80\xff\xfe garbage\r\n"),
+        Bytes(LONG),
+        Bytes(b"\nX:1.50 Y:2.50 Z:3.50 E:0.00 Count X:1 Y:2 Z:3\r\nok\r\n"),
+    ])
+    .await;
+    assert_eq!(
+        marlin.position().await.unwrap(),
+        Position {
+            x: 1.5,
+            y: 2.5,
+            z: 3.5
+        }
+    );
+    drop(marlin);
+    printer.await.unwrap();
+}
