@@ -9,5 +9,7 @@
 
 mod backend;
 pub mod marlin;
+mod serial;
 
 pub use backend::{DEFAULT_TICK_HZ, HardwareBackend, InvalidTickRate, Real};
+pub use serial::{SerialError, SerialPort};

@@ -5,7 +5,7 @@
 
 use std::time::Duration;
 
-use tokio::io::{AsyncBufReadExt, AsyncWriteExt, BufReader, DuplexStream};
+use tokio::io::{AsyncBufReadExt, AsyncRead, AsyncWrite, AsyncWriteExt, BufReader, DuplexStream};
 use yarok_hw::marlin::{Marlin, MarlinError, MarlinSettings, Position};
 
 /// One step of a scripted printer.
@@ -25,7 +25,7 @@ enum Step {
 use Step::{Bytes, Close, Expect, Send, Sleep};
 
 /// Plays `script` as the printer on `io`; panics (failing the test) on an unexpected line.
-async fn printer(io: DuplexStream, script: Vec<Step>) {
+async fn printer<Io: AsyncRead + AsyncWrite + Unpin>(io: Io, script: Vec<Step>) {
     let mut io = BufReader::new(io);
     for step in script {
         match step {
@@ -320,4 +320,79 @@ async fn boot_noise_endless_lines_and_crlf_are_survived() {
     );
     drop(marlin);
     printer.await.unwrap();
+}
+
+/// A pseudo-terminal: the path of its device side, and its other side as an async stream.
+fn pseudo_terminal() -> (
+    String,
+    nix::pty::OpenptyResult,
+    impl AsyncRead + AsyncWrite + Unpin,
+) {
+    use nix::fcntl::{FcntlArg, OFlag, fcntl};
+    use std::os::fd::AsRawFd;
+    let pty = nix::pty::openpty(None, None).unwrap();
+    fcntl(
+        &pty.master,
+        FcntlArg::F_SETFL(OFlag::O_RDWR | OFlag::O_NONBLOCK),
+    )
+    .unwrap();
+    let path = std::fs::read_link(format!("/proc/self/fd/{}", pty.slave.as_raw_fd()))
+        .unwrap()
+        .display()
+        .to_string();
+    let reader =
+        tokio::net::unix::pipe::Receiver::from_owned_fd_unchecked(pty.master.try_clone().unwrap())
+            .unwrap();
+    let writer =
+        tokio::net::unix::pipe::Sender::from_owned_fd_unchecked(pty.master.try_clone().unwrap())
+            .unwrap();
+    (path, pty, tokio::io::join(reader, writer))
+}
+
+#[tokio::test]
+async fn a_printer_on_a_pseudo_terminal_through_the_serial_port() {
+    let (path, pty, printer_side) = pseudo_terminal();
+    let printer = tokio::spawn(printer(
+        printer_side,
+        vec![
+            Send(&["start"]),
+            Expect("N0 M110 N0*125"),
+            Send(&["ok"]),
+            Expect("N1 M114*38"),
+            Send(&["X:7.00 Y:8.00 Z:9.00 E:0.00 Count X:1 Y:2 Z:3", "ok"]),
+        ],
+    ));
+    let port = yarok_hw::SerialPort::open(&path, 115_200).unwrap();
+    drop(pty.slave);
+    let mut settings = MarlinSettings::new(path.clone());
+    settings.boot_quiet = Duration::from_millis(100);
+    let mut marlin = Marlin::connect(port, settings).await.unwrap();
+    assert_eq!(
+        marlin.position().await.unwrap(),
+        Position {
+            x: 7.0,
+            y: 8.0,
+            z: 9.0
+        }
+    );
+    drop(marlin);
+    printer.await.unwrap();
+}
+
+#[tokio::test]
+async fn serial_ports_that_cannot_be_used_are_errors_naming_them() {
+    use yarok_hw::{SerialError, SerialPort};
+    let error = SerialPort::open("/dev/ttyNOPE9", 115_200).unwrap_err();
+    assert!(
+        matches!(error, SerialError::Open { .. }) && error.to_string().contains("/dev/ttyNOPE9"),
+        "{error}"
+    );
+    let error = SerialPort::open("/dev/null", 115_200).unwrap_err();
+    assert!(matches!(error, SerialError::Setup { .. }), "{error}");
+    let (path, _pty, _other) = pseudo_terminal();
+    let error = SerialPort::open(&path, 250_000).unwrap_err();
+    assert!(
+        matches!(error, SerialError::Baud { baud: 250_000, .. }),
+        "{error}"
+    );
 }
