@@ -5,52 +5,14 @@
 
 use std::time::Duration;
 
-use tokio::io::{AsyncBufReadExt, AsyncRead, AsyncWrite, AsyncWriteExt, BufReader, DuplexStream};
+use tokio::io::DuplexStream;
 use yarok_hw::marlin::{Marlin, MarlinError, MarlinSettings, Position};
 
-/// One step of a scripted printer.
-enum Step {
-    /// The next line the driver must send, byte for byte (without the newline).
-    Expect(&'static str),
-    /// Lines the printer sends.
-    Send(&'static [&'static str]),
-    /// Raw bytes the printer sends.
-    Bytes(&'static [u8]),
-    /// Seconds the printer lets pass.
-    Sleep(f64),
-    /// The printer goes away.
-    Close,
-}
+#[path = "support/printer.rs"]
+mod support;
 
-use Step::{Bytes, Close, Expect, Send, Sleep};
-
-/// Plays `script` as the printer on `io`; panics (failing the test) on an unexpected line.
-async fn printer<Io: AsyncRead + AsyncWrite + Unpin>(io: Io, script: Vec<Step>) {
-    let mut io = BufReader::new(io);
-    for step in script {
-        match step {
-            Expect(expected) => {
-                let mut line = String::new();
-                io.read_line(&mut line).await.unwrap();
-                assert_eq!(line, format!("{expected}\n"), "the driver sent");
-            }
-            Send(lines) => {
-                for line in lines {
-                    io.get_mut()
-                        .write_all(format!("{line}\n").as_bytes())
-                        .await
-                        .unwrap();
-                }
-            }
-            Bytes(bytes) => io.get_mut().write_all(bytes).await.unwrap(),
-            Sleep(seconds) => tokio::time::sleep(Duration::from_secs_f64(seconds)).await,
-            Close => return,
-        }
-    }
-    // Keep the line open until the driver is done with it.
-    let mut rest = String::new();
-    let _ = io.read_line(&mut rest).await;
-}
+use support::Step::{Bytes, Close, Expect, Send, Sleep};
+use support::{Step, printer, pseudo_terminal};
 
 /// A driver connected to a printer playing `script` after its boot (`start`, an `echo:` line,
 /// then quiet) and the `M110` handshake.
@@ -320,33 +282,6 @@ async fn boot_noise_endless_lines_and_crlf_are_survived() {
     );
     drop(marlin);
     printer.await.unwrap();
-}
-
-/// A pseudo-terminal: the path of its device side, and its other side as an async stream.
-fn pseudo_terminal() -> (
-    String,
-    nix::pty::OpenptyResult,
-    impl AsyncRead + AsyncWrite + Unpin,
-) {
-    use nix::fcntl::{FcntlArg, OFlag, fcntl};
-    use std::os::fd::AsRawFd;
-    let pty = nix::pty::openpty(None, None).unwrap();
-    fcntl(
-        &pty.master,
-        FcntlArg::F_SETFL(OFlag::O_RDWR | OFlag::O_NONBLOCK),
-    )
-    .unwrap();
-    let path = std::fs::read_link(format!("/proc/self/fd/{}", pty.slave.as_raw_fd()))
-        .unwrap()
-        .display()
-        .to_string();
-    let reader =
-        tokio::net::unix::pipe::Receiver::from_owned_fd_unchecked(pty.master.try_clone().unwrap())
-            .unwrap();
-    let writer =
-        tokio::net::unix::pipe::Sender::from_owned_fd_unchecked(pty.master.try_clone().unwrap())
-            .unwrap();
-    (path, pty, tokio::io::join(reader, writer))
 }
 
 #[tokio::test]

@@ -1,5 +1,7 @@
 //! [`AnetA30`]: a 3-D printer used as a cartesian robot.
 
+mod real;
+
 use std::cell::Cell;
 use std::rc::Rc;
 
@@ -18,7 +20,12 @@ pub const ARRIVED_MM: f64 = 0.25;
 ///
 /// Tag `anet_a30`; config `stiffness` (N/m of the axes' position servos, default 2000).
 ///
-/// Environments: `sim` drives three position servos in MuJoCo; `mock` moves instantly.
+/// Environments: `sim` drives three position servos in MuJoCo; `real` drives a Marlin printer
+/// on a serial port (interface settings `port`, default `/dev/ttyUSB0`; `baud`, 115 200; `feed`,
+/// mm/s, 50; `home`, whether to home at start, true; `boot_seconds`, 10): each newest target is
+/// sent as a `G1`, its arrival awaited with `M400` and read back with `M114`, so [`AnetA30::at`]
+/// is where the printer last said the head was and [`AnetA30::is_at`] turns true on arrival, and
+/// the printer stops (`M410`) at shutdown; `mock` moves instantly.
 #[derive(Clone)]
 pub struct AnetA30 {
     axes: Axes,
@@ -27,6 +34,7 @@ pub struct AnetA30 {
 #[derive(Clone)]
 enum Axes {
     Sim(Rc<SimAxes>),
+    Real(Rc<real::RealAxes>),
     Mock(Rc<Cell<[f64; 3]>>),
 }
 
@@ -60,6 +68,7 @@ impl AnetA30 {
                     servo.set(mm / 1000.0);
                 }
             }
+            Axes::Real(axes) => axes.move_to(clamped),
             Axes::Mock(at) => at.set(clamped),
         }
         clamped
@@ -84,6 +93,7 @@ impl AnetA30 {
     pub fn at(&self) -> [f64; 3] {
         match &self.axes {
             Axes::Sim(axes) => axes.positions.each_ref().map(|axis| axis.value() * 1000.0),
+            Axes::Real(axes) => axes.at(),
             Axes::Mock(at) => at.get(),
         }
     }
@@ -116,7 +126,10 @@ impl Component for AnetA30 {
     }
 
     fn interfaces(interfaces: &mut Interfaces<Self>) {
-        interfaces.add::<Sim>().add::<Mock>();
+        interfaces
+            .add::<Sim>()
+            .add::<yarok_hw::Real>()
+            .add::<Mock>();
     }
 }
 
