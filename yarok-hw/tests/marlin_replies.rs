@@ -31,9 +31,13 @@ impl Lines {
     }
 
     fn line(&mut self) -> String {
-        if self.next() % 5 == 0 {
+        if self.next().is_multiple_of(5) {
             // A position report in either firmware's form, possibly cut short.
-            let ok = if self.next() % 2 == 0 { "ok " } else { "" };
+            let ok = if self.next().is_multiple_of(2) {
+                "ok "
+            } else {
+                ""
+            };
             let line = format!(
                 "{ok}X:{} Y:{} Z:{} E:0.00 Count X:{} Y:1 Z:2",
                 self.number(),
@@ -95,7 +99,7 @@ impl Lines {
         ];
         let mut line = String::new();
         for _ in 0..self.next() % 12 {
-            if self.next() % 10 == 0 {
+            if self.next().is_multiple_of(10) {
                 // Arbitrary bytes, decoded as the driver decodes them.
                 let bytes: Vec<u8> = (0..self.next() % 6).map(|_| self.next() as u8).collect();
                 line.push_str(&String::from_utf8_lossy(&bytes));
