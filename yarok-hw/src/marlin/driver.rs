@@ -182,6 +182,26 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Marlin<T> {
         self.command("M410").await.map(drop)
     }
 
+    /// Sends `line` as it is — without a line number or checksum — and waits for no answer: for
+    /// a firmware's out-of-band lines, such as the VirtualPrinter's `!!DEBUG:` commands. Earlier
+    /// commands' answers are read first.
+    ///
+    /// # Errors
+    ///
+    /// [`MarlinError::InvalidCommand`] for a line holding a line break or a non-ASCII
+    /// character; [`MarlinError::Io`] when it cannot be written.
+    pub async fn send_unnumbered(&mut self, line: &str) -> Result<(), MarlinError> {
+        if line.contains(|c: char| !c.is_ascii() || c.is_ascii_control()) {
+            return Err(MarlinError::InvalidCommand {
+                command: line.to_owned(),
+            });
+        }
+        if self.in_flight.is_some() {
+            let _earlier = self.answer().await;
+        }
+        self.write(format!("{line}\n").as_bytes()).await
+    }
+
     /// Sends `command` as the next numbered line and waits for its `ok`, sending it again when
     /// the printer asks; returns what came with it.
     ///

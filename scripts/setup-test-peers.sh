@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Installs the third-party programs yarok's integration tests talk to, in a Python virtual
+# environment of their own (${YAROK_CACHE_DIR:-~/.cache/yarok}/peers), once per machine:
+#  - OctoPrint's VirtualPrinter, a Marlin emulator (AGPL: the tests only run it as a separate
+#    process, through scripts/peers/virtual_printer_bridge.py; nothing links or ships it).
+set -euo pipefail
+
+peers="${YAROK_CACHE_DIR:-$HOME/.cache/yarok}/peers"
+if "$peers/bin/python" -c "import octoprint.plugins.virtual_printer" 2>/dev/null; then
+  exit 0
+fi
+if ! python3 -m venv --help >/dev/null 2>&1; then
+  echo "error: the test peers need Python's venv module (Debian: apt-get install python3-venv)" >&2
+  exit 1
+fi
+echo "setup: installing OctoPrint 1.11.8 (its VirtualPrinter) into $peers"
+python3 -m venv "$peers"
+"$peers/bin/pip" install -q --disable-pip-version-check "octoprint==1.11.8"
