@@ -41,7 +41,7 @@ for image in falling_boxes_rgb.png falling_boxes_depth_mm.png; do
   test -s "$out/$image" || { echo "error: the example did not write $image" >&2; exit 1; }
 done
 echo "== embedding and behaviour examples"
-for example in threaded local_set pendulum_clock pick_and_place; do
+for example in threaded local_set pendulum_clock pick_and_place printer_square; do
   env -u LD_LIBRARY_PATH "$examples/$example"
 done
 env -u LD_LIBRARY_PATH "$examples/printer_camera" --set "behaviour/out=\"$out\""

@@ -5,73 +5,12 @@
 //! channel: a resend, a printer that stops answering, a fatal error, a dropped connection —
 //! each an error naming the printer, none a hang; no process or port is left open.
 
-use std::io::{BufRead, BufReader};
-use std::path::PathBuf;
-use std::process::{Child, Command, Stdio};
-use std::time::Duration;
+use yarok_hw::marlin::MarlinError;
 
-use yarok_hw::SerialPort;
-use yarok_hw::marlin::{Marlin, MarlinError, MarlinSettings};
+#[path = "support/virtual_printer.rs"]
+mod support;
 
-/// The VirtualPrinter behind a pseudo-terminal, stopped when dropped.
-struct VirtualPrinter {
-    bridge: Child,
-    path: String,
-}
-
-impl VirtualPrinter {
-    /// Starts one with these settings (JSON) over the plugin's defaults.
-    fn start(settings: &str) -> Self {
-        let peers = std::env::var_os("YAROK_CACHE_DIR")
-            .map(PathBuf::from)
-            .or_else(|| {
-                std::env::var_os("HOME").map(|home| PathBuf::from(home).join(".cache/yarok"))
-            })
-            .expect("YAROK_CACHE_DIR or HOME")
-            .join("peers/bin/python");
-        assert!(
-            peers.exists(),
-            "{} is missing: run `bash scripts/setup-test-peers.sh` (scripts/test.sh does)",
-            peers.display()
-        );
-        let bridge = concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../scripts/peers/virtual_printer_bridge.py"
-        );
-        let mut bridge = Command::new(peers)
-            .arg(bridge)
-            .arg(settings)
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .spawn()
-            .expect("the bridge starts");
-        let mut path = String::new();
-        BufReader::new(bridge.stdout.take().expect("its output"))
-            .read_line(&mut path)
-            .expect("the bridge names its device");
-        Self {
-            bridge,
-            path: path.trim().to_owned(),
-        }
-    }
-
-    async fn connect(&self) -> Marlin<SerialPort> {
-        let mut settings = MarlinSettings::new(self.path.clone());
-        settings.boot_quiet = Duration::from_millis(300);
-        settings.silence = Duration::from_secs(2);
-        let port = SerialPort::open(&self.path, 115_200).expect("the device opens");
-        Marlin::connect(port, settings)
-            .await
-            .expect("the printer answers")
-    }
-}
-
-impl Drop for VirtualPrinter {
-    fn drop(&mut self) {
-        let _ = self.bridge.kill();
-        let _ = self.bridge.wait();
-    }
-}
+use support::VirtualPrinter;
 
 #[tokio::test]
 async fn homing_and_a_square_whose_corners_m114_confirms() {
