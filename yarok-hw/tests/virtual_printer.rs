@@ -2,8 +2,9 @@
 //! run as a separate process through `scripts/peers/virtual_printer_bridge.py` on a
 //! pseudo-terminal; `scripts/setup-test-peers.sh` installs it). Homing, a square whose corners
 //! `M114` reports within 0.01 mm after `M400`, and faults injected through its `!!DEBUG:`
-//! channel: a resend, a printer that stops answering, a fatal error, a dropped connection —
-//! each an error naming the printer, none a hang; no process or port is left open.
+//! channel and settings: a resend survived; a resend storm, a printer that stops answering, a
+//! fatal error and a dropped connection each an error naming the printer, none a hang; the
+//! bridge process is stopped whatever the test's outcome.
 
 use yarok_hw::marlin::MarlinError;
 
@@ -89,4 +90,16 @@ async fn a_fatal_error_and_a_dropped_connection_end_in_errors_not_hangs() {
         "{error}"
     );
     assert!(error.to_string().contains(&printer.path), "{error}");
+}
+
+#[tokio::test]
+async fn a_resend_storm_is_an_error_not_a_loop() {
+    // Every line it receives comes back as a checksum error.
+    let printer = VirtualPrinter::start(r#"{"sendWait": false, "resend_ratio": 100}"#);
+    let mut marlin = printer.connect().await;
+    let error = marlin.position().await.unwrap_err();
+    assert!(
+        matches!(&error, MarlinError::ResendStorm { command, .. } if command == "M114"),
+        "{error}"
+    );
 }
