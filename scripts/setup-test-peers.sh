@@ -1,9 +1,22 @@
 #!/usr/bin/env bash
-# Installs the third-party programs yarok's integration tests talk to, in a Python virtual
-# environment of their own (${YAROK_CACHE_DIR:-~/.cache/yarok}/peers), once per machine:
-#  - OctoPrint's VirtualPrinter, a Marlin emulator (AGPL: the tests only run it as a separate
-#    process, through scripts/peers/virtual_printer_bridge.py; nothing links or ships it).
+# Installs the third-party programs yarok's integration tests talk to, once per machine:
+#  - ffmpeg (Debian's), which encodes the camera frames the decoders are checked against;
+#  - OctoPrint's VirtualPrinter, a Marlin emulator, in a Python virtual environment of its own
+#    (${YAROK_CACHE_DIR:-~/.cache/yarok}/peers). AGPL: the tests only run it as a separate
+#    process, through scripts/peers/virtual_printer_bridge.py; nothing links or ships it.
 set -euo pipefail
+
+if ! command -v ffmpeg >/dev/null; then
+  if ! command -v apt-get >/dev/null; then
+    echo "error: the camera tests need ffmpeg: install it with your package manager" >&2
+    exit 1
+  fi
+  sudo=""
+  if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+  echo "setup: installing ffmpeg"
+  $sudo apt-get update -qq
+  $sudo DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends ffmpeg
+fi
 
 peers="${YAROK_CACHE_DIR:-$HOME/.cache/yarok}/peers"
 if "$peers/bin/python" -c "import octoprint.plugins.virtual_printer" 2>/dev/null; then

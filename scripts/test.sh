@@ -16,21 +16,26 @@ echo "== import circles"
 python3 .ci/check-import-circles.py
 echo "== clippy"
 cargo clippy --workspace --all-targets --locked -- -D warnings
+cargo clippy -p yarok-hw --all-targets --features camera --locked -- -D warnings
 echo "== tests"
 if cargo nextest --version >/dev/null 2>&1; then
   echo "runner: cargo nextest (one process per test, no retries)"
   cargo nextest run --workspace --locked --no-fail-fast --retries 0
+  echo "runner: cargo nextest, yarok-hw with its camera feature"
+  cargo nextest run -p yarok-hw --features camera --locked --no-fail-fast --retries 0
 else
   echo "runner: cargo test (cargo-nextest is not installed)"
   cargo test --workspace --locked --no-fail-fast
+  cargo test -p yarok-hw --features camera --locked --no-fail-fast
 fi
 echo "== tests of process-wide state, as threads of one process (as cargo test runs them)"
 cargo test --locked -p yarok-mjc --test render_offscreen
 cargo test --locked -p yarok-core --test runtime_interrupt
 cargo test --locked --test warnings_visible
 cargo test --workspace --doc --locked
+cargo test -p yarok-hw --features camera --doc --locked
 echo "== docs"
-RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked
+RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --features yarok-hw/camera
 echo "== example binary, started directly"
 cargo build --examples --locked
 examples="${CARGO_TARGET_DIR:-target}/debug/examples"

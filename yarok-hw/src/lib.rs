@@ -8,6 +8,8 @@
 //! Marlin driver.
 
 mod backend;
+#[cfg(feature = "camera")]
+pub mod camera;
 pub mod marlin;
 mod serial;
 
