@@ -16,17 +16,19 @@ echo "== import circles"
 python3 .ci/check-import-circles.py
 echo "== clippy"
 cargo clippy --workspace --all-targets --locked -- -D warnings
-cargo clippy -p yarok-hw --all-targets --features camera --locked -- -D warnings
+cargo clippy --workspace --all-targets --features yarok/camera --locked -- -D warnings
 echo "== tests"
 if cargo nextest --version >/dev/null 2>&1; then
   echo "runner: cargo nextest (one process per test, no retries)"
   cargo nextest run --workspace --locked --no-fail-fast --retries 0
-  echo "runner: cargo nextest, yarok-hw with its camera feature"
-  cargo nextest run -p yarok-hw --features camera --locked --no-fail-fast --retries 0
+  echo "runner: cargo nextest, the camera feature's tests"
+  cargo nextest run --workspace --features yarok/camera --locked --no-fail-fast --retries 0 \
+    -E 'binary(camera_decode) | binary(cam_real)'
 else
   echo "runner: cargo test (cargo-nextest is not installed)"
   cargo test --workspace --locked --no-fail-fast
-  cargo test -p yarok-hw --features camera --locked --no-fail-fast
+  cargo test --features camera --locked --no-fail-fast --test cam_real
+  cargo test -p yarok-hw --features camera --locked --no-fail-fast --test camera_decode
 fi
 echo "== tests of process-wide state, as threads of one process (as cargo test runs them)"
 cargo test --locked -p yarok-mjc --test render_offscreen
@@ -35,7 +37,7 @@ cargo test --locked --test warnings_visible
 cargo test --workspace --doc --locked
 cargo test -p yarok-hw --features camera --doc --locked
 echo "== docs"
-RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --features yarok-hw/camera
+RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --features yarok/camera
 echo "== example binary, started directly"
 cargo build --examples --locked
 examples="${CARGO_TARGET_DIR:-target}/debug/examples"

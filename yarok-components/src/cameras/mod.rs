@@ -1,5 +1,8 @@
 //! Cameras.
 
+#[cfg(feature = "camera")]
+mod real;
+
 use image::RgbImage;
 
 use crate::probe_images;
@@ -14,8 +17,10 @@ use yarok_mjc::{Camera, DepthImage, RenderError, RenderPreset, Sim, SimBind};
 /// with +y up; place it with a `<body>` around the tag or `parent=` on a robot's body. Its
 /// probes `rgb` and `depth` render when read.
 ///
-/// Environments: `sim` renders offscreen with MuJoCo; `mock` returns black images of the
-/// configured size.
+/// Environments: `sim` renders offscreen with MuJoCo; `real` (feature `camera`) shows the
+/// newest frame of an MJPEG stream — the output of a program it runs (interface setting
+/// `command`, e.g. ffmpeg capturing `/dev/video0`) or a file or FIFO (`file`) — and has no
+/// depth; `mock` returns black images of the configured size.
 #[derive(Clone, Debug)]
 pub struct Cam {
     source: Source,
@@ -24,7 +29,24 @@ pub struct Cam {
 #[derive(Clone, Debug)]
 enum Source {
     Sim(Camera),
-    Mock { width: u32, height: u32 },
+    #[cfg(feature = "camera")]
+    Real(std::rc::Rc<real::RealFrames>),
+    Mock {
+        width: u32,
+        height: u32,
+    },
+}
+
+/// A camera could not give an image.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum CamError {
+    /// Rendering failed (`sim`).
+    #[error(transparent)]
+    Render(#[from] RenderError),
+    /// The camera measures no depth (a real colour camera).
+    #[error("this camera measures no depth")]
+    NoDepth,
 }
 
 impl Cam {
@@ -33,9 +55,11 @@ impl Cam {
     /// # Errors
     ///
     /// When rendering fails.
-    pub fn read(&self) -> Result<RgbImage, RenderError> {
+    pub fn read(&self) -> Result<RgbImage, CamError> {
         match &self.source {
-            Source::Sim(camera) => camera.rgb(),
+            Source::Sim(camera) => Ok(camera.rgb()?),
+            #[cfg(feature = "camera")]
+            Source::Real(frames) => Ok(frames.latest()),
             Source::Mock { width, height } => Ok(RgbImage::new(*width, *height)),
         }
     }
@@ -45,9 +69,11 @@ impl Cam {
     /// # Errors
     ///
     /// When rendering fails.
-    pub fn read_depth(&self) -> Result<DepthImage, RenderError> {
+    pub fn read_depth(&self) -> Result<DepthImage, CamError> {
         match &self.source {
-            Source::Sim(camera) => camera.depth(),
+            Source::Sim(camera) => Ok(camera.depth()?),
+            #[cfg(feature = "camera")]
+            Source::Real(_) => Err(CamError::NoDepth),
             Source::Mock { width, height } => Ok(DepthImage::new(*width, *height)),
         }
     }
@@ -58,9 +84,11 @@ impl Cam {
     /// # Errors
     ///
     /// When rendering fails.
-    pub fn read_rgbd(&self) -> Result<(RgbImage, DepthImage), RenderError> {
+    pub fn read_rgbd(&self) -> Result<(RgbImage, DepthImage), CamError> {
         match &self.source {
-            Source::Sim(camera) => camera.rgbd(),
+            Source::Sim(camera) => Ok(camera.rgbd()?),
+            #[cfg(feature = "camera")]
+            Source::Real(_) => Err(CamError::NoDepth),
             Source::Mock { width, height } => Ok((
                 RgbImage::new(*width, *height),
                 DepthImage::new(*width, *height),
@@ -97,6 +125,8 @@ impl Component for Cam {
 
     fn interfaces(interfaces: &mut Interfaces<Self>) {
         interfaces.add::<Sim>().add::<Mock>();
+        #[cfg(feature = "camera")]
+        interfaces.add::<yarok_hw::Real>();
     }
 }
 
