@@ -7,15 +7,8 @@
 set -euo pipefail
 
 if ! command -v ffmpeg >/dev/null; then
-  if ! command -v apt-get >/dev/null; then
-    echo "error: the camera tests need ffmpeg: install it with your package manager" >&2
-    exit 1
-  fi
-  sudo=""
-  if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
-  echo "setup: installing ffmpeg"
-  $sudo apt-get update -qq
-  $sudo DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends ffmpeg
+  source "$(dirname "$0")/debian-packages.sh"
+  install_missing_packages "ffmpeg, for the camera tests" ffmpeg
 fi
 
 peers="${YAROK_CACHE_DIR:-$HOME/.cache/yarok}/peers"

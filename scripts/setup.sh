@@ -5,24 +5,8 @@
 #  - pip, with which the first build fetches MuJoCo 4.0.1 from PyPI (see yarok-mjc/build.rs).
 set -euo pipefail
 
-packages=(libegl1 libegl-mesa0 libgl1-mesa-dri procps)
-missing=()
-for package in "${packages[@]}"; do
-  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
-    missing+=("$package")
-  fi
-done
-if ((${#missing[@]})); then
-  if ! command -v apt-get >/dev/null; then
-    echo "error: install the EGL and Mesa libraries (${missing[*]} on Debian) with your package manager" >&2
-    exit 1
-  fi
-  sudo=""
-  if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
-  echo "setup: installing ${missing[*]}"
-  $sudo apt-get update -qq
-  $sudo DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
-fi
+source "$(dirname "$0")/debian-packages.sh"
+install_missing_packages "the EGL and Mesa libraries" libegl1 libegl-mesa0 libgl1-mesa-dri procps
 
 if [ -z "${MUJOCO_DIR:-}" ] && ! python3 -m pip --version >/dev/null 2>&1; then
   echo "error: yarok fetches MuJoCo with pip: install it (Debian: apt-get install python3-pip)," >&2
