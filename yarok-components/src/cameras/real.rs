@@ -95,17 +95,24 @@ impl Interface<Real> for Cam {
             latest: RefCell::new(first),
         });
         let newest = Rc::clone(&frames);
+        let runs_program = program.is_some();
         bind.spawn(async move {
-            // The program, if any, lives as long as this task: dropping it kills it.
-            let _program = program;
             while let Some(frame) = stream.next_frame().await? {
                 *newest.latest.borrow_mut() = frame;
             }
-            match _program {
-                Some(_) => Err(format!("{name} stopped sending frames").into()),
-                None => Ok(()),
+            if runs_program {
+                Err(format!("{name} stopped sending frames").into())
+            } else {
+                Ok(())
             }
         });
+        if let Some(mut program) = program {
+            // Killed and reaped at shutdown, so that nothing is left running.
+            bind.on_stop(async move {
+                program.kill().await?;
+                Ok(())
+            });
+        }
         let cam = Cam {
             source: Source::Real(frames),
         };
