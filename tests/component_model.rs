@@ -146,19 +146,36 @@ fn one_component_runs_in_sim_mock_and_a_user_defined_environment() {
     assert_eq!(angle_in("replay"), 0.25);
 }
 
+/// Two blocks and the printer: the blocks exist only in simulation, the printer on hardware too.
+struct BlocksAndPrinter;
+
+impl Component for BlocksAndPrinter {
+    fn declaration() -> Declaration {
+        Declaration::new("blocks_and_printer")
+            .uses::<yarok::components::toys::Block>()
+            .uses::<yarok::components::robots::AnetA30>()
+            .template(
+                r#"<mujoco><worldbody>
+                  <block name="red"/><block name="blue" pos="0.1 0 0.02"/>
+                  <anet_a30 name="printer"/>
+                </worldbody></mujoco>"#,
+            )
+    }
+}
+
 #[test]
 fn env_real_on_a_world_of_sim_components_fails_before_binding_and_lists_them() {
     let error = yarok::platform()
-        .world::<PrinterWorld>()
+        .world::<BlocksAndPrinter>()
         .args(["--env", "real"].map(String::from))
         .unwrap()
         .behaviour(|_| async { panic!("nothing runs") })
         .build()
         .unwrap_err();
-    // The printer runs on real hardware; its camera does not yet.
     assert_eq!(
         error.to_string(),
-        "a component cannot run in `real`: /printer/cam (Cam) supports sim, mock"
+        "components cannot run in `real`: /red (Block) supports sim, mock; /blue (Block) \
+         supports sim, mock"
     );
 }
 
