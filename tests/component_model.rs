@@ -7,7 +7,6 @@ use std::rc::Rc;
 
 use yarok::components::tactile::default_background;
 use yarok::components::tactile::phong::{PhongModel, PhongParams};
-use yarok::components::worlds::PrinterWorld;
 use yarok::core::component::{Environment, MockBackend};
 use yarok::mjc::SimBackend;
 use yarok::prelude::*;
