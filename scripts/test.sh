@@ -31,11 +31,10 @@ else
   cargo test -p yarok-hw --features camera --locked --no-fail-fast --test camera_decode
 fi
 echo "== tests of process-wide state, as threads of one process (as cargo test runs them)"
-cargo test --locked -p yarok-mjc --test render_offscreen
-cargo test --locked -p yarok-core --test runtime_interrupt
-cargo test --locked --test warnings_visible
-cargo test --workspace --doc --locked
-cargo test -p yarok-hw --features camera --doc --locked
+cargo test --workspace --locked --test render_offscreen
+cargo test --workspace --locked --test runtime_interrupt
+cargo test --workspace --locked --test warnings_visible
+cargo test --workspace --features yarok/camera --doc --locked
 echo "== docs"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --features yarok/camera
 echo "== example binary, started directly"
