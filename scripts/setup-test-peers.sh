@@ -6,8 +6,8 @@
 #    process, through scripts/peers/virtual_printer_bridge.py; nothing links or ships it.
 set -euo pipefail
 
+source "$(dirname "$0")/debian-packages.sh"
 if ! command -v ffmpeg >/dev/null; then
-  source "$(dirname "$0")/debian-packages.sh"
   install_missing_packages "ffmpeg, for the camera tests" ffmpeg
 fi
 
@@ -15,9 +15,8 @@ peers="${YAROK_CACHE_DIR:-$HOME/.cache/yarok}/peers"
 if "$peers/bin/python" -c "import octoprint.plugins.virtual_printer" 2>/dev/null; then
   exit 0
 fi
-if ! python3 -m venv --help >/dev/null 2>&1; then
-  echo "error: the test peers need Python's venv module (Debian: apt-get install python3-venv)" >&2
-  exit 1
+if ! python3 -c "import ensurepip" 2>/dev/null; then
+  install_missing_packages "Python's venv module, for the printer emulator" python3-venv
 fi
 echo "setup: installing OctoPrint 1.11.8 (its VirtualPrinter) into $peers"
 python3 -m venv "$peers"

@@ -1,6 +1,7 @@
 //! The `printer_square` example with `--env real` against OctoPrint's VirtualPrinter: it homes
 //! and traces the square, every corner reported within 0.01 mm; interrupted with Ctrl-C
-//! mid-square it exits within seconds, saying it was interrupted.
+//! mid-square it exits within seconds, saying it was interrupted, having sent the printer a
+//! quick stop (`M410`) last and closed its port.
 
 use std::io::{BufRead, BufReader};
 use std::path::PathBuf;
@@ -107,4 +108,14 @@ fn ctrl_c_stops_the_printer_and_the_run() {
     std::io::Read::read_to_string(&mut run.stderr.take().unwrap(), &mut stderr).unwrap();
     assert!(!ended.success(), "an interrupted run reports it");
     assert!(stderr.to_lowercase().contains("interrupt"), "{stderr}");
+    assert!(
+        printer.saw("closed", Duration::from_secs(2)),
+        "the port was left open"
+    );
+    let received = printer.received();
+    assert_eq!(
+        received.last().map(String::as_str),
+        Some("M410"),
+        "the printer was not stopped last: {received:?}"
+    );
 }

@@ -1,10 +1,20 @@
 """Serves OctoPrint's VirtualPrinter (a Marlin emulator; AGPL, run here as a separate process and
 never linked) on a pseudo-terminal, for yarok's integration tests.
 
-Usage: virtual_printer_bridge.py [JSON_SETTINGS]
-Prints the pseudo-terminal's device path on its first line of standard output, then shuttles
-bytes between the device and the printer until standard input closes (the test ends) or the
-printer drops the connection (`!!DEBUG:drop_connection`), when it closes the device side.
+Usage: virtual_printer_bridge.py [JSON_SETTINGS [REPLUG_SECONDS]]
+Prints the device's path on its first line of standard output: a symbolic link to the
+pseudo-terminal, stable as a /dev/serial/by-id/ name is. Then it shuttles bytes between the
+device and the printer, and reports on standard output, a line each:
+  > LINE      a line the printer received;
+  closed      the client closed the device (after having used it);
+  dropped     the printer dropped the connection (`!!DEBUG:drop_connection`): like an
+              unplugged USB cable, the device and its link disappear;
+  replugged   REPLUG_SECONDS later (when given), a freshly booted printer behind a new device,
+              the link pointing at it: the cable plugged back in.
+Each line written to its standard input goes to the printer as if it came down the line (a
+fault injected through the `!!DEBUG:` channel while the client waits on a move). It ends when
+standard input closes (the test ends), the client closes the device, or the printer drops the
+connection and is not replugged.
 JSON_SETTINGS overrides the plugin's default settings, e.g. '{"sendWait": false}'.
 """
 
@@ -12,6 +22,7 @@ import json
 import logging
 import os
 import select
+import shutil
 import sys
 import tempfile
 import threading
@@ -70,18 +81,44 @@ class Settings:
         pass
 
 
-def main():
-    logging.basicConfig(level=logging.CRITICAL)
-    values = VirtualPrinterPlugin().get_settings_defaults()
-    if len(sys.argv) > 1:
-        values.update(json.loads(sys.argv[1]))
-    folder = tempfile.mkdtemp(prefix="yarok-virtual-printer-")
-    printer = virtual.VirtualPrinter(Settings(values, folder), None, folder, read_timeout=0.1)
+def report(line):
+    try:
+        print(line, flush=True)
+    except BrokenPipeError:
+        pass
 
-    master, slave = os.openpty()
-    tty.setraw(slave)
-    print(os.ttyname(slave), flush=True)
+
+class Device:
+    """A pseudo-terminal for the client, reached through a stable link to it."""
+
+    def __init__(self, link):
+        self.link = link
+        self.master, self._client_side = os.openpty()
+        tty.setraw(self._client_side)
+        os.symlink(os.ttyname(self._client_side), link + ".new")
+        os.replace(link + ".new", link)
+
+    def let_go_of_client_side(self):
+        """Closes our hold on the client's side, so that the client closing it reaches us."""
+        if self._client_side is not None:
+            os.close(self._client_side)
+            self._client_side = None
+
+    def unplug(self):
+        os.unlink(self.link)
+        self.let_go_of_client_side()
+        os.close(self.master)
+
+
+def serve(printer, device, ended):
+    """Shuttles bytes until the test ends, the client closes the device, or the printer drops
+    the connection; returns which."""
+    outcome = []
     done = threading.Event()
+
+    def finish(why):
+        outcome.append(why)
+        done.set()
 
     def write_all(data):
         # Its receive buffer is 64 bytes, like a board's: it takes what fits, the rest waits.
@@ -94,44 +131,83 @@ def main():
     def to_printer():
         pending = b""
         while not done.is_set():
-            ready, _, _ = select.select([master], [], [], 0.1)
+            ready, _, _ = select.select([device.master], [], [], 0.1)
             if not ready:
                 continue
             try:
-                pending += os.read(master, 4096)
-                # One write a line: the printer takes one line from each write it queues, and
-                # would leave a second line of the same write waiting for the next one.
-                *lines, pending = pending.split(b"\n")
+                pending += os.read(device.master, 4096)
+            except OSError:
+                # Nobody holds the device open any more.
+                return finish("closed")
+            device.let_go_of_client_side()
+            # One write a line: the printer takes one line from each write it queues, and
+            # would leave a second line of the same write waiting for the next one.
+            *lines, pending = pending.split(b"\n")
+            try:
                 for line in lines:
+                    report("> " + line.decode(errors="replace").strip())
                     write_all(line + b"\n")
             except Exception:
-                break
-        done.set()
+                return finish("dropped")
 
     def from_printer():
         while not done.is_set():
             try:
                 line = printer.readline()
             except Exception:
-                break
+                return finish("dropped")
             if line:
                 # Its queue holds some lines with their ending and some without.
-                os.write(master, line if line.endswith(b"\n") else line + b"\n")
-        done.set()
+                os.write(device.master, line if line.endswith(b"\n") else line + b"\n")
+
+    for work in (to_printer, from_printer):
+        threading.Thread(target=work, daemon=True).start()
+    while not done.wait(0.05):
+        if ended.is_set():
+            finish("ended")
+    printer.close()
+    return outcome[0]
+
+
+def main():
+    logging.basicConfig(level=logging.CRITICAL)
+    values = VirtualPrinterPlugin().get_settings_defaults()
+    if len(sys.argv) > 1:
+        values.update(json.loads(sys.argv[1]))
+    replug = float(sys.argv[2]) if len(sys.argv) > 2 else None
+    folder = tempfile.mkdtemp(prefix="yarok-virtual-printer-")
+    link = os.path.join(folder, "printer")
+    ended = threading.Event()
+
+    current = {}
 
     def until_stdin_closes():
-        sys.stdin.read()
-        done.set()
+        for line in sys.stdin:
+            # A line the test injects, as if it came down the line (`!!DEBUG:…`).
+            data = line.encode()
+            try:
+                while data:
+                    data = data[current["printer"].write(data):]
+            except Exception:
+                pass  # an unplugged printer takes nothing
+        ended.set()
 
-    threads = [threading.Thread(target=work, daemon=True)
-               for work in (to_printer, from_printer, until_stdin_closes)]
-    for thread in threads:
-        thread.start()
-    done.wait()
-    printer.close()
-    # Closing both sides ends the device: the driver reads the end of the stream.
-    os.close(slave)
-    os.close(master)
+    printed = False
+    while True:
+        printer = virtual.VirtualPrinter(Settings(values, folder), None, folder, read_timeout=0.1)
+        current["printer"] = printer
+        device = Device(link)
+        report("replugged" if printed else link)
+        if not printed:
+            threading.Thread(target=until_stdin_closes, daemon=True).start()
+        printed = True
+        outcome = serve(printer, device, ended)
+        device.unplug()
+        if outcome != "ended":
+            report(outcome)
+        if outcome != "dropped" or replug is None or ended.wait(replug):
+            break
+    shutil.rmtree(folder, ignore_errors=True)
 
 
 if __name__ == "__main__":

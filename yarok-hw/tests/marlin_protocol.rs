@@ -60,7 +60,7 @@ async fn homing_with_keepalives_moves_and_the_arrival_barrier() {
             "X:10.00 Y:20.00 Z:5.00 E:0.00 Count X:800 Y:1600 Z:2000",
             "ok",
         ]),
-        Expect("N6 M410*32"),
+        Expect("M410"),
         Send(&["ok"]),
     ])
     .await;
@@ -227,6 +227,29 @@ async fn a_dropped_commands_answer_is_read_before_the_next_command() {
             z: 3.0
         }
     );
+    drop(marlin);
+    printer.await.unwrap();
+}
+
+#[tokio::test(start_paused = true)]
+async fn a_quick_stop_goes_out_at_once_though_a_move_is_awaited() {
+    let (mut marlin, printer) = connected(vec![
+        Expect("N1 G1 X10.000 Y20.000 Z5.000 F3000*31"),
+        Send(&["ok"]),
+        Expect("N2 M400*37"),
+        // The move is long: M400 has no answer until M410 drops it.
+        Expect("M410"),
+        Send(&["ok", "ok"]),
+        Expect("N3 M114*36"),
+        Send(&["X:4.00 Y:5.00 Z:5.00 E:0.00 Count X:320 Y:400 Z:2000", "ok"]),
+    ])
+    .await;
+    marlin.move_to([10.0, 20.0, 5.0], 50.0).await.unwrap();
+    let cut = tokio::time::timeout(Duration::from_secs(1), marlin.finish_moves()).await;
+    assert!(cut.is_err(), "M400 answered before its ok");
+    marlin.quick_stop().await.unwrap();
+    let at = marlin.position().await.unwrap();
+    assert_eq!((at.x, at.y), (4.0, 5.0), "both oks were read before M114's");
     drop(marlin);
     printer.await.unwrap();
 }

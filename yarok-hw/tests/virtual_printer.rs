@@ -3,10 +3,14 @@
 //! pseudo-terminal; `scripts/setup-test-peers.sh` installs it). Homing, a square whose corners
 //! `M114` reports within 0.01 mm after `M400`, and faults injected through its `!!DEBUG:`
 //! channel and settings: a resend survived; a resend storm, a printer that stops answering, a
-//! fatal error and a dropped connection each an error naming the printer, none a hang; the
-//! bridge process is stopped whatever the test's outcome.
+//! fatal error and a dropped connection each an error naming the printer, none a hang; a
+//! printer unplugged mid-move and plugged back in reconnected, the move reported as failed and
+//! the next one completing; the bridge process is stopped whatever the test's outcome.
 
-use yarok_hw::marlin::MarlinError;
+use std::time::Duration;
+
+use yarok_hw::SerialPort;
+use yarok_hw::marlin::{MarlinError, Reconnecting};
 
 #[path = "support/virtual_printer.rs"]
 mod support;
@@ -102,4 +106,72 @@ async fn a_resend_storm_is_an_error_not_a_loop() {
         matches!(&error, MarlinError::ResendStorm { command, .. } if command == "M114"),
         "{error}"
     );
+}
+
+#[tokio::test]
+async fn unplugged_mid_move_and_back_the_move_fails_and_the_next_completes() {
+    let printer = VirtualPrinter::replugging(r#"{"sendWait": false}"#, 0.5);
+    let path = printer.path.clone();
+    let open = async || SerialPort::open(&path, 115_200);
+    let mut marlin = Reconnecting::connect(open, printer.settings())
+        .await
+        .unwrap();
+    marlin.run(async |m| m.home().await).await.unwrap();
+    let unplugged = marlin
+        .run(async |m| {
+            m.move_to([150.0, 150.0, 50.0], 20.0).await?;
+            m.send_unnumbered("!!DEBUG:drop_connection").await?;
+            m.finish_moves().await
+        })
+        .await
+        .unwrap_err();
+    assert!(
+        matches!(&unplugged, MarlinError::Reconnected { cause, .. } if cause.is_connection_lost()),
+        "{unplugged}"
+    );
+    assert!(unplugged.to_string().contains(&printer.path), "{unplugged}");
+    assert!(printer.saw("dropped", Duration::ZERO) && printer.saw("replugged", Duration::ZERO));
+
+    let corner = [40.0, 70.0, 5.0];
+    let at = marlin
+        .run(async |m| {
+            m.home().await?;
+            m.move_to(corner, 100.0).await?;
+            m.finish_moves().await?;
+            m.position().await
+        })
+        .await
+        .unwrap();
+    for (got, want) in [at.x, at.y, at.z].into_iter().zip(corner) {
+        assert!((got - want).abs() <= 0.01, "{at:?} for {corner:?}");
+    }
+}
+
+#[tokio::test]
+async fn a_printer_that_does_not_come_back_is_an_error_in_time() {
+    let printer = VirtualPrinter::start(r#"{"sendWait": false}"#);
+    let path = printer.path.clone();
+    let open = async || SerialPort::open(&path, 115_200);
+    let mut settings = printer.settings();
+    settings.replug_timeout = Duration::from_secs(1);
+    let mut marlin = Reconnecting::connect(open, settings).await.unwrap();
+    let started = std::time::Instant::now();
+    let gone = marlin
+        .run::<()>(async |m| {
+            m.send_unnumbered("!!DEBUG:drop_connection").await?;
+            loop {
+                m.position().await?;
+            }
+        })
+        .await
+        .unwrap_err();
+    assert!(matches!(gone, MarlinError::Unplugged { .. }), "{gone}");
+    assert!(gone.to_string().contains(&printer.path), "{gone}");
+    assert!(
+        started.elapsed() < Duration::from_secs(5),
+        "{:?}",
+        started.elapsed()
+    );
+    let again = marlin.run(async |m| m.position().await).await.unwrap_err();
+    assert!(matches!(again, MarlinError::Unplugged { .. }), "{again}");
 }

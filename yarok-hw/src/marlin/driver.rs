@@ -32,11 +32,15 @@ pub struct MarlinSettings {
     /// How many times in a row a command may be asked for again before the line counts as
     /// broken.
     pub max_resends: u32,
+    /// How long a printer whose connection dropped may take to come back, booted, before
+    /// [`Reconnecting`](super::Reconnecting) gives up.
+    pub replug_timeout: Duration,
 }
 
 impl MarlinSettings {
     /// Defaults for the printer called `name`: 5 s of silence, 10 s to boot (quiet for 1.5 s),
-    /// 10 s a command, 5 min for homing and moves, 8 resends.
+    /// 10 s a command, 5 min for homing and moves, 8 resends, 30 s to come back after an
+    /// unplug.
     pub fn new(name: impl Into<String>) -> Self {
         Self {
             name: name.into(),
@@ -46,6 +50,7 @@ impl MarlinSettings {
             command_timeout: Duration::from_secs(10),
             motion_timeout: Duration::from_secs(300),
             max_resends: 8,
+            replug_timeout: Duration::from_secs(30),
         }
     }
 }
@@ -70,6 +75,21 @@ struct InFlight {
     resends: u32,
     error: Option<String>,
     position: Option<Position>,
+}
+
+impl InFlight {
+    fn new(number: u64, command: &str, limit: Duration) -> Self {
+        Self {
+            number,
+            command: command.to_owned(),
+            limit,
+            deadline: Instant::now() + limit,
+            resend: None,
+            resends: 0,
+            error: None,
+            position: None,
+        }
+    }
 }
 
 /// An async driver for a Marlin printer over any byte transport (a serial port, a pseudo-
@@ -175,11 +195,40 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Marlin<T> {
 
     /// Stops every move at once, dropping the queued ones (`M410`): what to send at shutdown.
     ///
+    /// `M410` goes out at once, without a line number, even while a command waits for its
+    /// answer (an `M400` waiting for a long move): Marlin's emergency parser acts on it as it
+    /// arrives. Then the waiting command's answer and `M410`'s own are read, within
+    /// [`MarlinSettings::command_timeout`]; what the waiting command answered is not reported.
+    ///
     /// # Errors
     ///
-    /// [`MarlinError`].
+    /// [`MarlinError`]: the line failed, the printer halted, or the answers did not come in
+    /// time (a firmware without the emergency parser finishes the waiting command first).
     pub async fn quick_stop(&mut self) -> Result<(), MarlinError> {
-        self.command("M410").await.map(drop)
+        let answers = if self.in_flight.is_some() { 2 } else { 1 };
+        self.write(b"M410\n").await?;
+        let limit = self.settings.command_timeout;
+        self.in_flight = Some(InFlight::new(self.next_number, "M410", limit));
+        let stopped = async {
+            for _ in 0..answers {
+                loop {
+                    match Reply::parse(&self.next_line().await?) {
+                        Reply::Ok { .. } => break,
+                        Reply::Halted(message) => {
+                            return Err(MarlinError::Halted {
+                                printer: self.settings.name.clone(),
+                                message,
+                            });
+                        }
+                        _ => {}
+                    }
+                }
+            }
+            Ok(())
+        };
+        let result = stopped.await;
+        self.in_flight = None;
+        result
     }
 
     /// Sends `line` as it is — without a line number or checksum — and waits for no answer: for
@@ -228,16 +277,7 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Marlin<T> {
             self.settings.command_timeout
         };
         self.next_number += 1;
-        self.in_flight = Some(InFlight {
-            number,
-            command: command.to_owned(),
-            limit,
-            deadline: Instant::now() + limit,
-            resend: None,
-            resends: 0,
-            error: None,
-            position: None,
-        });
+        self.in_flight = Some(InFlight::new(number, command, limit));
         self.write(&line).await?;
         self.answer().await
     }

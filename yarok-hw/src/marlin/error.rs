@@ -86,6 +86,36 @@ pub enum MarlinError {
         /// The command.
         command: String,
     },
+    /// The printer's transport could not be opened.
+    #[error("printer {printer}: cannot open it: {source}")]
+    Open {
+        /// The printer.
+        printer: String,
+        /// Why.
+        source: Box<dyn std::error::Error + Send + Sync>,
+    },
+    /// The connection dropped and the printer came back: the board restarted, so the work
+    /// that was running is lost and the head's position unknown until it is homed again.
+    #[error(
+        "printer {printer} was reconnected after its connection dropped ({cause}); it restarted, \
+         so home it before moving again"
+    )]
+    Reconnected {
+        /// The printer.
+        printer: String,
+        /// How the connection dropped.
+        cause: Box<MarlinError>,
+    },
+    /// The connection dropped and the printer did not come back in time.
+    #[error("printer {printer} is gone: not back within {seconds} s ({source})")]
+    Unplugged {
+        /// The printer.
+        printer: String,
+        /// How long it was waited for.
+        seconds: f64,
+        /// Why the last attempt to reconnect failed.
+        source: Box<dyn std::error::Error + Send + Sync>,
+    },
     /// The command cannot be sent: empty, or holding `*`, `;`, a line break or a non-ASCII
     /// character.
     #[error("`{command}` is not a command that can be sent")]
@@ -93,4 +123,12 @@ pub enum MarlinError {
         /// The command.
         command: String,
     },
+}
+
+impl MarlinError {
+    /// Whether the connection itself was lost (the port closed or failed), as when a USB
+    /// printer is unplugged — rather than the printer answering with a failure.
+    pub fn is_connection_lost(&self) -> bool {
+        matches!(self, Self::Closed { .. } | Self::Io { .. })
+    }
 }

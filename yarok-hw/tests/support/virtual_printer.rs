@@ -3,10 +3,11 @@
 //! workspace's.
 #![allow(dead_code)]
 
-use std::io::{BufRead, BufReader};
+use std::io::{BufRead, BufReader, Write};
 use std::path::PathBuf;
-use std::process::{Child, Command, Stdio};
-use std::time::Duration;
+use std::process::{Child, ChildStdin, Command, Stdio};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
 
 use yarok_hw::SerialPort;
 use yarok_hw::marlin::{Marlin, MarlinSettings};
@@ -24,12 +25,26 @@ fn bridge() -> PathBuf {
 /// The VirtualPrinter behind a pseudo-terminal, stopped when dropped.
 pub(crate) struct VirtualPrinter {
     bridge: Child,
+    input: Mutex<ChildStdin>,
+    /// A stable link to the device, as `/dev/serial/by-id/` names are.
     pub(crate) path: String,
+    /// What the bridge reported after the path: received lines (`> …`) and events.
+    reports: Arc<Mutex<Vec<String>>>,
 }
 
 impl VirtualPrinter {
     /// Starts one with these settings (JSON) over the plugin's defaults.
     pub(crate) fn start(settings: &str) -> Self {
+        Self::launch(&[settings])
+    }
+
+    /// Starts one that comes back `seconds` after it drops the connection, as a printer whose
+    /// USB cable is unplugged and plugged back in.
+    pub(crate) fn replugging(settings: &str, seconds: f64) -> Self {
+        Self::launch(&[settings, &seconds.to_string()])
+    }
+
+    fn launch(arguments: &[&str]) -> Self {
         let peers = std::env::var_os("YAROK_CACHE_DIR")
             .map(PathBuf::from)
             .or_else(|| {
@@ -42,32 +57,85 @@ impl VirtualPrinter {
             "{} is missing: run `bash scripts/setup-test-peers.sh` (scripts/test.sh does)",
             peers.display()
         );
-        let bridge = bridge();
         let mut bridge = Command::new(peers)
-            .arg(bridge)
-            .arg(settings)
+            .arg(bridge())
+            .args(arguments)
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
             .spawn()
             .expect("the bridge starts");
-        let mut path = String::new();
-        BufReader::new(bridge.stdout.take().expect("its output"))
-            .read_line(&mut path)
-            .expect("the bridge names its device");
+        let mut lines = BufReader::new(bridge.stdout.take().expect("its output")).lines();
+        let path = lines
+            .next()
+            .expect("the bridge names its device")
+            .expect("its output reads");
+        let input = Mutex::new(bridge.stdin.take().expect("its input"));
+        let reports = Arc::new(Mutex::new(Vec::new()));
+        let kept = Arc::clone(&reports);
+        std::thread::spawn(move || {
+            for line in lines.map_while(Result::ok) {
+                kept.lock().unwrap().push(line);
+            }
+        });
         Self {
             bridge,
-            path: path.trim().to_owned(),
+            input,
+            path,
+            reports,
+        }
+    }
+
+    /// Sends `line` to the printer as if it came down the line (a `!!DEBUG:` fault), whatever
+    /// the client is doing.
+    pub(crate) fn inject(&self, line: &str) {
+        let mut input = self.input.lock().unwrap();
+        writeln!(input, "{line}").expect("the bridge takes the line");
+        input.flush().expect("the bridge takes the line");
+    }
+
+    /// The lines the printer has received so far.
+    pub(crate) fn received(&self) -> Vec<String> {
+        let reports = self.reports.lock().unwrap();
+        let lines = reports
+            .iter()
+            .filter_map(|report| report.strip_prefix("> "));
+        lines.map(str::to_owned).collect()
+    }
+
+    /// Waits up to `limit` for the bridge to report `event` (`closed`, `dropped`,
+    /// `replugged`); whether it did.
+    pub(crate) fn saw(&self, event: &str, limit: Duration) -> bool {
+        let until = Instant::now() + limit;
+        loop {
+            if self
+                .reports
+                .lock()
+                .unwrap()
+                .iter()
+                .any(|report| report == event)
+            {
+                return true;
+            }
+            if Instant::now() >= until {
+                return false;
+            }
+            std::thread::sleep(Duration::from_millis(20));
         }
     }
 
     pub(crate) async fn connect(&self) -> Marlin<SerialPort> {
+        let port = SerialPort::open(&self.path, 115_200).expect("the device opens");
+        Marlin::connect(port, self.settings())
+            .await
+            .expect("the printer answers")
+    }
+
+    /// The driver's settings for it: quick to boot, quick to call it silent.
+    pub(crate) fn settings(&self) -> MarlinSettings {
         let mut settings = MarlinSettings::new(self.path.clone());
         settings.boot_quiet = Duration::from_millis(300);
         settings.silence = Duration::from_secs(2);
-        let port = SerialPort::open(&self.path, 115_200).expect("the device opens");
-        Marlin::connect(port, settings)
-            .await
-            .expect("the printer answers")
+        settings
     }
 }
 

@@ -1,5 +1,6 @@
 //! The [`AnetA30`]'s `real` interface: a Marlin printer on a serial port, driven by a task that
-//! sends each new target, waits for the moves to finish (`M400`) and reads where the head is.
+//! sends each new target, waits for the moves to finish (`M400`) and reads where the head is;
+//! a printer unplugged and plugged back in is reconnected.
 
 use std::cell::Cell;
 use std::rc::Rc;
@@ -8,7 +9,7 @@ use std::time::Duration;
 use serde::Deserialize;
 use tokio::sync::{Mutex, watch};
 use yarok_core::component::{Bind, BindError, Interface};
-use yarok_hw::marlin::{Marlin, MarlinSettings, Position};
+use yarok_hw::marlin::{Marlin, MarlinError, MarlinSettings, Position, Reconnecting};
 use yarok_hw::{Real, SerialPort};
 
 use super::{AnetA30, Axes};
@@ -27,6 +28,8 @@ struct Settings {
     home: bool,
     /// Seconds the board may take to boot after the port opens.
     boot_seconds: f64,
+    /// Seconds an unplugged printer may take to come back before the run ends with an error.
+    replug_seconds: f64,
 }
 
 impl Default for Settings {
@@ -37,6 +40,7 @@ impl Default for Settings {
             feed: 50.0,
             home: true,
             boot_seconds: 10.0,
+            replug_seconds: 30.0,
         }
     }
 }
@@ -67,29 +71,36 @@ impl Interface<Real> for AnetA30 {
                 settings.feed
             )));
         }
-        let port = SerialPort::open(&settings.port, settings.baud).map_err(|e| bind.error(e))?;
         let mut marlin_settings = MarlinSettings::new(settings.port.clone());
-        marlin_settings.boot_timeout = Duration::from_secs_f64(settings.boot_seconds.max(0.0));
-        let mut marlin = Marlin::connect(port, marlin_settings)
+        let seconds = |value: f64| Duration::try_from_secs_f64(value).unwrap_or_default();
+        marlin_settings.boot_timeout = seconds(settings.boot_seconds);
+        marlin_settings.replug_timeout = seconds(settings.replug_seconds);
+        let (port, baud) = (settings.port.clone(), settings.baud);
+        let open = async move || SerialPort::open(&port, baud);
+        let mut printer = Reconnecting::connect(open, marlin_settings)
             .await
             .map_err(|e| bind.error(e))?;
-        let start = async {
-            if settings.home {
+        let home = settings.home;
+        let start = async |marlin: &mut Marlin<SerialPort>| {
+            if home {
                 marlin.home().await?;
             } else {
                 marlin.command("G90").await?;
             }
             marlin.position().await
         };
-        let Position { x, y, z } = start.await.map_err(|e| bind.error(e))?;
+        let Position { x, y, z } = printer.run(start).await.map_err(|e| bind.error(e))?;
         let axes = Rc::new(RealAxes {
             target: watch::Sender::new(None),
             at: Cell::new([x, y, z]),
         });
-        let marlin = Rc::new(Mutex::new(marlin));
-        bind.spawn(drive(Rc::clone(&axes), Rc::clone(&marlin), settings.feed));
+        let printer = Rc::new(Mutex::new(printer));
+        bind.spawn(drive(Rc::clone(&axes), Rc::clone(&printer), settings));
         bind.on_stop(async move {
-            marlin.lock().await.quick_stop().await?;
+            // A printer that went away is not waited for: it stopped when it restarted.
+            if let Some(marlin) = printer.lock().await.connected() {
+                marlin.quick_stop().await?;
+            }
             Ok(())
         });
         Ok(AnetA30 {
@@ -99,22 +110,48 @@ impl Interface<Real> for AnetA30 {
 }
 
 /// Sends each newest target to the printer, waits for the moves to finish and records where
-/// the head then is; ends the run with the printer's error if one comes.
-async fn drive(
+/// the head then is; ends the run with the printer's error if one comes. A printer that was
+/// unplugged and came back mid-move is homed again and sent the target again when homing is
+/// on (without homing its position is unknown, and the run ends with the error).
+async fn drive<O, E>(
     axes: Rc<RealAxes>,
-    marlin: Rc<Mutex<Marlin<SerialPort>>>,
-    feed: f64,
-) -> Result<(), yarok_core::BoxError> {
+    printer: Rc<Mutex<Reconnecting<SerialPort, O>>>,
+    settings: Settings,
+) -> Result<(), yarok_core::BoxError>
+where
+    O: AsyncFnMut() -> Result<SerialPort, E>,
+    E: std::error::Error + Send + Sync + 'static,
+{
+    let feed = settings.feed;
     let mut targets = axes.target.subscribe();
     while targets.changed().await.is_ok() {
         let Some(target) = *targets.borrow_and_update() else {
             continue;
         };
-        let mut marlin = marlin.lock().await;
-        marlin.move_to(target, feed).await?;
-        marlin.finish_moves().await?;
-        let Position { x, y, z } = marlin.position().await?;
-        axes.at.set([x, y, z]);
+        let mut printer = printer.lock().await;
+        let at = match printer.run(async |m| arrive(m, target, feed).await).await {
+            Err(error @ MarlinError::Reconnected { .. }) if settings.home => {
+                tracing::warn!("{error}; homing it and moving again");
+                let again = async |m: &mut Marlin<SerialPort>| {
+                    m.home().await?;
+                    arrive(m, target, feed).await
+                };
+                printer.run(again).await?
+            }
+            other => other?,
+        };
+        axes.at.set([at.x, at.y, at.z]);
     }
     Ok(())
+}
+
+/// Moves to `target`, waits for the move to finish and reads where the head is.
+async fn arrive(
+    marlin: &mut Marlin<SerialPort>,
+    target: [f64; 3],
+    feed: f64,
+) -> Result<Position, MarlinError> {
+    marlin.move_to(target, feed).await?;
+    marlin.finish_moves().await?;
+    marlin.position().await
 }
