@@ -80,7 +80,7 @@ def main():
     self_test()
     metadata = json.loads(
         subprocess.run(
-            ["cargo", "metadata", "--format-version", "1", "--locked"],
+            ["cargo", "metadata", "--format-version", "1", "--locked", "--all-features"],
             check=True, capture_output=True, text=True,
         ).stdout
     )
