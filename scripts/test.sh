@@ -23,12 +23,13 @@ if cargo nextest --version >/dev/null 2>&1; then
   cargo nextest run --workspace --locked --no-fail-fast --retries 0
   echo "runner: cargo nextest, the camera feature's tests"
   cargo nextest run --workspace --features yarok/camera --locked --no-fail-fast --retries 0 \
-    -E 'binary(camera_decode) | binary(cam_real)'
+    -E 'binary(camera_decode) | binary(video_device) | binary(cam_real) | binary(tactile_real)'
 else
   echo "runner: cargo test (cargo-nextest is not installed)"
   cargo test --workspace --locked --no-fail-fast
-  cargo test --features camera --locked --no-fail-fast --test cam_real
-  cargo test -p yarok-hw --features camera --locked --no-fail-fast --test camera_decode
+  cargo test --features camera --locked --no-fail-fast --test cam_real --test tactile_real
+  cargo test -p yarok-hw --features camera --locked --no-fail-fast --test camera_decode \
+    --test video_device
 fi
 echo "== tests of process-wide state, as threads of one process (as cargo test runs them)"
 cargo test --workspace --locked --test render_offscreen

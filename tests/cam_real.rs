@@ -1,6 +1,7 @@
 //! `Cam` with `--env real` (feature `camera`): frames of an MJPEG stream from a program it runs
 //! (here ffmpeg's moving test pattern, as it would capture a USB camera), newest first, no depth;
-//! the program is stopped when the run ends; a bad source is an error naming the component.
+//! the program is stopped when the run ends; a bad source (a missing program, file or
+//! Video4Linux2 device, a device that is no camera) is an error naming the component.
 #![cfg(feature = "camera")]
 
 use yarok::components::cameras::{Cam, CamError};
@@ -75,5 +76,27 @@ fn a_bad_source_is_an_error_naming_the_camera() {
             .unwrap_err()
             .to_string();
         assert!(error.contains("/cam"), "{setting}: {error}");
+    }
+    for (device, says) in [
+        ("/dev/video97", "No such file"),
+        ("/dev/null", "not a video capture device"),
+    ] {
+        let error = yarok::platform()
+            .world::<CameraOnly>()
+            .args([
+                "--env".into(),
+                "real".into(),
+                "--set".into(),
+                format!("interfaces/cam/device=\"{device}\""),
+            ])
+            .unwrap()
+            .behaviour(|_| async { Ok(()) })
+            .run()
+            .unwrap_err()
+            .to_string();
+        assert!(
+            error.contains("/cam") && error.contains(device) && error.contains(says),
+            "{error}"
+        );
     }
 }

@@ -48,7 +48,7 @@ where
         .behaviour(move |pl| async move {
             let sensor: S = pl.get(path)?;
             pl.tick().await?;
-            *result.borrow_mut() = Some((sensor.read(), sensor.contact()));
+            *result.borrow_mut() = Some((sensor.read(), sensor.contact()?));
             Ok(())
         })
         .run()
@@ -176,11 +176,11 @@ fn a_sensor_on_each_finger_feels_the_block_from_its_side() {
             gripper.open().await?;
             arm.move_j_pose(down(block.position(), 0.12)).await?;
             arm.move_l(down(block.position(), 0.026)).await?;
-            assert!(!left.contact().in_contact && !right.contact().in_contact);
+            assert!(!left.contact()?.in_contact && !right.contact()?.in_contact);
             assert!(gripper.close().force(200).await?.object_detected);
             pl.wait_seconds(0.05).await?;
             for (side, digit) in [("left", &left), ("right", &right)] {
-                let contact = digit.contact();
+                let contact = digit.contact()?;
                 assert!(
                     contact.in_contact && contact.area > 1e-6,
                     "{side}: {contact:?}"
@@ -297,22 +297,22 @@ fn frames_come_at_the_sensor_rate_and_are_never_stale() {
                 pl.tick().await?;
                 assert_eq!(pl.ticks(), tick);
                 assert!(
-                    !digit.contact().in_contact,
+                    !digit.contact()?.in_contact,
                     "a frame at tick {tick}, not due"
                 );
             }
             pl.tick().await?;
             assert!(
-                digit.contact().in_contact,
+                digit.contact()?.in_contact,
                 "the frame due at tick 10 is missing"
             );
             // Lifted again: the frame due at tick 15 shows it.
             indenter.0.set_position(0.0);
             pl.wait(|| pl.ticks() >= 14).await?;
-            assert!(digit.contact().in_contact);
+            assert!(digit.contact()?.in_contact);
             pl.tick().await?;
             assert!(
-                !digit.contact().in_contact,
+                !digit.contact()?.in_contact,
                 "the frame due at tick 15 is stale"
             );
             Ok(())
@@ -394,7 +394,7 @@ impl yarok::Plugin for ProbeReader {
                         *pixels == digit.read().into_raw()
                     }
                     yarok::core::component::ProbeImage::Depth { metres, .. } => {
-                        *metres == digit.read_depth().into_raw()
+                        *metres == digit.read_depth()?.into_raw()
                     }
                     _ => false,
                 };

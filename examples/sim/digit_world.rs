@@ -39,7 +39,7 @@ async fn feel(pl: Pl) -> yarok::BehaviourResult {
     }
     pl.wait_seconds(0.1).await?; // a fresh frame of the settled grasp
     for (digit, side) in digits.iter().zip(["left", "right"]) {
-        let contact = digit.contact();
+        let contact = digit.contact()?;
         let path = format!("{out}/digit_{side}.png");
         digit.read().save(&path)?;
         println!(

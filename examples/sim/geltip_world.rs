@@ -57,7 +57,7 @@ async fn pull(pl: Pl) -> yarok::BehaviourResult {
     for (sensor, side) in sensors.iter().zip(["left", "right"]) {
         let path = format!("{out}/geltip_{side}.png");
         sensor.read().save(&path)?;
-        let contact = sensor.contact();
+        let contact = sensor.contact()?;
         println!(
             "{side} GelTip: {:.2} mm deep over {:.1} mm² → {path}",
             contact.max_indentation * 1e3,

@@ -1,7 +1,7 @@
 //! Cameras.
 
 #[cfg(feature = "camera")]
-mod real;
+pub(crate) mod real;
 
 use image::RgbImage;
 
@@ -18,9 +18,10 @@ use yarok_mjc::{Camera, DepthImage, RenderError, RenderPreset, Sim, SimBind};
 /// probes `rgb` and `depth` render when read.
 ///
 /// Environments: `sim` renders offscreen with MuJoCo; `real` (feature `camera`) shows the
-/// newest frame of an MJPEG stream — the output of a program it runs (interface setting
-/// `command`, e.g. ffmpeg capturing `/dev/video0`) or a file or FIFO (`file`) — and has no
-/// depth; `mock` returns black images of the configured size.
+/// newest frame of a Video4Linux2 camera (interface setting `device`, e.g. `/dev/video0`, at
+/// `fps`, default 30), of the MJPEG stream of a program it runs (`command`, e.g. ffmpeg or
+/// GStreamer) or of a file or FIFO (`file`), and has no depth; `mock` returns black images of
+/// the configured size.
 #[derive(Clone, Debug)]
 pub struct Cam {
     source: Source,

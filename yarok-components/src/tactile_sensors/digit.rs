@@ -16,6 +16,8 @@ const DIGIT: Spec = Spec {
     gel: [0.0095, 0.008],
     model: PhongParams::digit_metric,
     fps: 60.0,
+    #[cfg(feature = "camera")]
+    turned: true,
 };
 
 tactile_sensor_component! {
@@ -28,6 +30,9 @@ tactile_sensor_component! {
     /// geometry (`gel_face`, `thickness`, `gel`, `fovy`) is the optical model's and cannot be
     /// set.
     ///
-    /// Environments: `sim`; `mock` (always the untouched gel).
+    /// Environments: `sim`; `mock` (always the untouched gel); `real` (feature `camera`): the
+    /// DIGIT's camera (interface settings as [`Cam`](crate::cameras::Cam)'s: `device`, e.g.
+    /// `/dev/video0`, `command` or `file`; its QVGA stream, 320 × 240 at `fps`), each frame
+    /// turned to portrait as digit-interface's `get_frame` does; no depth or contact measures.
     Digit, DIGIT
 }

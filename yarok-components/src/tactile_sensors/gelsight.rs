@@ -16,6 +16,8 @@ const GELSIGHT_2014: Spec = Spec {
     gel: [0.0175, 0.0131],
     model: PhongParams::gelsight2014,
     fps: 30.0,
+    #[cfg(feature = "camera")]
+    turned: false,
 };
 
 tactile_sensor_component! {
@@ -28,6 +30,9 @@ tactile_sensor_component! {
     /// geometry (`gel_face`, `thickness`, `gel`, `fovy`) is the optical model's and cannot be
     /// set.
     ///
-    /// Environments: `sim`; `mock` (always the untouched gel).
+    /// Environments: `sim`; `mock` (always the untouched gel); `real` (feature `camera`): the
+    /// sensor's camera (interface settings as [`Cam`](crate::cameras::Cam)'s: `device`, e.g.
+    /// `/dev/video0`, `command` or `file`), its frames as they come; no depth or contact
+    /// measures.
     GelSight2014, GELSIGHT_2014
 }

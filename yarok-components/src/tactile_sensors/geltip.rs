@@ -174,6 +174,9 @@ tactile_sensor_component! {
     /// membrane's and camera's geometry (`radius`, `start`, `tip`, `fovy`) is the model's and
     /// cannot be set.
     ///
-    /// Environments: `sim`; `mock` (always the untouched membrane).
+    /// Environments: `sim`; `mock` (always the untouched membrane); `real` (feature `camera`): the
+    /// sensor's camera (interface settings as [`Cam`](crate::cameras::Cam)'s: `device`, e.g.
+    /// `/dev/video0`, `command` or `file`), its frames as they come; no depth or contact
+    /// measures.
     GelTip, GELTIP
 }

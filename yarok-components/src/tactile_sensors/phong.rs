@@ -25,6 +25,9 @@ pub(super) struct Spec {
     pub(super) model: fn() -> PhongParams,
     /// Frames per second by default: the real sensor's.
     pub(super) fps: f64,
+    /// Whether the real sensor's camera lies across the image (see `SensorKind::turned`).
+    #[cfg(feature = "camera")]
+    pub(super) turned: bool,
 }
 
 impl Spec {
@@ -62,6 +65,11 @@ impl SensorKind for Spec {
 
     fn size(&self) -> (u32, u32) {
         (self.width, self.height)
+    }
+
+    #[cfg(feature = "camera")]
+    fn turned(&self) -> bool {
+        self.turned
     }
 
     fn geometry(&self) -> Vec<(&'static str, Vec<f64>)> {

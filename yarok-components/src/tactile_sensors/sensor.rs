@@ -58,6 +58,13 @@ pub(super) trait SensorKind {
     fn declaration(&self) -> Declaration;
     /// Image columns and rows.
     fn size(&self) -> (u32, u32);
+    /// Whether the real sensor's camera lies across the image: its landscape frames are turned
+    /// to the image's portrait as digit-interface's `get_frame` does (transposed, then flipped
+    /// upside down).
+    #[cfg(feature = "camera")]
+    fn turned(&self) -> bool {
+        false
+    }
     /// The farthest any point of the untouched gel lies from the camera (metres): nothing
     /// beyond it can show in the image.
     fn reach(&self) -> f64;
@@ -81,7 +88,35 @@ pub(super) trait SensorKind {
 /// [`GelTip`](super::GelTip) deref to one.
 #[derive(Clone)]
 pub struct TactileSensor {
-    inner: Rc<Inner>,
+    feed: Feed,
+}
+
+/// A tactile sensor could not give what was asked.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum TactileError {
+    /// A real sensor gives only its image: its depth, and so its contact measures, are the
+    /// simulation's.
+    #[error("a real tactile sensor measures no depth, only its image")]
+    NoDepth,
+}
+
+/// Where the sensor's frames come from.
+#[derive(Clone)]
+enum Feed {
+    /// The optical model over the internal camera's depth (`sim`), or the untouched gel
+    /// (`mock`).
+    Model(Rc<Inner>),
+    /// The real sensor's camera.
+    #[cfg(feature = "camera")]
+    Real(Rc<RealSensor>),
+}
+
+#[cfg(feature = "camera")]
+struct RealSensor {
+    frames: Rc<crate::cameras::real::RealFrames>,
+    turned: bool,
+    optics: Box<dyn Optics>,
 }
 
 struct Inner {
@@ -106,28 +141,52 @@ struct State {
 
 impl std::fmt::Debug for TactileSensor {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("TactileSensor")
-            .field("period", &self.inner.period)
-            .finish()
+        let mut debug = f.debug_struct("TactileSensor");
+        match &self.feed {
+            Feed::Model(inner) => debug.field("period", &inner.period),
+            #[cfg(feature = "camera")]
+            Feed::Real(_) => debug.field("real", &true),
+        };
+        debug.finish()
     }
 }
 
 impl TactileSensor {
     /// The latest frame, RGB.
     pub fn read(&self) -> RgbImage {
-        self.inner.state.borrow().frame.clone()
+        match &self.feed {
+            Feed::Model(inner) => inner.state.borrow().frame.clone(),
+            #[cfg(feature = "camera")]
+            Feed::Real(real) => {
+                let frame = real.frames.latest();
+                if real.turned {
+                    image::imageops::rotate270(&frame)
+                } else {
+                    frame
+                }
+            }
+        }
     }
 
     /// The gel's depth for the latest frame (metres along the internal camera's axis): the
     /// untouched surface, and nearer where something presses into it. This is what the optical
     /// model turns into the image.
-    pub fn read_depth(&self) -> DepthImage {
-        self.inner.state.borrow().depth.clone()
+    ///
+    /// # Errors
+    ///
+    /// [`TactileError::NoDepth`] on a real sensor.
+    pub fn read_depth(&self) -> Result<DepthImage, TactileError> {
+        Ok(self.model()?.state.borrow().depth.clone())
     }
 
-    /// The platform time of the latest frame (seconds).
+    /// The platform time of the latest frame (seconds): when it was made, or when it arrived
+    /// from a real sensor.
     pub fn frame_time(&self) -> f64 {
-        self.inner.state.borrow().time
+        match &self.feed {
+            Feed::Model(inner) => inner.state.borrow().time,
+            #[cfg(feature = "camera")]
+            Feed::Real(real) => real.frames.time(),
+        }
     }
 
     /// Where the untouched gel's outer surface is at `(x, y)` metres across the sensor's axis
@@ -135,12 +194,20 @@ impl TactileSensor {
     /// `None` where there is no gel. A press `d` metres deep at `(x, y)` puts the object's tip
     /// at `surface_distance(x, y) − d` along the axis.
     pub fn surface_distance(&self, x: f64, y: f64) -> Option<f64> {
-        self.inner.state.borrow().optics.surface_distance(x, y)
+        match &self.feed {
+            Feed::Model(inner) => inner.state.borrow().optics.surface_distance(x, y),
+            #[cfg(feature = "camera")]
+            Feed::Real(real) => real.optics.surface_distance(x, y),
+        }
     }
 
     /// What the latest frame feels.
-    pub fn contact(&self) -> Contact {
-        let state = self.inner.state.borrow();
+    ///
+    /// # Errors
+    ///
+    /// [`TactileError::NoDepth`] on a real sensor.
+    pub fn contact(&self) -> Result<Contact, TactileError> {
+        let state = self.model()?.state.borrow();
         let optics = &state.optics;
         let (mut deepest, mut touched) = (0.0f64, 0usize);
         for (surface, depth) in optics.surface().iter().zip(state.depth.as_raw()) {
@@ -149,10 +216,19 @@ impl TactileSensor {
             deepest = deepest.max(indentation);
             touched += usize::from(indentation > TOUCHED);
         }
-        Contact {
+        Ok(Contact {
             in_contact: touched > 0,
             max_indentation: deepest,
             area: touched as f64 * optics.pixel_area(),
+        })
+    }
+
+    /// The optical model's side, which a real sensor does not have.
+    fn model(&self) -> Result<&Inner, TactileError> {
+        match &self.feed {
+            Feed::Model(inner) => Ok(inner),
+            #[cfg(feature = "camera")]
+            Feed::Real(_) => Err(TactileError::NoDepth),
         }
     }
 
@@ -174,10 +250,7 @@ impl TactileSensor {
         bind: &mut Bind<E>,
         camera: Option<Camera>,
     ) -> Result<Self, BindError> {
-        let fps: f64 = bind.config_value("fps")?;
-        if !(fps > 0.0 && fps.is_finite()) {
-            return Err(bind.error(format!("fps must be a positive number, not {fps}")));
-        }
+        let fps = frame_rate(bind)?;
         check_geometry(kind, bind)?;
         let noise: bool = bind.config_value("noise")?;
         let parallel: bool = bind.config_value("parallel")?;
@@ -214,12 +287,13 @@ impl TactileSensor {
             return Err(bind.error(error));
         }
         let sensor = Self {
-            inner: Rc::clone(&inner),
+            feed: Feed::Model(Rc::clone(&inner)),
         };
+        sensor.show_image(bind);
         let shown = sensor.clone();
-        bind.probe("image", move || Ok(probe_images::rgb(shown.read())));
-        let shown = sensor.clone();
-        bind.probe("depth", move || Ok(probe_images::depth(shown.read_depth())));
+        bind.probe("depth", move || {
+            Ok(probe_images::depth(shown.read_depth()?))
+        });
         let ticking = Rc::clone(&inner);
         bind.on_tick(move || {
             // After a step the clock still reads the time before it.
@@ -231,6 +305,54 @@ impl TactileSensor {
         });
         Ok(sensor)
     }
+}
+
+impl TactileSensor {
+    /// Binds a real sensor of `kind`: its camera's frames (a Video4Linux2 device, or an MJPEG
+    /// stream, as [`Cam`](crate::cameras::Cam)'s `real` interface takes them), at the kind's
+    /// size (across, when [`SensorKind::turned`]) and the configured rate.
+    #[cfg(feature = "camera")]
+    pub(super) async fn bind_real(
+        kind: &dyn SensorKind,
+        bind: &mut Bind<yarok_hw::Real>,
+    ) -> Result<Self, BindError> {
+        let fps = frame_rate(bind)?;
+        check_geometry(kind, bind)?;
+        let (width, height) = kind.size();
+        let turned = kind.turned();
+        let (across, down) = if turned {
+            (height, width)
+        } else {
+            (width, height)
+        };
+        let rate = fps.round().clamp(1.0, f64::from(u32::MAX)) as u32;
+        let frames = crate::cameras::real::bind_frames(bind, across, down, rate).await?;
+        let optics = kind.optics(bind.seed(), false).map_err(|e| bind.error(e))?;
+        let sensor = Self {
+            feed: Feed::Real(Rc::new(RealSensor {
+                frames,
+                turned,
+                optics,
+            })),
+        };
+        sensor.show_image(bind);
+        Ok(sensor)
+    }
+
+    /// Registers the probe `image`.
+    fn show_image<E: Environment>(&self, bind: &mut Bind<E>) {
+        let shown = self.clone();
+        bind.probe("image", move || Ok(probe_images::rgb(shown.read())));
+    }
+}
+
+/// The configured frame rate, a positive number.
+fn frame_rate<E: Environment>(bind: &Bind<E>) -> Result<f64, BindError> {
+    let fps: f64 = bind.config_value("fps")?;
+    if !(fps > 0.0 && fps.is_finite()) {
+        return Err(bind.error(format!("fps must be a positive number, not {fps}")));
+    }
+    Ok(fps)
 }
 
 /// Refuses config that changes the geometry the optical model is made for.
@@ -288,7 +410,7 @@ impl Inner {
 }
 
 /// A component newtype over [`TactileSensor`] for one [`SensorKind`]: `sim` and `mock`
-/// interfaces.
+/// interfaces, and `real` with the `camera` feature.
 macro_rules! tactile_sensor_component {
     ($(#[$doc:meta])* $name:ident, $kind:expr) => {
         $(#[$doc])*
@@ -310,6 +432,17 @@ macro_rules! tactile_sensor_component {
 
             fn interfaces(interfaces: &mut yarok_core::component::Interfaces<Self>) {
                 interfaces.add::<yarok_mjc::Sim>().add::<yarok_core::component::Mock>();
+                #[cfg(feature = "camera")]
+                interfaces.add::<yarok_hw::Real>();
+            }
+        }
+
+        #[cfg(feature = "camera")]
+        impl yarok_core::component::Interface<yarok_hw::Real> for $name {
+            async fn bind(
+                bind: &mut yarok_core::component::Bind<yarok_hw::Real>,
+            ) -> Result<Self, yarok_core::component::BindError> {
+                TactileSensor::bind_real(&$kind, bind).await.map($name)
             }
         }
 

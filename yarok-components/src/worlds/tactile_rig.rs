@@ -8,7 +8,7 @@ use yarok_mjc::{DepthImage, Sim};
 
 use super::EmptyWorld;
 use crate::robots::{AnetA30, WORK_VOLUME_MM};
-use crate::tactile_sensors::{Contact, Digit, GelSight2014, GelTip, TactileSensor};
+use crate::tactile_sensors::{Contact, Digit, GelSight2014, GelTip, TactileError, TactileSensor};
 
 /// A printer (an [`AnetA30`] at the world's origin, its coordinates the world's in millimetres)
 /// whose head carries an indenter, over an upright tactile sensor: a rig that presses the
@@ -96,6 +96,9 @@ pub enum PressError {
     /// The platform stopped while the press waited for the sensor's frame.
     #[error(transparent)]
     Wait(#[from] WaitError),
+    /// The sensor has no depth to sample (a real one).
+    #[error(transparent)]
+    Sensor(#[from] TactileError),
 }
 
 impl TactileRigWorld {
@@ -120,7 +123,8 @@ impl TactileRigWorld {
     /// # Errors
     ///
     /// [`PressError::Impossible`] for a press off the gel, NaN or negative, or out of the
-    /// printer's reach; [`PressError::Wait`] when the platform stops meanwhile.
+    /// printer's reach; [`PressError::Wait`] when the platform stops meanwhile;
+    /// [`PressError::Sensor`] for a sensor without depth (a real one).
     ///
     /// # Cancel safety
     ///
@@ -136,8 +140,8 @@ impl TactileRigWorld {
             press,
             head: placed,
             image: self.sensor.read(),
-            depth: self.sensor.read_depth(),
-            contact: self.sensor.contact(),
+            depth: self.sensor.read_depth()?,
+            contact: self.sensor.contact()?,
         })
     }
 
