@@ -1,6 +1,6 @@
 //! Tactile sensors with `--env real` (feature `camera`): a DIGIT's frames are its camera's
 //! landscape frames turned to the model's portrait (as digit-interface's `get_frame` turns
-//! them), a GelTip's come as they are; both decode as ffmpeg decodes them; depth and contact
+//! them; its VGA stream too), a GelTip's come as they are; both decode as ffmpeg decodes them; depth and contact
 //! measures are errors saying a real sensor has none, and the gel's geometry is the model's.
 #![cfg(feature = "camera")]
 
@@ -129,6 +129,34 @@ impl Component for DigitOnly {
             .uses::<Digit>()
             .template(r#"<mujoco><worldbody><digit name="digit"/></worldbody></mujoco>"#)
     }
+}
+
+#[test]
+fn a_digits_vga_stream_comes_turned_to_480_by_640() {
+    let folder = tempfile::tempdir().unwrap();
+    let (stream, camera) = pattern(folder.path(), 640, 480);
+    let portrait = image::imageops::rotate270(&camera);
+    yarok::platform()
+        .world::<DigitOnly>()
+        .args([
+            "--env".to_owned(),
+            "real".to_owned(),
+            "--set".to_owned(),
+            format!("interfaces/digit/file=\"{stream}\""),
+            "--set".to_owned(),
+            "interfaces/digit/size=[640, 480]".to_owned(),
+        ])
+        .unwrap()
+        .behaviour(move |pl| async move {
+            let digit: Digit = pl.get("/digit")?;
+            let frame = digit.read();
+            assert_eq!(frame.dimensions(), (480, 640));
+            let turned = mean_difference(&frame, &portrait);
+            assert!(turned <= 1.0, "{turned} levels from ffmpeg's, turned");
+            Ok(())
+        })
+        .run()
+        .unwrap();
 }
 
 #[test]

@@ -16,7 +16,7 @@ use yarok_hw::camera::{MjpegStream, StreamError, VideoDevice};
 use super::{Cam, Source, size};
 
 /// The interface settings of a real camera (`[interfaces."/path/to/cam"]`): exactly one of
-/// `device`, `command` and `file`.
+/// `device`, `command` and `file`, and optionally `fps`, `size` and `first_frame_seconds`.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 struct Settings {
@@ -25,6 +25,9 @@ struct Settings {
     /// Frames a second asked of the device (it may offer the nearest it has); the component's
     /// rate when unset.
     fps: Option<u32>,
+    /// The frames' width and height in pixels; the component's when unset (a DIGIT's VGA
+    /// stream: `[640, 480]` with `fps = 30`).
+    size: Option<[u32; 2]>,
     /// A program and its arguments whose standard output is an MJPEG stream, e.g.
     /// `["ffmpeg", "-f", "v4l2", "-input_format", "mjpeg", "-i", "/dev/video0", "-c", "copy",
     /// "-f", "mjpeg", "pipe:1"]`.
@@ -40,6 +43,7 @@ impl Default for Settings {
         Self {
             device: String::new(),
             fps: None,
+            size: None,
             command: Vec::new(),
             file: String::new(),
             first_frame_seconds: 5.0,
@@ -80,10 +84,10 @@ impl Feed {
     }
 }
 
-/// Starts the component's camera feed of `width` × `height` frames as its interface settings
-/// say, waits for the first frame, and keeps the newest one from then on (a task of the run;
-/// a feed that fails or, for a device or program, ends, ends the run). `fps` is the rate asked
-/// of a device unless the settings say otherwise.
+/// Starts the component's camera feed as its interface settings say, waits for the first
+/// frame, and keeps the newest one from then on (a task of the run; a feed that fails or, for a
+/// device or program, ends, ends the run). Frames are `width` × `height` and `fps` is the rate
+/// asked of a device unless the settings say otherwise.
 pub(crate) async fn bind_frames(
     bind: &mut Bind<Real>,
     width: u32,
@@ -91,6 +95,10 @@ pub(crate) async fn bind_frames(
     fps: u32,
 ) -> Result<Rc<RealFrames>, BindError> {
     let settings: Settings = bind.settings()?;
+    let [width, height] = settings.size.unwrap_or([width, height]);
+    if width == 0 || height == 0 {
+        return Err(bind.error("size must be at least one pixel each way"));
+    }
     let (mut feed, name, program) = open(bind, &settings, width, height, fps).await?;
     let first = bind
         .within(

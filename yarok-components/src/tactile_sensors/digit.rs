@@ -32,7 +32,8 @@ tactile_sensor_component! {
     ///
     /// Environments: `sim`; `mock` (always the untouched gel); `real` (feature `camera`): the
     /// DIGIT's camera (interface settings as [`Cam`](crate::cameras::Cam)'s: `device`, e.g.
-    /// `/dev/video0`, `command` or `file`; its QVGA stream, 320 × 240 at `fps`), each frame
-    /// turned to portrait as digit-interface's `get_frame` does; no depth or contact measures.
+    /// `/dev/video0`, `command` or `file`; its QVGA stream, 320 × 240 at `fps`, or the VGA one
+    /// with `size = [640, 480]` and `fps = 30`), each frame turned to portrait as
+    /// digit-interface's `get_frame` does; no depth or contact measures.
     Digit, DIGIT
 }
