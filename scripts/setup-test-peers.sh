@@ -3,9 +3,10 @@
 #  - ffmpeg (Debian's), which encodes the camera frames the decoders are checked against, and
 #    libclang with the kernel's headers, which the `camera` feature's V4L2 bindings are built
 #    from;
-#  - OctoPrint's VirtualPrinter, a Marlin emulator, in a Python virtual environment of its own
-#    (${YAROK_CACHE_DIR:-~/.cache/yarok}/peers). AGPL: the tests only run it as a separate
-#    process, through scripts/peers/virtual_printer_bridge.py; nothing links or ships it.
+#  - in a Python virtual environment of their own (${YAROK_CACHE_DIR:-~/.cache/yarok}/peers):
+#    OctoPrint's VirtualPrinter, a Marlin emulator (AGPL: the tests only run it as a separate
+#    process, through scripts/peers/virtual_printer_bridge.py; nothing links or ships it), and
+#    ur_rtde (MIT), a UR client the fake controller's faithfulness is checked with.
 set -euo pipefail
 
 source "$(dirname "$0")/debian-packages.sh"
@@ -17,12 +18,19 @@ install_missing_packages "libclang and the kernel's headers, for the camera feat
   libclang-dev linux-libc-dev
 
 peers="${YAROK_CACHE_DIR:-$HOME/.cache/yarok}/peers"
-if "$peers/bin/python" -c "import octoprint.plugins.virtual_printer" 2>/dev/null; then
-  exit 0
+if [ ! -x "$peers/bin/python" ]; then
+  if ! python3 -c "import ensurepip" 2>/dev/null; then
+    install_missing_packages "Python's venv module, for the test peers" python3-venv
+  fi
+  python3 -m venv "$peers"
 fi
-if ! python3 -c "import ensurepip" 2>/dev/null; then
-  install_missing_packages "Python's venv module, for the printer emulator" python3-venv
-fi
-echo "setup: installing OctoPrint 1.11.8 (its VirtualPrinter) into $peers"
-python3 -m venv "$peers"
-"$peers/bin/pip" install -q --disable-pip-version-check "octoprint==1.11.8"
+# Each peer: the module that proves it is installed, and the release to install.
+while read -r module requirement; do
+  if ! "$peers/bin/python" -c "import $module" 2>/dev/null; then
+    echo "setup: installing $requirement into $peers"
+    "$peers/bin/pip" install -q --disable-pip-version-check "$requirement"
+  fi
+done <<'PEERS'
+octoprint.plugins.virtual_printer octoprint==1.11.8
+rtde_receive ur_rtde==1.6.5
+PEERS

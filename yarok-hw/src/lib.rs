@@ -4,14 +4,15 @@
 //! async drivers generic over their transport (Marlin G-code over serial, the UR controller's
 //! URScript and RTDE, the Robotiq gripper socket, cameras).
 //!
-//! This crate is being built up issue by issue; today it holds the hardware backend and the
-//! Marlin driver.
+//! This crate is being built up issue by issue; today it holds the hardware backend, the
+//! Marlin driver, serial ports, cameras (feature `camera`) and the UR controller's RTDE client.
 
 mod backend;
 #[cfg(feature = "camera")]
 pub mod camera;
 pub mod marlin;
 mod serial;
+pub mod ur;
 
 pub use backend::{DEFAULT_TICK_HZ, HardwareBackend, InvalidTickRate, Real};
 pub use serial::{SerialError, SerialPort};

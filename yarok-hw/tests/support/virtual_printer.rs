@@ -4,7 +4,6 @@
 #![allow(dead_code)]
 
 use std::io::{BufRead, BufReader, Write};
-use std::path::PathBuf;
 use std::process::{Child, ChildStdin, Command, Stdio};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
@@ -12,15 +11,8 @@ use std::time::{Duration, Instant};
 use yarok_hw::SerialPort;
 use yarok_hw::marlin::{Marlin, MarlinSettings};
 
-/// The bridge script: in the workspace's `scripts/peers`, above whichever crate's tests run.
-fn bridge() -> PathBuf {
-    let script = "scripts/peers/virtual_printer_bridge.py";
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .ancestors()
-        .map(|folder| folder.join(script))
-        .find(|path| path.is_file())
-        .unwrap_or_else(|| panic!("{script} not found above {}", env!("CARGO_MANIFEST_DIR")))
-}
+#[path = "peers.rs"]
+mod peers;
 
 /// The VirtualPrinter behind a pseudo-terminal, stopped when dropped.
 pub(crate) struct VirtualPrinter {
@@ -45,20 +37,8 @@ impl VirtualPrinter {
     }
 
     fn launch(arguments: &[&str]) -> Self {
-        let peers = std::env::var_os("YAROK_CACHE_DIR")
-            .map(PathBuf::from)
-            .or_else(|| {
-                std::env::var_os("HOME").map(|home| PathBuf::from(home).join(".cache/yarok"))
-            })
-            .expect("YAROK_CACHE_DIR or HOME")
-            .join("peers/bin/python");
-        assert!(
-            peers.exists(),
-            "{} is missing: run `bash scripts/setup-test-peers.sh` (scripts/test.sh does)",
-            peers.display()
-        );
-        let mut bridge = Command::new(peers)
-            .arg(bridge())
+        let mut bridge = Command::new(peers::python())
+            .arg(peers::script("virtual_printer_bridge.py"))
             .args(arguments)
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
