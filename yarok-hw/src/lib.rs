@@ -10,6 +10,7 @@
 mod backend;
 #[cfg(feature = "camera")]
 pub mod camera;
+mod lines;
 pub mod marlin;
 mod serial;
 pub mod ur;

@@ -2,12 +2,13 @@
 
 use std::time::Duration;
 
-use tokio::io::{AsyncBufReadExt, AsyncRead, AsyncWrite, AsyncWriteExt, BufReader};
+use tokio::io::{AsyncRead, AsyncWrite, AsyncWriteExt, BufReader};
 use tokio::time::Instant;
 
 use super::MarlinError;
 use super::line::numbered_line;
 use super::reply::{Position, Reply};
+use crate::lines::read_line;
 
 /// The longest line kept from the printer; the rest of a longer one is dropped.
 const MAX_LINE: usize = 512;
@@ -415,30 +416,9 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Marlin<T> {
         }
     }
 
-    /// The next line, without its ending, lossily decoded and cut at [`MAX_LINE`] bytes;
-    /// `None` at the end of the stream. Cancel safe: a partly read line stays in `partial`.
+    /// The next line (see [`read_line`]). Cancel safe.
     async fn read_line(&mut self) -> std::io::Result<Option<String>> {
-        loop {
-            let available = self.stream.fill_buf().await?;
-            if available.is_empty() {
-                return Ok(None);
-            }
-            let (taken, ended) = match available.iter().position(|b| *b == b'\n') {
-                Some(end) => (end + 1, true),
-                None => (available.len(), false),
-            };
-            let room = MAX_LINE.saturating_sub(self.partial.len());
-            self.partial
-                .extend_from_slice(&available[..taken.min(room)]);
-            self.stream.consume(taken);
-            if ended {
-                let line = String::from_utf8_lossy(&self.partial)
-                    .trim_end_matches(['\r', '\n'])
-                    .to_owned();
-                self.partial.clear();
-                return Ok(Some(line));
-            }
-        }
+        read_line(&mut self.stream, &mut self.partial, MAX_LINE).await
     }
 
     async fn write(&mut self, line: &[u8]) -> Result<(), MarlinError> {

@@ -1,4 +1,6 @@
 //! Universal Robots controllers: RTDE ([`rtde`]), the interface that streams the arm's state at
-//! 125 Hz (CB3) or 500 Hz (e-Series) and takes inputs.
+//! 125 Hz (CB3) or 500 Hz (e-Series) and takes inputs, and the dashboard server
+//! ([`dashboard`]) that powers the arm, releases its brakes and unlocks protective stops.
 
+pub mod dashboard;
 pub mod rtde;

@@ -1,7 +1,9 @@
-//! A fake UR controller for tests: its RTDE server (port 30004) on a loopback address of its
-//! own, answering recipes from the controller's variable table and streaming data packages at
-//! the recipe's rate, in a CB3 (3.15) or an e-Series (5.11) profile. The arm holds the joint
-//! positions the test sets. Shared by yarok-hw's tests and the workspace's.
+//! A fake UR controller for tests, on a loopback address of its own, in a CB3 (3.15) or an
+//! e-Series (5.11) profile: its RTDE server (port 30004) answers recipes from the controller's
+//! variable table and streams data packages at the recipe's rate; its dashboard server (port
+//! 29999) powers the arm, releases its brakes, unlocks protective stops (not within 5 s of
+//! one) and loads and plays programs, with UR's replies. The arm holds the joint positions the
+//! test sets. Shared by yarok-hw's tests and the workspace's.
 #![allow(dead_code)]
 
 use std::collections::HashMap;
@@ -11,14 +13,15 @@ use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-use tokio::io::{AsyncReadExt, AsyncWriteExt};
+use tokio::io::{AsyncBufReadExt, AsyncReadExt, AsyncWriteExt};
 use tokio::net::{TcpListener, TcpStream};
 use yarok_hw::ur::rtde::{
     ControllerVersion, Reply, Request, RtdeType, Value, input_type, output_type, take_frame,
 };
 
-/// RTDE's port, which third-party clients do not let one change.
+/// RTDE's and the dashboard's ports, which third-party clients do not let one change.
 pub(crate) const RTDE_PORT: u16 = 30004;
+pub(crate) const DASHBOARD_PORT: u16 = 29999;
 
 /// Which controller it plays.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -47,6 +50,17 @@ impl Profile {
         }
     }
 
+    /// The dashboard's `PolyscopeVersion` reply.
+    fn polyscope(self) -> String {
+        let ControllerVersion {
+            major,
+            minor,
+            bugfix,
+            build,
+        } = self.version();
+        format!("URSoftware {major}.{minor}.{bugfix}.{build} (Mar 22 2022)")
+    }
+
     fn max_frequency(self) -> f64 {
         match self {
             Profile::Cb3 => 125.0,
@@ -64,6 +78,18 @@ struct Shared {
     inputs: Mutex<HashMap<String, Value>>,
     /// Output variables clients asked for, in order.
     asked: Mutex<Vec<String>>,
+    arm: Mutex<Arm>,
+}
+
+/// The arm's power, safety and program, as the dashboard reports and changes them.
+#[derive(Debug, Clone)]
+pub(crate) struct Arm {
+    pub(crate) robot_mode: &'static str,
+    pub(crate) safety: &'static str,
+    /// When the protective stop happened.
+    pub(crate) stopped_at: Option<Instant>,
+    pub(crate) program: Option<String>,
+    pub(crate) playing: bool,
 }
 
 /// A fake controller serving RTDE on `host`, on a thread of its own until dropped.
@@ -92,8 +118,16 @@ impl FakeController {
             joints: Mutex::new([0.0, -FRAC_PI_2, FRAC_PI_2, -FRAC_PI_2, -FRAC_PI_2, 0.0]),
             inputs: Mutex::new(HashMap::new()),
             asked: Mutex::new(Vec::new()),
+            arm: Mutex::new(Arm {
+                robot_mode: "POWER_OFF",
+                safety: "NORMAL",
+                stopped_at: None,
+                program: None,
+                playing: false,
+            }),
         });
-        let address: SocketAddr = format!("{host}:{RTDE_PORT}").parse().unwrap();
+        let address = |port: u16| -> SocketAddr { format!("{host}:{port}").parse().unwrap() };
+        let (rtde, dashboard) = (address(RTDE_PORT), address(DASHBOARD_PORT));
         let (bound_tx, bound_rx) = std::sync::mpsc::channel();
         let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
         let serving = Arc::clone(&shared);
@@ -103,14 +137,21 @@ impl FakeController {
                 .build()
                 .unwrap();
             runtime.block_on(async move {
-                let listener = TcpListener::bind(address)
+                let rtde = TcpListener::bind(rtde).await.expect("the RTDE port binds");
+                let dashboard = TcpListener::bind(dashboard)
                     .await
-                    .expect("the RTDE port binds");
+                    .expect("the dashboard port binds");
                 bound_tx.send(()).unwrap();
                 let accepting = async {
                     loop {
-                        let (stream, _) = listener.accept().await.expect("a client connects");
-                        tokio::spawn(serve_rtde(stream, Arc::clone(&serving)));
+                        tokio::select! {
+                            Ok((stream, _)) = rtde.accept() => {
+                                tokio::spawn(serve_rtde(stream, Arc::clone(&serving)));
+                            }
+                            Ok((stream, _)) = dashboard.accept() => {
+                                tokio::spawn(serve_dashboard(stream, Arc::clone(&serving)));
+                            }
+                        }
                     }
                 };
                 tokio::select! {
@@ -140,6 +181,19 @@ impl FakeController {
     /// The value a client last wrote to the input variable `name`.
     pub(crate) fn input(&self, name: &str) -> Option<Value> {
         self.shared.inputs.lock().unwrap().get(name).copied()
+    }
+
+    /// The arm's power, safety and program now.
+    pub(crate) fn arm(&self) -> Arm {
+        self.shared.arm.lock().unwrap().clone()
+    }
+
+    /// A protective stop, `ago` in the past.
+    pub(crate) fn protective_stop(&self, ago: Duration) {
+        let mut arm = self.shared.arm.lock().unwrap();
+        arm.safety = "PROTECTIVE_STOP";
+        arm.stopped_at = Some(Instant::now() - ago);
+        arm.playing = false;
     }
 
     /// The output variables clients asked for so far.
@@ -310,6 +364,85 @@ async fn serve_rtde(stream: TcpStream, shared: Arc<Shared>) {
             if writer.write_all(&reply.encode().unwrap()).await.is_err() {
                 return;
             }
+        }
+    }
+}
+
+impl Shared {
+    /// The dashboard's reply to `command`, as a controller of the profile answers it.
+    fn dashboard(&self, command: &str) -> String {
+        let mut arm = self.arm.lock().unwrap();
+        let e_series = self.profile == Profile::ESeries;
+        match command {
+            "PolyscopeVersion" => self.profile.polyscope(),
+            "get serial number" => "20185500020".into(),
+            "is in remote control" if e_series => "true".into(),
+            "robotmode" => format!("Robotmode: {}", arm.robot_mode),
+            "safetystatus" if e_series => format!("Safetystatus: {}", arm.safety),
+            "safetymode" => format!("Safetymode: {}", arm.safety),
+            "power on" => {
+                arm.robot_mode = "IDLE";
+                "Powering on".into()
+            }
+            "power off" => {
+                arm.robot_mode = "POWER_OFF";
+                "Powering off".into()
+            }
+            "brake release" => {
+                arm.robot_mode = "RUNNING";
+                "Brake releasing".into()
+            }
+            "unlock protective stop" => match arm.stopped_at {
+                Some(at) if at.elapsed() < Duration::from_secs(5) => {
+                    "Cannot unlock protective stop until 5s after occurrence. Always inspect \
+                     cause of protective stop before unlocking"
+                        .into()
+                }
+                _ => {
+                    arm.safety = "NORMAL";
+                    arm.stopped_at = None;
+                    "Protective stop releasing".into()
+                }
+            },
+            "close safety popup" => "closing safety popup".into(),
+            "play" if arm.program.is_some() && arm.safety == "NORMAL" => {
+                arm.playing = true;
+                "Starting program".into()
+            }
+            "play" => "Failed to execute: play".into(),
+            "stop" => {
+                arm.playing = false;
+                "Stopped".into()
+            }
+            _ => match command.strip_prefix("load ") {
+                Some(program) if program.ends_with(".urp") => {
+                    arm.program = Some(program.to_owned());
+                    format!("Loading program: {program}")
+                }
+                Some(program) => format!("File not found: {program}"),
+                None => format!("Could not understand: '{command}'"),
+            },
+        }
+    }
+}
+
+/// One client's dashboard session.
+async fn serve_dashboard(stream: TcpStream, shared: Arc<Shared>) {
+    let (reader, mut writer) = stream.into_split();
+    let welcome = "Connected: Universal Robots Dashboard Server\n";
+    if writer.write_all(welcome.as_bytes()).await.is_err() {
+        return;
+    }
+    let mut lines = tokio::io::BufReader::new(reader).lines();
+    while let Ok(Some(command)) = lines.next_line().await {
+        let command = command.trim();
+        if command == "quit" {
+            let _ = writer.write_all(b"Disconnected\n").await;
+            return;
+        }
+        let reply = format!("{}\n", shared.dashboard(command));
+        if writer.write_all(reply.as_bytes()).await.is_err() {
+            return;
         }
     }
 }
