@@ -6,7 +6,8 @@
 #  - in a Python virtual environment of their own (${YAROK_CACHE_DIR:-~/.cache/yarok}/peers):
 #    OctoPrint's VirtualPrinter, a Marlin emulator (AGPL: the tests only run it as a separate
 #    process, through scripts/peers/virtual_printer_bridge.py; nothing links or ships it), and
-#    ur_rtde (MIT), a UR client the fake controller's faithfulness is checked with.
+#    ur_rtde and pyrobotiqur (both MIT), the UR and Robotiq clients the fake controller's
+#    faithfulness is checked with.
 set -euo pipefail
 
 source "$(dirname "$0")/debian-packages.sh"
@@ -33,4 +34,5 @@ while read -r module requirement; do
 done <<'PEERS'
 octoprint.plugins.virtual_printer octoprint==1.11.8
 rtde_receive ur_rtde==1.6.5
+pyrobotiqur pyrobotiqur==0.2.2
 PEERS

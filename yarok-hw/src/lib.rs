@@ -12,6 +12,7 @@ mod backend;
 pub mod camera;
 mod lines;
 pub mod marlin;
+pub mod robotiq;
 mod serial;
 pub mod ur;
 

@@ -2,8 +2,10 @@
 //! e-Series (5.11) profile: its RTDE server (port 30004) answers recipes from the controller's
 //! variable table and streams data packages at the recipe's rate; its dashboard server (port
 //! 29999) powers the arm, releases its brakes, unlocks protective stops (not within 5 s of
-//! one) and loads and plays programs, with UR's replies. The arm holds the joint positions the
-//! test sets. Shared by yarok-hw's tests and the workspace's.
+//! one) and loads and plays programs, with UR's replies; its Robotiq gripper socket (port
+//! 63352) activates a 2F-85 whose fingers move in time at the speed asked for and stop on an
+//! object the test places, or fault when told to. The arm holds the joint positions the test
+//! sets. Shared by yarok-hw's tests and the workspace's.
 #![allow(dead_code)]
 
 use std::collections::HashMap;
@@ -22,6 +24,8 @@ use yarok_hw::ur::rtde::{
 /// RTDE's and the dashboard's ports, which third-party clients do not let one change.
 pub(crate) const RTDE_PORT: u16 = 30004;
 pub(crate) const DASHBOARD_PORT: u16 = 29999;
+/// The Robotiq URCap's gripper socket.
+pub(crate) const GRIPPER_PORT: u16 = 63352;
 
 /// Which controller it plays.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -79,6 +83,75 @@ struct Shared {
     /// Output variables clients asked for, in order.
     asked: Mutex<Vec<String>>,
     arm: Mutex<Arm>,
+    fingers: Mutex<Fingers>,
+}
+
+/// The gripper's registers and its fingers' motion.
+#[derive(Debug, Clone)]
+pub(crate) struct Fingers {
+    act: u8,
+    gto: u8,
+    pub(crate) sta: u8,
+    pub(crate) flt: u8,
+    pub(crate) obj: u8,
+    pub(crate) pre: u8,
+    target: u8,
+    speed: u8,
+    pub(crate) force: u8,
+    /// Finger position, 0 … 255, as a real number while moving.
+    position: f64,
+    activating_since: Option<Instant>,
+    updated: Instant,
+    /// Where closing fingers meet an object, if one is between them.
+    pub(crate) object_at: Option<u8>,
+    /// Every SET command, in order.
+    pub(crate) commands: Vec<String>,
+}
+
+impl Fingers {
+    pub(crate) fn position(&self) -> u8 {
+        self.position.round() as u8
+    }
+
+    /// Advances activation and motion to `now`.
+    fn update(&mut self, now: Instant) {
+        let elapsed = now.duration_since(self.updated).as_secs_f64();
+        self.updated = now;
+        if self.sta == 1
+            && self
+                .activating_since
+                .is_some_and(|since| now.duration_since(since) >= Duration::from_millis(200))
+        {
+            self.sta = 3;
+        }
+        if self.sta != 3 || self.gto != 1 || self.obj != 0 || self.flt != 0 {
+            return;
+        }
+        // A full stroke takes 1.5 s at speed 0 and 0.4 s at speed 255.
+        let rate = 255.0 / (1.5 - 1.1 * f64::from(self.speed) / 255.0);
+        let target = f64::from(self.target);
+        let step = rate * elapsed;
+        let closing = target > self.position;
+        let mut next = if closing {
+            (self.position + step).min(target)
+        } else {
+            (self.position - step).max(target)
+        };
+        if let Some(object) = self.object_at.map(f64::from)
+            && closing
+            && self.position <= object
+            && next >= object
+        {
+            self.position = object;
+            self.obj = 2;
+            return;
+        }
+        if (next - target).abs() < 1e-9 {
+            next = target;
+            self.obj = 3;
+        }
+        self.position = next;
+    }
 }
 
 /// The arm's power, safety and program, as the dashboard reports and changes them.
@@ -125,9 +198,29 @@ impl FakeController {
                 program: None,
                 playing: false,
             }),
+            fingers: Mutex::new(Fingers {
+                act: 0,
+                gto: 0,
+                sta: 0,
+                flt: 0,
+                obj: 0,
+                pre: 0,
+                target: 0,
+                speed: 0,
+                force: 0,
+                position: 0.0,
+                activating_since: None,
+                updated: Instant::now(),
+                object_at: None,
+                commands: Vec::new(),
+            }),
         });
         let address = |port: u16| -> SocketAddr { format!("{host}:{port}").parse().unwrap() };
-        let (rtde, dashboard) = (address(RTDE_PORT), address(DASHBOARD_PORT));
+        let (rtde, dashboard, gripper) = (
+            address(RTDE_PORT),
+            address(DASHBOARD_PORT),
+            address(GRIPPER_PORT),
+        );
         let (bound_tx, bound_rx) = std::sync::mpsc::channel();
         let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
         let serving = Arc::clone(&shared);
@@ -141,6 +234,9 @@ impl FakeController {
                 let dashboard = TcpListener::bind(dashboard)
                     .await
                     .expect("the dashboard port binds");
+                let gripper = TcpListener::bind(gripper)
+                    .await
+                    .expect("the gripper port binds");
                 bound_tx.send(()).unwrap();
                 let accepting = async {
                     loop {
@@ -150,6 +246,9 @@ impl FakeController {
                             }
                             Ok((stream, _)) = dashboard.accept() => {
                                 tokio::spawn(serve_dashboard(stream, Arc::clone(&serving)));
+                            }
+                            Ok((stream, _)) = gripper.accept() => {
+                                tokio::spawn(serve_gripper(stream, Arc::clone(&serving)));
                             }
                         }
                     }
@@ -194,6 +293,23 @@ impl FakeController {
         arm.safety = "PROTECTIVE_STOP";
         arm.stopped_at = Some(Instant::now() - ago);
         arm.playing = false;
+    }
+
+    /// The gripper now.
+    pub(crate) fn fingers(&self) -> Fingers {
+        let mut fingers = self.shared.fingers.lock().unwrap();
+        fingers.update(Instant::now());
+        fingers.clone()
+    }
+
+    /// Puts an object between the fingers: closing, they stop at `position`.
+    pub(crate) fn place_object(&self, position: Option<u8>) {
+        self.shared.fingers.lock().unwrap().object_at = position;
+    }
+
+    /// Makes the gripper report fault `code` (its fingers stop).
+    pub(crate) fn gripper_fault(&self, code: u8) {
+        self.shared.fingers.lock().unwrap().flt = code;
     }
 
     /// The output variables clients asked for so far.
@@ -441,6 +557,84 @@ async fn serve_dashboard(stream: TcpStream, shared: Arc<Shared>) {
             return;
         }
         let reply = format!("{}\n", shared.dashboard(command));
+        if writer.write_all(reply.as_bytes()).await.is_err() {
+            return;
+        }
+    }
+}
+
+impl Shared {
+    /// The gripper socket's reply to `command`.
+    fn gripper(&self, command: &str) -> String {
+        let mut fingers = self.fingers.lock().unwrap();
+        let now = Instant::now();
+        fingers.update(now);
+        let words: Vec<&str> = command.split_whitespace().collect();
+        match words.as_slice() {
+            ["GET", name] => {
+                let value = match *name {
+                    "ACT" => fingers.act,
+                    "GTO" => fingers.gto,
+                    "STA" => fingers.sta,
+                    "FLT" => fingers.flt,
+                    "OBJ" => fingers.obj,
+                    "PRE" => fingers.pre,
+                    "POS" => fingers.position(),
+                    "SPE" => fingers.speed,
+                    "FOR" => fingers.force,
+                    _ => return "?".into(),
+                };
+                format!("{name} {value}")
+            }
+            ["SET", pairs @ ..] if !pairs.is_empty() && pairs.len() % 2 == 0 => {
+                fingers.commands.push(command.to_owned());
+                for pair in pairs.chunks(2) {
+                    let Ok(value) = pair[1].parse::<u8>() else {
+                        return "?".into();
+                    };
+                    match pair[0] {
+                        "ACT" if value == 0 => {
+                            fingers.act = 0;
+                            fingers.sta = 0;
+                            fingers.gto = 0;
+                            fingers.flt = 0;
+                            fingers.activating_since = None;
+                        }
+                        "ACT" => {
+                            fingers.act = 1;
+                            if fingers.sta == 0 {
+                                fingers.sta = 1;
+                                fingers.activating_since = Some(now);
+                            }
+                        }
+                        "POS" => fingers.target = value,
+                        "SPE" => fingers.speed = value,
+                        "FOR" => fingers.force = value,
+                        "GTO" => {
+                            fingers.gto = value;
+                            if value == 1 && fingers.sta == 3 {
+                                fingers.pre = fingers.target;
+                                fingers.obj = 0;
+                            } else if value == 1 {
+                                fingers.flt = 5;
+                            }
+                        }
+                        _ => {}
+                    }
+                }
+                "ack".into()
+            }
+            _ => "?".into(),
+        }
+    }
+}
+
+/// One client's gripper socket session.
+async fn serve_gripper(stream: TcpStream, shared: Arc<Shared>) {
+    let (reader, mut writer) = stream.into_split();
+    let mut lines = tokio::io::BufReader::new(reader).lines();
+    while let Ok(Some(command)) = lines.next_line().await {
+        let reply = format!("{}\n", shared.gripper(command.trim()));
         if writer.write_all(reply.as_bytes()).await.is_err() {
             return;
         }
