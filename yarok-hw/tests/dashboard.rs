@@ -13,7 +13,7 @@ use yarok_hw::ur::dashboard::{Dashboard, DashboardError, RobotMode, SafetyStatus
 
 #[path = "support/peers.rs"]
 mod peers;
-#[path = "support/ur_controller.rs"]
+#[path = "support/ur_controller/mod.rs"]
 mod ur_controller;
 
 use ur_controller::{DASHBOARD_PORT, FakeController, Profile};

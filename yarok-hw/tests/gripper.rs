@@ -13,7 +13,7 @@ use yarok_hw::robotiq::{Gripper, GripperError, Motion};
 
 #[path = "support/peers.rs"]
 mod peers;
-#[path = "support/ur_controller.rs"]
+#[path = "support/ur_controller/mod.rs"]
 mod ur_controller;
 
 use ur_controller::{FakeController, GRIPPER_PORT, Profile};

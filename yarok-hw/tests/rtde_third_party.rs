@@ -8,7 +8,7 @@ use std::process::Command;
 
 #[path = "support/peers.rs"]
 mod peers;
-#[path = "support/ur_controller.rs"]
+#[path = "support/ur_controller/mod.rs"]
 mod ur_controller;
 
 use ur_controller::{FakeController, Profile};

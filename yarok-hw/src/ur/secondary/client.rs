@@ -1,0 +1,170 @@
+//! [`Secondary`]: a client of the secondary interface (port 30002): the robot state at 10 Hz,
+//! and URScript sent to run.
+
+use std::time::Duration;
+
+use tokio::io::{AsyncRead, AsyncReadExt, AsyncWrite, AsyncWriteExt};
+
+use super::packet::{Packet, PacketError, RobotState, VersionMessage, parse, take_packet};
+
+/// What went wrong on the secondary interface. Every variant names the controller.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum SecondaryError {
+    /// Reading or writing failed.
+    #[error("controller {controller}: secondary interface: {source}")]
+    Io {
+        /// The controller.
+        controller: String,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// The connection closed.
+    #[error("controller {controller}: the secondary interface closed")]
+    Closed {
+        /// The controller.
+        controller: String,
+    },
+    /// No robot state in time.
+    #[error("controller {controller}: no robot state within {seconds} s")]
+    Silent {
+        /// The controller.
+        controller: String,
+        /// The time limit.
+        seconds: f64,
+    },
+    /// A packet was malformed.
+    #[error("controller {controller}: {source}")]
+    Packet {
+        /// The controller.
+        controller: String,
+        /// What is wrong.
+        source: PacketError,
+    },
+}
+
+/// A client of the UR controller's secondary interface over any byte transport (a TCP stream
+/// to port 30002): it reads the robot states the controller sends at 10 Hz (mode, joints, TCP,
+/// kinematics; CB3 and e-Series layouts, unknown sub-packages skipped) and the version message,
+/// and sends URScript, which the controller runs at once (replacing a running program).
+///
+/// ```no_run
+/// # async fn run() -> Result<(), Box<dyn std::error::Error>> {
+/// use std::time::Duration;
+/// use tokio::net::TcpStream;
+/// use yarok_hw::ur::secondary::Secondary;
+///
+/// let stream = TcpStream::connect("192.168.1.10:30002").await?;
+/// let mut secondary = Secondary::connect(stream, "192.168.1.10", Duration::from_secs(1)).await?;
+/// secondary.send_script("movej([0, -1.57, 1.57, -1.57, -1.57, 0], a=1.4, v=1.05)").await?;
+/// let state = secondary.next_state().await?;
+/// let running = state.mode.is_some_and(|mode| mode.program_running);
+/// # Ok(()) }
+/// ```
+///
+/// # Cancel safety
+///
+/// [`Secondary::next_state`] is cancel safe: bytes read stay for the next call.
+#[derive(Debug)]
+pub struct Secondary<T> {
+    stream: T,
+    buffer: Vec<u8>,
+    controller: String,
+    silence: Duration,
+    version: Option<VersionMessage>,
+}
+
+impl<T: AsyncRead + AsyncWrite + Unpin> Secondary<T> {
+    /// Reads from `transport` (the controller called `controller` in errors) until the first
+    /// robot state; a state may take up to `silence` to come.
+    ///
+    /// # Errors
+    ///
+    /// [`SecondaryError`].
+    pub async fn connect(
+        transport: T,
+        controller: impl Into<String>,
+        silence: Duration,
+    ) -> Result<Self, SecondaryError> {
+        let mut secondary = Self {
+            stream: transport,
+            buffer: Vec::new(),
+            controller: controller.into(),
+            silence,
+            version: None,
+        };
+        secondary.next_state().await?;
+        Ok(secondary)
+    }
+
+    /// The controller's version message, once it came (it comes first on connect).
+    pub fn version(&self) -> Option<&VersionMessage> {
+        self.version.as_ref()
+    }
+
+    /// The next robot state, within the silence limit.
+    ///
+    /// # Errors
+    ///
+    /// [`SecondaryError::Silent`] when none comes in time; other [`SecondaryError`]s.
+    pub async fn next_state(&mut self) -> Result<RobotState, SecondaryError> {
+        let deadline = tokio::time::Instant::now() + self.silence;
+        loop {
+            let taken = take_packet(&mut self.buffer).map_err(|source| self.packet(source))?;
+            if let Some(packet) = taken {
+                match parse(&packet).map_err(|source| self.packet(source))? {
+                    Packet::RobotState(state) => return Ok(state),
+                    Packet::Version(version) => self.version = Some(version),
+                    _ => {}
+                }
+                continue;
+            }
+            self.buffer.reserve(4096);
+            let read = tokio::time::timeout_at(deadline, self.stream.read_buf(&mut self.buffer));
+            match read.await {
+                Ok(Ok(0)) => {
+                    return Err(SecondaryError::Closed {
+                        controller: self.controller.clone(),
+                    });
+                }
+                Ok(Ok(_)) => {}
+                Ok(Err(source)) => {
+                    return Err(SecondaryError::Io {
+                        controller: self.controller.clone(),
+                        source,
+                    });
+                }
+                Err(_) => {
+                    return Err(SecondaryError::Silent {
+                        controller: self.controller.clone(),
+                        seconds: self.silence.as_secs_f64(),
+                    });
+                }
+            }
+        }
+    }
+
+    /// Sends `script` (a URScript line, or a whole `def …: … end` program) to run now.
+    ///
+    /// # Errors
+    ///
+    /// [`SecondaryError::Io`].
+    pub async fn send_script(&mut self, script: &str) -> Result<(), SecondaryError> {
+        let text = format!("{}\n", script.trim_end());
+        let written = async {
+            self.stream.write_all(text.as_bytes()).await?;
+            self.stream.flush().await
+        };
+        written.await.map_err(|source| SecondaryError::Io {
+            controller: self.controller.clone(),
+            source,
+        })
+    }
+
+    fn packet(&self, source: PacketError) -> SecondaryError {
+        SecondaryError::Packet {
+            controller: self.controller.clone(),
+            source,
+        }
+    }
+}

@@ -1,0 +1,252 @@
+//! A fake UR controller for tests, on a loopback address of its own, in a CB3 (3.15) or an
+//! e-Series (5.11) profile: its RTDE server (port 30004) answers recipes from the controller's
+//! variable table and streams data packages at the recipe's rate; its dashboard server (port
+//! 29999) powers the arm, releases its brakes, unlocks protective stops (not within 5 s of
+//! one) and loads and plays programs, with UR's replies; its Robotiq gripper socket (port
+//! 63352) activates a 2F-85 whose fingers move in time at the speed asked for and stop on an
+//! object the test places, or fault when told to. The arm holds the joint positions the test
+//! sets. Shared by yarok-hw's tests and the workspace's.
+#![allow(dead_code)]
+
+use std::collections::HashMap;
+use std::f64::consts::FRAC_PI_2;
+use std::net::SocketAddr;
+use std::sync::atomic::{AtomicU32, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use tokio::net::TcpListener;
+use yarok_hw::ur::rtde::{ControllerVersion, Value};
+
+mod dashboard;
+mod gripper;
+mod rtde;
+
+use dashboard::serve_dashboard;
+use gripper::{Fingers, serve_gripper};
+use rtde::serve_rtde;
+
+/// RTDE's and the dashboard's ports, which third-party clients do not let one change.
+pub(crate) const RTDE_PORT: u16 = 30004;
+pub(crate) const DASHBOARD_PORT: u16 = 29999;
+/// The Robotiq URCap's gripper socket.
+pub(crate) const GRIPPER_PORT: u16 = 63352;
+
+/// Which controller it plays.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Profile {
+    /// A CB3 controller, software 3.15: RTDE up to 125 Hz.
+    Cb3,
+    /// An e-Series controller, software 5.11: RTDE up to 500 Hz.
+    ESeries,
+}
+
+impl Profile {
+    pub(crate) fn version(self) -> ControllerVersion {
+        match self {
+            Profile::Cb3 => ControllerVersion {
+                major: 3,
+                minor: 15,
+                bugfix: 7,
+                build: 106_331,
+            },
+            Profile::ESeries => ControllerVersion {
+                major: 5,
+                minor: 11,
+                bugfix: 1,
+                build: 108_318,
+            },
+        }
+    }
+
+    /// The dashboard's `PolyscopeVersion` reply.
+    fn polyscope(self) -> String {
+        let ControllerVersion {
+            major,
+            minor,
+            bugfix,
+            build,
+        } = self.version();
+        format!("URSoftware {major}.{minor}.{bugfix}.{build} (Mar 22 2022)")
+    }
+
+    fn max_frequency(self) -> f64 {
+        match self {
+            Profile::Cb3 => 125.0,
+            Profile::ESeries => 500.0,
+        }
+    }
+}
+
+/// What the controller's clients see and set.
+struct Shared {
+    profile: Profile,
+    started: Instant,
+    joints: Mutex<[f64; 6]>,
+    /// Input variables clients have written.
+    inputs: Mutex<HashMap<String, Value>>,
+    /// Output variables clients asked for, in order.
+    asked: Mutex<Vec<String>>,
+    arm: Mutex<Arm>,
+    fingers: Mutex<Fingers>,
+}
+
+/// The arm's power, safety and program, as the dashboard reports and changes them.
+#[derive(Debug, Clone)]
+pub(crate) struct Arm {
+    pub(crate) robot_mode: &'static str,
+    pub(crate) safety: &'static str,
+    /// When the protective stop happened.
+    pub(crate) stopped_at: Option<Instant>,
+    pub(crate) program: Option<String>,
+    pub(crate) playing: bool,
+}
+
+/// A fake controller serving RTDE on `host`, on a thread of its own until dropped.
+pub(crate) struct FakeController {
+    /// Its loopback address, unique to it.
+    pub(crate) host: String,
+    shared: Arc<Shared>,
+    stop: Option<tokio::sync::oneshot::Sender<()>>,
+    thread: Option<std::thread::JoinHandle<()>>,
+}
+
+/// A loopback address no other fake of this process or another test process uses.
+fn unique_loopback() -> String {
+    static NEXT: AtomicU32 = AtomicU32::new(1);
+    let pid = std::process::id();
+    let own = NEXT.fetch_add(1, Ordering::Relaxed) % 254 + 1;
+    format!("127.{}.{}.{own}", (pid >> 8) & 0xFF, pid & 0xFF)
+}
+
+impl FakeController {
+    pub(crate) fn start(profile: Profile) -> Self {
+        let host = unique_loopback();
+        let shared = Arc::new(Shared {
+            profile,
+            started: Instant::now(),
+            joints: Mutex::new([0.0, -FRAC_PI_2, FRAC_PI_2, -FRAC_PI_2, -FRAC_PI_2, 0.0]),
+            inputs: Mutex::new(HashMap::new()),
+            asked: Mutex::new(Vec::new()),
+            arm: Mutex::new(Arm {
+                robot_mode: "POWER_OFF",
+                safety: "NORMAL",
+                stopped_at: None,
+                program: None,
+                playing: false,
+            }),
+            fingers: Mutex::new(Fingers::new()),
+        });
+        let address = |port: u16| -> SocketAddr { format!("{host}:{port}").parse().unwrap() };
+        let (rtde, dashboard, gripper) = (
+            address(RTDE_PORT),
+            address(DASHBOARD_PORT),
+            address(GRIPPER_PORT),
+        );
+        let (bound_tx, bound_rx) = std::sync::mpsc::channel();
+        let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
+        let serving = Arc::clone(&shared);
+        let thread = std::thread::spawn(move || {
+            let runtime = tokio::runtime::Builder::new_current_thread()
+                .enable_all()
+                .build()
+                .unwrap();
+            runtime.block_on(async move {
+                let rtde = TcpListener::bind(rtde).await.expect("the RTDE port binds");
+                let dashboard = TcpListener::bind(dashboard)
+                    .await
+                    .expect("the dashboard port binds");
+                let gripper = TcpListener::bind(gripper)
+                    .await
+                    .expect("the gripper port binds");
+                bound_tx.send(()).unwrap();
+                let accepting = async {
+                    loop {
+                        tokio::select! {
+                            Ok((stream, _)) = rtde.accept() => {
+                                tokio::spawn(serve_rtde(stream, Arc::clone(&serving)));
+                            }
+                            Ok((stream, _)) = dashboard.accept() => {
+                                tokio::spawn(serve_dashboard(stream, Arc::clone(&serving)));
+                            }
+                            Ok((stream, _)) = gripper.accept() => {
+                                tokio::spawn(serve_gripper(stream, Arc::clone(&serving)));
+                            }
+                        }
+                    }
+                };
+                tokio::select! {
+                    () = accepting => {}
+                    _ = stopped => {}
+                }
+            });
+        });
+        bound_rx.recv().expect("the fake controller starts");
+        Self {
+            host,
+            shared,
+            stop: Some(stop),
+            thread: Some(thread),
+        }
+    }
+
+    /// Puts the arm at `q` (radians).
+    pub(crate) fn set_joints(&self, q: [f64; 6]) {
+        *self.shared.joints.lock().unwrap() = q;
+    }
+
+    pub(crate) fn joints(&self) -> [f64; 6] {
+        *self.shared.joints.lock().unwrap()
+    }
+
+    /// The value a client last wrote to the input variable `name`.
+    pub(crate) fn input(&self, name: &str) -> Option<Value> {
+        self.shared.inputs.lock().unwrap().get(name).copied()
+    }
+
+    /// The arm's power, safety and program now.
+    pub(crate) fn arm(&self) -> Arm {
+        self.shared.arm.lock().unwrap().clone()
+    }
+
+    /// A protective stop, `ago` in the past.
+    pub(crate) fn protective_stop(&self, ago: Duration) {
+        let mut arm = self.shared.arm.lock().unwrap();
+        arm.safety = "PROTECTIVE_STOP";
+        arm.stopped_at = Some(Instant::now() - ago);
+        arm.playing = false;
+    }
+
+    /// The gripper now.
+    pub(crate) fn fingers(&self) -> Fingers {
+        let mut fingers = self.shared.fingers.lock().unwrap();
+        fingers.update(Instant::now());
+        fingers.clone()
+    }
+
+    /// Puts an object between the fingers: closing, they stop at `position`.
+    pub(crate) fn place_object(&self, position: Option<u8>) {
+        self.shared.fingers.lock().unwrap().object_at = position;
+    }
+
+    /// Makes the gripper report fault `code` (its fingers stop).
+    pub(crate) fn gripper_fault(&self, code: u8) {
+        self.shared.fingers.lock().unwrap().flt = code;
+    }
+
+    /// The output variables clients asked for so far.
+    pub(crate) fn asked(&self) -> Vec<String> {
+        self.shared.asked.lock().unwrap().clone()
+    }
+}
+
+impl Drop for FakeController {
+    fn drop(&mut self) {
+        if let Some(stop) = self.stop.take() {
+            let _ = stop.send(());
+        }
+        if let Some(thread) = self.thread.take() {
+            let _ = thread.join();
+        }
+    }
+}
