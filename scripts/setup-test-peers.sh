@@ -6,8 +6,8 @@
 #  - in a Python virtual environment of their own (${YAROK_CACHE_DIR:-~/.cache/yarok}/peers):
 #    OctoPrint's VirtualPrinter, a Marlin emulator (AGPL: the tests only run it as a separate
 #    process, through scripts/peers/virtual_printer_bridge.py; nothing links or ships it), and
-#    ur_rtde and pyrobotiqur (both MIT), the UR and Robotiq clients the fake controller's
-#    faithfulness is checked with.
+#    ur_rtde, pyrobotiqur (both MIT) and python-urx (LGPL, with math3d, AGPL), the UR and
+#    Robotiq clients the fake controller's faithfulness is checked with (separate processes).
 set -euo pipefail
 
 source "$(dirname "$0")/debian-packages.sh"
@@ -25,14 +25,16 @@ if [ ! -x "$peers/bin/python" ]; then
   fi
   python3 -m venv "$peers"
 fi
-# Each peer: the module that proves it is installed, and the release to install.
-while read -r module requirement; do
+# Each peer: the module that proves it is installed, and the releases to install.
+while read -r module requirements; do
   if ! "$peers/bin/python" -c "import $module" 2>/dev/null; then
-    echo "setup: installing $requirement into $peers"
-    "$peers/bin/pip" install -q --disable-pip-version-check "$requirement"
+    echo "setup: installing $requirements into $peers"
+    # shellcheck disable=SC2086 # one requirement a word
+    "$peers/bin/pip" install -q --disable-pip-version-check $requirements
   fi
 done <<'PEERS'
 octoprint.plugins.virtual_printer octoprint==1.11.8
 rtde_receive ur_rtde==1.6.5
 pyrobotiqur pyrobotiqur==0.2.2
+urx urx==0.11.0 math3d==3.4.1 numpy==2.4.6
 PEERS

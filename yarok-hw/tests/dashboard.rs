@@ -31,6 +31,7 @@ async fn connect(fake: &FakeController) -> Dashboard<TcpStream> {
 async fn power_brakes_protective_stops_and_programs_in_both_profiles() {
     for profile in [Profile::Cb3, Profile::ESeries] {
         let fake = FakeController::start(profile);
+        fake.power_off();
         let mut dashboard = connect(&fake).await;
         let version = dashboard.polyscope_version().await.unwrap();
         assert!(
@@ -114,6 +115,7 @@ async fn a_wrong_welcome_silence_and_a_closed_line_are_errors() {
 fn ur_rtde_drives_the_fake_dashboard() {
     for profile in [Profile::Cb3, Profile::ESeries] {
         let fake = FakeController::start(profile);
+        fake.power_off();
         fake.protective_stop(Duration::from_secs(6));
         let output = Command::new(peers::python())
             .arg(peers::script("ur_rtde_dashboard.py"))

@@ -113,7 +113,7 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Secondary<T> {
             let taken = take_packet(&mut self.buffer).map_err(|source| self.packet(source))?;
             if let Some(packet) = taken {
                 match parse(&packet).map_err(|source| self.packet(source))? {
-                    Packet::RobotState(state) => return Ok(state),
+                    Packet::RobotState(state) => return Ok(*state),
                     Packet::Version(version) => self.version = Some(version),
                     _ => {}
                 }

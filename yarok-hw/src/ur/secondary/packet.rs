@@ -145,7 +145,7 @@ pub struct VersionMessage {
 #[non_exhaustive]
 pub enum Packet {
     /// Type 16.
-    RobotState(RobotState),
+    RobotState(Box<RobotState>),
     /// Type 20, a version message.
     Version(VersionMessage),
     /// Any other packet (other robot messages, program state, …), by type.
@@ -249,7 +249,7 @@ pub fn parse(packet: &[u8]) -> Result<Packet, PacketError> {
     let kind = header.u8()?;
     let body = header.bytes;
     match kind {
-        ROBOT_STATE => robot_state(body).map(Packet::RobotState),
+        ROBOT_STATE => robot_state(body).map(|state| Packet::RobotState(Box::new(state))),
         ROBOT_MESSAGE => robot_message(body),
         other => Ok(Packet::Other(other)),
     }

@@ -2,7 +2,10 @@
 //! e-Series (5.11) profile: its RTDE server (port 30004) answers recipes from the controller's
 //! variable table and streams data packages at the recipe's rate; its dashboard server (port
 //! 29999) powers the arm, releases its brakes, unlocks protective stops (not within 5 s of
-//! one) and loads and plays programs, with UR's replies; its Robotiq gripper socket (port
+//! one) and loads and plays programs, with UR's replies; its secondary interface (port 30002)
+//! sends a version message and robot states at 10 Hz in the profile's layout (a UR5's
+//! kinematics on CB3, a UR5e's on e-Series) and runs `movej`/`stopj` lines, the joints moving
+//! in time at the speed asked for; its Robotiq gripper socket (port
 //! 63352) activates a 2F-85 whose fingers move in time at the speed asked for and stop on an
 //! object the test places, or fault when told to. The arm holds the joint positions the test
 //! sets. Shared by yarok-hw's tests and the workspace's.
@@ -21,16 +24,20 @@ use yarok_hw::ur::rtde::{ControllerVersion, Value};
 mod dashboard;
 mod gripper;
 mod rtde;
+mod secondary;
 
 use dashboard::serve_dashboard;
 use gripper::{Fingers, serve_gripper};
 use rtde::serve_rtde;
+use secondary::{Joints, serve_secondary};
 
 /// RTDE's and the dashboard's ports, which third-party clients do not let one change.
 pub(crate) const RTDE_PORT: u16 = 30004;
 pub(crate) const DASHBOARD_PORT: u16 = 29999;
 /// The Robotiq URCap's gripper socket.
 pub(crate) const GRIPPER_PORT: u16 = 63352;
+/// The secondary interface.
+pub(crate) const SECONDARY_PORT: u16 = 30002;
 
 /// Which controller it plays.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -82,13 +89,26 @@ impl Profile {
 struct Shared {
     profile: Profile,
     started: Instant,
-    joints: Mutex<[f64; 6]>,
+    joints: Mutex<Joints>,
     /// Input variables clients have written.
     inputs: Mutex<HashMap<String, Value>>,
     /// Output variables clients asked for, in order.
     asked: Mutex<Vec<String>>,
     arm: Mutex<Arm>,
     fingers: Mutex<Fingers>,
+    /// URScript lines clients sent.
+    scripts: Mutex<Vec<String>>,
+}
+
+impl Shared {
+    /// The arm's mode as the secondary interface and RTDE number it.
+    fn robot_mode(&self) -> u8 {
+        match self.arm.lock().unwrap().robot_mode {
+            "POWER_OFF" => 3,
+            "IDLE" => 5,
+            _ => 7,
+        }
+    }
 }
 
 /// The arm's power, safety and program, as the dashboard reports and changes them.
@@ -125,11 +145,14 @@ impl FakeController {
         let shared = Arc::new(Shared {
             profile,
             started: Instant::now(),
-            joints: Mutex::new([0.0, -FRAC_PI_2, FRAC_PI_2, -FRAC_PI_2, -FRAC_PI_2, 0.0]),
+            joints: Mutex::new(Joints::at([
+                0.0, -FRAC_PI_2, FRAC_PI_2, -FRAC_PI_2, -FRAC_PI_2, 0.0,
+            ])),
+            scripts: Mutex::new(Vec::new()),
             inputs: Mutex::new(HashMap::new()),
             asked: Mutex::new(Vec::new()),
             arm: Mutex::new(Arm {
-                robot_mode: "POWER_OFF",
+                robot_mode: "RUNNING",
                 safety: "NORMAL",
                 stopped_at: None,
                 program: None,
@@ -138,10 +161,11 @@ impl FakeController {
             fingers: Mutex::new(Fingers::new()),
         });
         let address = |port: u16| -> SocketAddr { format!("{host}:{port}").parse().unwrap() };
-        let (rtde, dashboard, gripper) = (
+        let (rtde, dashboard, gripper, secondary) = (
             address(RTDE_PORT),
             address(DASHBOARD_PORT),
             address(GRIPPER_PORT),
+            address(SECONDARY_PORT),
         );
         let (bound_tx, bound_rx) = std::sync::mpsc::channel();
         let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
@@ -159,6 +183,9 @@ impl FakeController {
                 let gripper = TcpListener::bind(gripper)
                     .await
                     .expect("the gripper port binds");
+                let secondary = TcpListener::bind(secondary)
+                    .await
+                    .expect("the secondary port binds");
                 bound_tx.send(()).unwrap();
                 let accepting = async {
                     loop {
@@ -171,6 +198,9 @@ impl FakeController {
                             }
                             Ok((stream, _)) = gripper.accept() => {
                                 tokio::spawn(serve_gripper(stream, Arc::clone(&serving)));
+                            }
+                            Ok((stream, _)) = secondary.accept() => {
+                                tokio::spawn(serve_secondary(stream, Arc::clone(&serving)));
                             }
                         }
                     }
@@ -192,11 +222,22 @@ impl FakeController {
 
     /// Puts the arm at `q` (radians).
     pub(crate) fn set_joints(&self, q: [f64; 6]) {
-        *self.shared.joints.lock().unwrap() = q;
+        *self.shared.joints.lock().unwrap() = Joints::at(q);
     }
 
+    /// Where the arm is now (moving, if a script moves it).
     pub(crate) fn joints(&self) -> [f64; 6] {
-        *self.shared.joints.lock().unwrap()
+        self.shared.joints.lock().unwrap().now(Instant::now())
+    }
+
+    /// The URScript clients sent, a line each.
+    pub(crate) fn scripts(&self) -> Vec<String> {
+        self.shared.scripts.lock().unwrap().clone()
+    }
+
+    /// Turns the arm off, as `power off` on the dashboard does.
+    pub(crate) fn power_off(&self) {
+        self.shared.arm.lock().unwrap().robot_mode = "POWER_OFF";
     }
 
     /// The value a client last wrote to the input variable `name`.

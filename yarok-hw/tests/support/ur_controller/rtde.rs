@@ -2,7 +2,7 @@
 
 use std::collections::HashMap;
 use std::sync::Arc;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::TcpStream;
@@ -15,8 +15,9 @@ impl Shared {
     fn output(&self, name: &str, rtde_type: RtdeType) -> Value {
         match name {
             "timestamp" => Value::Double(self.started.elapsed().as_secs_f64()),
-            "actual_q" | "target_q" => Value::Vector6d(*self.joints.lock().unwrap()),
-            "robot_mode" => Value::Int32(7),
+            "actual_q" => Value::Vector6d(self.joints.lock().unwrap().now(Instant::now())),
+            "target_q" => Value::Vector6d(self.joints.lock().unwrap().target()),
+            "robot_mode" => Value::Int32(i32::from(self.robot_mode())),
             "safety_mode" | "safety_status" => Value::Int32(1),
             "joint_mode" => Value::Vector6Int32([253; 6]),
             "runtime_state" => Value::Uint32(1),

@@ -1,0 +1,235 @@
+//! The secondary interface: the client against the fake controller in both profiles (the
+//! version message, joints, the arm's kinematics from its controller, a `movej` that runs in
+//! time with the program flag up, `stopj`); 100 000 generated packets — real layouts mutated,
+//! unknown and malformed sub-packages, arbitrary bytes — through the parser, never a panic;
+//! and python-urx (a third-party client, run as a separate process) reading and moving the
+//! fake CB3 arm.
+
+use std::process::Command;
+use std::time::{Duration, Instant};
+
+use tokio::net::TcpStream;
+use yarok_hw::ur::secondary::{Packet, PacketError, Secondary, parse, take_packet};
+
+#[path = "support/peers.rs"]
+mod peers;
+#[path = "support/ur_controller/mod.rs"]
+mod ur_controller;
+
+use ur_controller::{FakeController, Profile, SECONDARY_PORT};
+
+async fn connect(fake: &FakeController) -> Secondary<TcpStream> {
+    let stream = TcpStream::connect((fake.host.as_str(), SECONDARY_PORT))
+        .await
+        .unwrap();
+    Secondary::connect(stream, fake.host.clone(), Duration::from_secs(1))
+        .await
+        .unwrap()
+}
+
+#[tokio::test]
+async fn states_kinematics_and_a_movej_in_both_profiles() {
+    for (profile, d1) in [(Profile::Cb3, 0.089159), (Profile::ESeries, 0.1625)] {
+        let fake = FakeController::start(profile);
+        let start = [0.1, -1.5, 1.4, -1.2, -1.6, 0.3];
+        fake.set_joints(start);
+        let mut secondary = connect(&fake).await;
+        let version = secondary.version().expect("the version message came first");
+        assert_eq!(version.project, "URControl");
+        assert_eq!(u32::from(version.major), profile.version().major);
+
+        let state = secondary.next_state().await.unwrap();
+        let mode = state.mode.unwrap();
+        assert_eq!(mode.robot_mode, 7);
+        assert!(mode.power_on && !mode.program_running);
+        let q: Vec<f64> = state.joints.unwrap().iter().map(|j| j.q_actual).collect();
+        assert_eq!(q, start);
+        let kinematics = state.kinematics.unwrap();
+        assert_eq!(kinematics.dh_d[0], d1, "{profile:?}");
+
+        let target = [0.6, -1.5, 1.4, -1.2, -1.6, 0.3];
+        secondary
+            .send_script("movej([0.6, -1.5, 1.4, -1.2, -1.6, 0.3], a=1.4, v=1.0)")
+            .await
+            .unwrap();
+        let started = Instant::now();
+        let mut saw_running = false;
+        loop {
+            let state = secondary.next_state().await.unwrap();
+            let mode = state.mode.unwrap();
+            saw_running |= mode.program_running;
+            let q0 = state.joints.unwrap()[0].q_actual;
+            if !mode.program_running && (q0 - target[0]).abs() < 1e-9 {
+                break;
+            }
+            assert!(started.elapsed() < Duration::from_secs(3), "never arrived");
+        }
+        assert!(saw_running, "the program flag was up while moving");
+        // 0.5 rad at 1 rad/s.
+        assert!(
+            started.elapsed() >= Duration::from_millis(400),
+            "{:?}",
+            started.elapsed()
+        );
+        assert_eq!(fake.joints(), target);
+    }
+}
+
+#[tokio::test]
+async fn stopj_stops_the_arm_where_it_is() {
+    let fake = FakeController::start(Profile::ESeries);
+    fake.set_joints([0.0; 6]);
+    let mut secondary = connect(&fake).await;
+    secondary
+        .send_script("movej([2.0, 0, 0, 0, 0, 0], a=1.4, v=0.5)")
+        .await
+        .unwrap();
+    tokio::time::sleep(Duration::from_millis(300)).await;
+    secondary.send_script("stopj(2.0)").await.unwrap();
+    tokio::time::sleep(Duration::from_millis(50)).await;
+    let stopped = fake.joints()[0];
+    assert!(stopped > 0.05 && stopped < 1.0, "{stopped}");
+    tokio::time::sleep(Duration::from_millis(300)).await;
+    assert_eq!(fake.joints()[0], stopped);
+    assert_eq!(fake.scripts().len(), 2);
+}
+
+/// A small deterministic generator (xorshift64*).
+struct Generator(u64);
+
+impl Generator {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+
+    fn below(&mut self, n: usize) -> usize {
+        (self.next() % n as u64) as usize
+    }
+}
+
+/// A robot state of sub-packages with the given content sizes and types.
+fn robot_state(sub_packages: &[(u8, usize)], generator: &mut Generator) -> Vec<u8> {
+    let mut body = Vec::new();
+    for &(kind, size) in sub_packages {
+        body.extend(((size + 5) as i32).to_be_bytes());
+        body.push(kind);
+        body.extend((0..size).map(|_| generator.next() as u8));
+    }
+    let mut out = ((body.len() + 5) as i32).to_be_bytes().to_vec();
+    out.push(16);
+    out.extend(body);
+    out
+}
+
+#[test]
+fn a_hundred_thousand_generated_packets_never_panic() {
+    let mut generator = Generator(0x2545_F491_4F6C_DD1D);
+    // The CB3 layout's content sizes, and an e-Series one's, then unknown sub-packages.
+    let layouts: [&[(u8, usize)]; 3] = [
+        &[
+            (0, 41),
+            (1, 246),
+            (2, 32),
+            (3, 69),
+            (4, 96),
+            (5, 220),
+            (7, 56),
+            (8, 3),
+        ],
+        &[
+            (0, 42),
+            (1, 246),
+            (2, 32),
+            (3, 70),
+            (4, 96),
+            (5, 220),
+            (7, 56),
+            (8, 4),
+        ],
+        &[(0, 41), (42, 17), (1, 246), (200, 0), (4, 96)],
+    ];
+    let mut parsed = 0;
+    for round in 0..100_000 {
+        let layout = layouts[round % layouts.len()];
+        let mut bytes = robot_state(layout, &mut generator);
+        match generator.below(4) {
+            0 => {}
+            1 => {
+                let at = generator.below(bytes.len());
+                bytes[at] ^= generator.next() as u8 | 1;
+            }
+            2 => {
+                let keep = generator.below(bytes.len());
+                bytes.truncate(keep);
+                // Keep the outer size honest, so the sub-packages are what break.
+                if keep >= 5 {
+                    bytes[..4].copy_from_slice(&(keep as i32).to_be_bytes());
+                }
+            }
+            _ => {
+                let length = generator.below(64);
+                bytes = (0..length).map(|_| generator.next() as u8).collect();
+            }
+        }
+        let mut buffer = bytes;
+        while let Ok(Some(packet)) = take_packet(&mut buffer) {
+            if let Ok(Packet::RobotState(_)) = parse(&packet) {
+                parsed += 1;
+            }
+        }
+    }
+    assert!(parsed > 20_000, "only {parsed} robot states parsed");
+    assert_eq!(
+        take_packet(&mut vec![0, 0, 0, 2, 16]),
+        Err(PacketError::Size(2))
+    );
+    let short_joints = robot_state(&[(1, 40)], &mut generator);
+    assert!(matches!(
+        parse(&short_joints),
+        Err(PacketError::Truncated { .. })
+    ));
+}
+
+#[test]
+fn urx_reads_and_moves_the_fake_cb3_arm() {
+    let fake = FakeController::start(Profile::Cb3);
+    let start = [0.0, -1.57, 1.57, -1.57, -1.57, 0.0];
+    fake.set_joints(start);
+    let target = [0.4, -1.4, 1.5, -1.6, -1.57, 0.2];
+    let output = Command::new(peers::python())
+        .arg(peers::script("urx_movej.py"))
+        .arg(&fake.host)
+        .args(target.map(|q| q.to_string()))
+        .output()
+        .expect("urx's script runs");
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let read = |name: &str| -> Vec<f64> {
+        stdout
+            .lines()
+            .find_map(|line| line.strip_prefix(name)?.strip_prefix(' '))
+            .unwrap_or_else(|| panic!("no {name} in {stdout}"))
+            .split(' ')
+            .map(|q| q.parse().unwrap())
+            .collect()
+    };
+    for (got, want) in read("before:").iter().zip(start) {
+        assert!((got - want).abs() <= 1e-6, "{stdout}");
+    }
+    for (got, want) in read("after:").iter().zip(target) {
+        assert!((got - want).abs() <= 0.01, "urx's threshold: {stdout}");
+    }
+    assert!(stdout.contains("running: True"), "{stdout}");
+    let scripts = fake.scripts();
+    assert!(
+        scripts.iter().any(|s| s.starts_with("movej(")),
+        "{scripts:?}"
+    );
+}

@@ -1,0 +1,218 @@
+//! The fake controller's secondary interface, and the arm's joints moving as scripts ask.
+
+use std::f64::consts::FRAC_PI_2;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use tokio::io::{AsyncBufReadExt, AsyncWriteExt};
+use tokio::net::TcpStream;
+
+use super::{Profile, Shared};
+
+/// The joints: at rest, or moving linearly from one position to another.
+#[derive(Debug, Clone)]
+pub(crate) struct Joints {
+    from: [f64; 6],
+    to: [f64; 6],
+    started: Instant,
+    seconds: f64,
+}
+
+impl Joints {
+    pub(crate) fn at(q: [f64; 6]) -> Self {
+        Self {
+            from: q,
+            to: q,
+            started: Instant::now(),
+            seconds: 0.0,
+        }
+    }
+
+    /// Where they are at `now`.
+    pub(crate) fn now(&self, now: Instant) -> [f64; 6] {
+        let fraction = if self.seconds > 0.0 {
+            (now.duration_since(self.started).as_secs_f64() / self.seconds).min(1.0)
+        } else {
+            1.0
+        };
+        std::array::from_fn(|i| self.from[i] + (self.to[i] - self.from[i]) * fraction)
+    }
+
+    pub(crate) fn target(&self) -> [f64; 6] {
+        self.to
+    }
+
+    fn moving(&self, now: Instant) -> bool {
+        now.duration_since(self.started).as_secs_f64() < self.seconds
+    }
+
+    /// Starts a joint move to `to` at `speed` rad/s for the joint that moves most.
+    fn move_to(&mut self, to: [f64; 6], speed: f64, now: Instant) {
+        let from = self.now(now);
+        let farthest = (0..6).map(|i| (to[i] - from[i]).abs()).fold(0.0, f64::max);
+        *self = Self {
+            from,
+            to,
+            started: now,
+            seconds: farthest / speed.max(1e-3),
+        };
+    }
+}
+
+/// The numbers of a URScript call `name(…)` in `line` — its list's, then its keywords' — if
+/// the line is that call.
+fn call(line: &str, name: &str) -> Option<Vec<f64>> {
+    let inside = line.trim().strip_prefix(name)?.strip_prefix('(')?;
+    let inside = inside.strip_suffix(')')?;
+    let numbers = inside
+        .split([',', '[', ']', '='])
+        .filter_map(|part| part.trim().parse().ok())
+        .collect();
+    Some(numbers)
+}
+
+impl Shared {
+    /// Runs one line of URScript: `movej([q…], a=…, v=…)` or `stopj(…)`; others are kept only.
+    fn run_script(&self, line: &str) {
+        self.scripts.lock().unwrap().push(line.to_owned());
+        let now = Instant::now();
+        let mut joints = self.joints.lock().unwrap();
+        if let Some(numbers) = call(line, "movej")
+            && numbers.len() >= 6
+        {
+            let to: [f64; 6] = std::array::from_fn(|i| numbers[i]);
+            let speed = numbers.get(7).copied().unwrap_or(1.05);
+            joints.move_to(to, speed, now);
+        } else if call(line, "stopj").is_some() {
+            *joints = Joints::at(joints.now(now));
+        }
+    }
+
+    /// A robot-state packet in the profile's layout.
+    fn robot_state(&self) -> Vec<u8> {
+        let now = Instant::now();
+        let (q, target, moving) = {
+            let joints = self.joints.lock().unwrap();
+            (joints.now(now), joints.target(), joints.moving(now))
+        };
+        let e_series = self.profile == Profile::ESeries;
+        let protective = self.arm.lock().unwrap().safety == "PROTECTIVE_STOP";
+        let mode = self.robot_mode();
+        let mut body = Vec::new();
+        sub_package(&mut body, 0, |out| {
+            let micros = self.started.elapsed().as_micros() as u64;
+            out.extend(micros.to_be_bytes());
+            let powered = mode != 3;
+            out.extend([
+                1,
+                1,
+                u8::from(powered),
+                0,
+                u8::from(protective),
+                u8::from(moving),
+                0,
+            ]);
+            out.extend([mode, 0]);
+            for value in [1.0f64, 1.0, 1.0] {
+                out.extend(value.to_be_bytes());
+            }
+            if e_series {
+                out.push(0);
+            }
+        });
+        sub_package(&mut body, 1, |out| {
+            for i in 0..6 {
+                for value in [q[i], target[i], 0.0] {
+                    out.extend(value.to_be_bytes());
+                }
+                for value in [0.5f32, 48.0, 30.0, 30.0] {
+                    out.extend(value.to_be_bytes());
+                }
+                out.push(253);
+            }
+        });
+        sub_package(&mut body, 2, |out| out.extend([0; 32]));
+        sub_package(&mut body, 3, |out| {
+            out.extend(vec![0; if e_series { 70 } else { 69 }])
+        });
+        sub_package(&mut body, 4, |out| out.extend([0; 96]));
+        sub_package(&mut body, 5, |out| {
+            out.extend([0; 24]);
+            let (a, d) = if e_series {
+                (
+                    [0.0, -0.425, -0.3922, 0.0, 0.0, 0.0],
+                    [0.1625, 0.0, 0.0, 0.1333, 0.0997, 0.0996],
+                )
+            } else {
+                (
+                    [0.0, -0.425, -0.39225, 0.0, 0.0, 0.0],
+                    [0.089159, 0.0, 0.0, 0.10915, 0.09465, 0.0823],
+                )
+            };
+            let alpha = [FRAC_PI_2, 0.0, 0.0, FRAC_PI_2, -FRAC_PI_2, 0.0];
+            for values in [[0.0; 6], a, d, alpha] {
+                for value in values {
+                    out.extend(value.to_be_bytes());
+                }
+            }
+            out.extend([0; 4]);
+        });
+        sub_package(&mut body, 7, |out| out.extend([0; 56]));
+        sub_package(&mut body, 8, |out| {
+            out.extend(vec![0; if e_series { 4 } else { 3 }])
+        });
+        packet(16, &body)
+    }
+
+    /// The version message sent on connect.
+    fn version_message(&self) -> Vec<u8> {
+        let version = self.profile.version();
+        let mut body = Vec::new();
+        body.extend(0u64.to_be_bytes());
+        body.extend([(-2i8) as u8, 3, 9]);
+        body.extend(b"URControl");
+        body.extend([version.major as u8, version.minor as u8]);
+        body.extend((version.bugfix as i32).to_be_bytes());
+        body.extend((version.build as i32).to_be_bytes());
+        body.extend(b"22-03-2022, 10:33:46");
+        packet(20, &body)
+    }
+}
+
+/// `int32 size, uint8 type, body`.
+fn packet(kind: u8, body: &[u8]) -> Vec<u8> {
+    let mut out = ((body.len() + 5) as i32).to_be_bytes().to_vec();
+    out.push(kind);
+    out.extend_from_slice(body);
+    out
+}
+
+fn sub_package(out: &mut Vec<u8>, kind: u8, content: impl FnOnce(&mut Vec<u8>)) {
+    let mut body = Vec::new();
+    content(&mut body);
+    out.extend(packet(kind, &body));
+}
+
+/// One client's secondary session: the version message, then a robot state every 100 ms;
+/// script lines run as they come.
+pub(super) async fn serve_secondary(stream: TcpStream, shared: Arc<Shared>) {
+    let (reader, mut writer) = stream.into_split();
+    if writer.write_all(&shared.version_message()).await.is_err() {
+        return;
+    }
+    let mut lines = tokio::io::BufReader::new(reader).lines();
+    let mut states = tokio::time::interval(Duration::from_millis(100));
+    loop {
+        tokio::select! {
+            line = lines.next_line() => match line {
+                Ok(Some(line)) => shared.run_script(&line),
+                _ => return,
+            },
+            _ = states.tick() => {
+                if writer.write_all(&shared.robot_state()).await.is_err() {
+                    return;
+                }
+            }
+        }
+    }
+}
