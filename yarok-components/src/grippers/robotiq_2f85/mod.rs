@@ -10,6 +10,10 @@ use yarok_core::component::{Bind, BindError, Component, Declaration, Interface, 
 use yarok_core::time::{Clock, WaitError};
 use yarok_mjc::{Actuator, Body, Joint, Sim, SimBind, Site};
 
+mod real;
+
+use real::RealFingers;
+
 /// The driver angle (radians) at which the fingers close on nothing; position 255.
 const CLOSED_RAD: f64 = 0.8;
 
@@ -44,7 +48,11 @@ const STOPPED_RAD_S: f64 = 0.02;
 /// faces) carry fingertip sensors; the site `pinch` is between the pads. Config `pad_friction`
 /// (default 1.0), `pinch_height` (metres above the base frame, default 0.135).
 ///
-/// Environments: `sim`; `mock` (moves at the requested speed, never meets an object).
+/// Environments: `sim`; `mock` (moves at the requested speed, never meets an object); `real`:
+/// the gripper through the Robotiq URCap's socket on its UR controller (interface settings
+/// `host`, `port` 63352, `reply_seconds`, `activation_seconds`), activated at bind, its status
+/// read every 20 ms, a fault ending the run with the gripper's error. At shutdown it keeps its
+/// grip: releasing could drop what it holds.
 #[derive(Clone)]
 pub struct Robotiq2f85 {
     inner: Rc<Inner>,
@@ -59,6 +67,7 @@ struct Inner {
 enum Drive {
     Sim(Box<Fingers>),
     Mock,
+    Real(Rc<RealFingers>),
 }
 
 /// The simulated gripper's actuator, drivers and pads.
@@ -134,15 +143,18 @@ impl Robotiq2f85 {
     /// Whether the fingers stopped before reaching the request: an object is held (the real
     /// gripper's `gOBJ` 1 or 2).
     pub fn object_detected(&self) -> bool {
+        if let Drive::Real(fingers) = &self.inner.drive {
+            return fingers.object_detected();
+        }
         let request = self.inner.state.borrow().request[0];
         !self.is_moving() && (f64::from(self.position()) - request).abs() > REACHED_COUNTS
     }
 
-    /// The pads' bodies `[left, right]` (sim only; `None` in mock).
+    /// The pads' bodies `[left, right]` (sim only; `None` in mock and real).
     pub fn pads(&self) -> Option<[Body; 2]> {
         match &self.inner.drive {
             Drive::Sim(fingers) => Some(fingers.pads.clone()),
-            Drive::Mock => None,
+            Drive::Mock | Drive::Real(_) => None,
         }
     }
 
@@ -150,7 +162,7 @@ impl Robotiq2f85 {
     pub fn pad_sites(&self) -> Option<[Site; 2]> {
         match &self.inner.drive {
             Drive::Sim(fingers) => Some(fingers.pad_sites.clone()),
-            Drive::Mock => None,
+            Drive::Mock | Drive::Real(_) => None,
         }
     }
 }
@@ -162,6 +174,7 @@ impl Inner {
                 0.5 * (fingers.drivers[0].position() + fingers.drivers[1].position())
             }
             Drive::Mock => self.state.borrow().command / 255.0 * CLOSED_RAD,
+            Drive::Real(fingers) => f64::from(fingers.position()) / 255.0 * CLOSED_RAD,
         }
     }
 
@@ -170,11 +183,14 @@ impl Inner {
             Drive::Sim(fingers) => {
                 0.5 * (fingers.drivers[0].velocity() + fingers.drivers[1].velocity())
             }
-            Drive::Mock => 0.0,
+            Drive::Mock | Drive::Real(_) => 0.0,
         }
     }
 
     fn is_moving(&self) -> bool {
+        if let Drive::Real(fingers) = &self.drive {
+            return fingers.is_moving();
+        }
         let state = *self.state.borrow();
         if state.command != state.request[0] || state.ticks < 2 {
             return true;
@@ -184,7 +200,7 @@ impl Inner {
                 .drivers
                 .iter()
                 .any(|driver| driver.velocity().abs() > STOPPED_RAD_S),
-            Drive::Mock => false,
+            Drive::Mock | Drive::Real(_) => false,
         }
     }
 
@@ -287,6 +303,9 @@ impl Grip<'_> {
         state.request = self.request;
         state.ticks = 0;
         state.stalled = 0;
+        if let Drive::Real(fingers) = &inner.drive {
+            fingers.request(self.request.map(|value| value.clamp(0.0, 255.0) as u8));
+        }
     }
 }
 
@@ -325,7 +344,10 @@ impl Component for Robotiq2f85 {
     }
 
     fn interfaces(interfaces: &mut Interfaces<Self>) {
-        interfaces.add::<Sim>().add::<Mock>();
+        interfaces
+            .add::<Sim>()
+            .add::<Mock>()
+            .add::<yarok_hw::Real>();
     }
 }
 
