@@ -65,6 +65,23 @@ impl Arm {
         Ok(Self::with_drive(bind, config.kinematics, drive, start))
     }
 
+    /// Binds a real arm through its controller (interface settings `host`, `rtde_hz`,
+    /// `reply_seconds`, `connect_seconds`): refused when the controller's arm has other
+    /// kinematics than `kinematics`' (a UR5 configured on a UR5e); motions go to the controller
+    /// as URScript with the same meaning; the joints come from RTDE; the arm is stopped at
+    /// shutdown.
+    ///
+    /// # Errors
+    ///
+    /// [`BindError`] naming the controller when it cannot be reached or its arm differs.
+    pub async fn bind_real(
+        bind: &mut Bind<yarok_hw::Real>,
+        kinematics: Kinematics,
+    ) -> Result<Self, BindError> {
+        let (link, start) = super::real::connect(bind, &kinematics).await?;
+        Ok(Self::with_drive(bind, kinematics, Drive::Real(link), start))
+    }
+
     /// Binds an arm in `mock`: it follows its motions exactly, from `start`.
     pub fn bind_mock(bind: &mut Bind<Mock>, kinematics: Kinematics, start: Joints) -> Self {
         Self::with_drive(bind, kinematics, Drive::Mock, start)
@@ -156,6 +173,16 @@ impl Arm {
     /// [`Arm::move_l`] to a UR pose vector `[x, y, z, rx, ry, rz]`.
     pub fn move_l_vector(&self, pose: [f64; 6]) -> Move<'_> {
         self.move_l(pose_from_vector(pose))
+    }
+
+    /// Unlocks a protective stop (a real arm, through its controller's dashboard; the
+    /// controller refuses within 5 s of the stop). Nothing to do in `sim` and `mock`.
+    ///
+    /// # Errors
+    ///
+    /// The controller's refusal, or why it could not be asked.
+    pub async fn unlock_protective_stop(&self) -> Result<(), String> {
+        self.controller.unlock_protective_stop().await
     }
 
     /// Stops the motion under way: it decelerates along its path (a line stays a line) at its

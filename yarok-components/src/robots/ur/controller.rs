@@ -3,15 +3,17 @@
 //! and tells how each motion ended.
 
 use std::cell::RefCell;
+use std::rc::Rc;
 
 use nalgebra::Isometry3;
 use yarok_core::time::Clock;
 use yarok_mjc::{Actuator, Joint};
 
 use super::error::MotionError;
-use super::kinematics::{IkError, Joints, Kinematics};
+use super::kinematics::{IkError, Joints, Kinematics, pose_to_vector};
 use super::path::Path;
 use super::profile::Profile;
+use super::real::{RealLink, movej, movel};
 
 /// How close (radians, every joint) counts as arrived.
 pub const ARRIVED_RAD: f64 = 1e-3;
@@ -19,6 +21,9 @@ pub const ARRIVED_RAD: f64 = 1e-3;
 /// Seconds after its profile ends that a motion may take to settle within [`ARRIVED_RAD`]
 /// before it counts as failed (something blocks the arm).
 pub const SETTLE_SECONDS: f64 = 0.5;
+
+/// Seconds a real arm's stream may take to show an unlocked protective stop cleared.
+const UNLOCKED_SECONDS: f64 = 2.0;
 
 /// Where a motion goes, and how.
 #[derive(Debug, Clone, Copy)]
@@ -43,6 +48,9 @@ pub(super) enum Drive {
     Sim(Box<Servos>),
     /// Follows the reference exactly.
     Mock,
+    /// A real arm: each motion goes to its controller as URScript, which moves the arm; the
+    /// motion's profile here tells when it should have arrived.
+    Real(Rc<RealLink>),
 }
 
 /// The joints and position servos of an arm in `sim`.
@@ -127,7 +135,22 @@ impl Controller {
         match &self.drive {
             Drive::Sim(sim) => sim.joints.each_ref().map(Joint::velocity),
             Drive::Mock => self.state.borrow().speed,
+            Drive::Real(link) => link.qd(),
         }
+    }
+
+    /// Unlocks a real arm's protective stop; nothing to do otherwise.
+    pub(super) async fn unlock_protective_stop(&self) -> Result<(), String> {
+        let Drive::Real(link) = &self.drive else {
+            return Ok(());
+        };
+        link.unlock_protective_stop().await?;
+        // Motions may start once the arm's own stream says so.
+        self.clock
+            .wait(|| link.safety_stop().is_none())
+            .timeout(UNLOCKED_SECONDS)
+            .await
+            .map_err(|e| format!("the safety stop did not clear: {e}"))
     }
 
     /// Whether a motion is under way.
@@ -150,7 +173,14 @@ impl Controller {
         };
         let dt = self.clock.timestep();
         let t = now + dt - motion.started;
+        let stopped_by_safety = match &self.drive {
+            Drive::Real(link) => link.safety_stop(),
+            _ => None,
+        };
         let outcome = match motion.reference(t, dt, &self.kinematics, &state.reference) {
+            _ if stopped_by_safety.is_some() => Some(Err(MotionError::SafetyStop {
+                mode: stopped_by_safety.unwrap_or_default(),
+            })),
             Err(error) => Some(Err(error.into())),
             Ok((q, speed)) => {
                 let before = state.reference;
@@ -197,6 +227,7 @@ impl Controller {
         match &self.drive {
             Drive::Sim(sim) => sim.joints.each_ref().map(Joint::position),
             Drive::Mock => state.reference,
+            Drive::Real(link) => link.q(),
         }
     }
 
@@ -255,6 +286,17 @@ impl Controller {
             stopping: false,
         });
         drop(state);
+        if let Drive::Real(link) = &self.drive {
+            link.send_script(match path {
+                Path::Line { to, .. } => movel(
+                    &pose_to_vector(&to),
+                    &pose_to_vector(&self.kinematics.tcp),
+                    speed,
+                    acceleration,
+                ),
+                Path::Joints { .. } => movej(&target, speed, acceleration),
+            });
+        }
         self.advance(self.clock.time());
         self.command();
         Ok(id)
@@ -284,6 +326,13 @@ impl Controller {
         }
         let (along, speed) = motion.profile.at(now - motion.started);
         let deceleration = motion.profile.acceleration();
+        if let Drive::Real(link) = &self.drive {
+            let stop = match motion.path {
+                Path::Line { .. } => "stopl",
+                Path::Joints { .. } => "stopj",
+            };
+            link.send_script(format!("{stop}({deceleration})"));
+        }
         motion.profile = Profile::stopping(along, speed, deceleration);
         motion.started = now;
         motion.stopping = true;

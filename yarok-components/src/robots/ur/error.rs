@@ -44,6 +44,14 @@ pub enum MotionError {
         /// How long after the motion's end it was given to settle.
         seconds: f64,
     },
+    /// A real arm's safety system stopped it (a protective stop after a collision, an
+    /// emergency stop, …); after a protective stop, inspect the cause, then
+    /// [`Arm::unlock_protective_stop`](super::Arm::unlock_protective_stop).
+    #[error("the arm's safety system stopped it: {mode}")]
+    SafetyStop {
+        /// The controller's safety mode (`PROTECTIVE_STOP`, `ROBOT_EMERGENCY_STOP`, …).
+        mode: &'static str,
+    },
     /// The platform stopped, or a timeout passed.
     #[error(transparent)]
     Wait(#[from] WaitError),

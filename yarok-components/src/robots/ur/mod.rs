@@ -10,6 +10,7 @@ mod model;
 mod motion;
 mod path;
 mod profile;
+mod real;
 
 use yarok_core::component::{Bind, BindError, Component, Declaration, Interface, Interfaces, Mock};
 use yarok_mjc::Sim;
@@ -77,7 +78,14 @@ macro_rules! arm_component {
             }
 
             fn interfaces(interfaces: &mut Interfaces<Self>) {
-                interfaces.add::<Sim>().add::<Mock>();
+                interfaces.add::<Sim>().add::<Mock>().add::<yarok_hw::Real>();
+            }
+        }
+
+        impl Interface<yarok_hw::Real> for $name {
+            async fn bind(bind: &mut Bind<yarok_hw::Real>) -> Result<Self, BindError> {
+                let config = config(bind, &$model)?;
+                Arm::bind_real(bind, config.kinematics).await.map($name)
             }
         }
 
@@ -109,7 +117,10 @@ arm_component! {
     /// body `flange` (`<robotiq_2f85 name="gripper" parent="flange"/>`); the site `flange`
     /// is the controller's tool0.
     ///
-    /// Environments: `sim`; `mock` (follows its motions exactly).
+    /// Environments: `sim`; `mock` (follows its motions exactly); `real`: the arm through its
+    /// controller (interface settings `host`, `rtde_hz`, `reply_seconds`,
+    /// `connect_seconds`) — motions sent as URScript `movej`/`movel`, joints read over RTDE,
+    /// the controller's kinematics checked against the UR5e's at connect.
     Ur5e, model::UR5E
 }
 

@@ -98,7 +98,14 @@ struct Shared {
     fingers: Mutex<Fingers>,
     /// URScript lines clients sent.
     scripts: Mutex<Vec<String>>,
+    /// Inverse kinematics for `movel`, if the test gave some.
+    ik: Option<Ik>,
+    /// Bumped to drop every RTDE connection.
+    rtde_drops: AtomicU32,
 }
+
+/// Joints that put the TCP at a pose (a UR pose vector), near the given ones.
+pub(crate) type Ik = Box<dyn Fn([f64; 6], [f64; 6]) -> Option<[f64; 6]> + Send + Sync>;
 
 impl Shared {
     /// The arm's mode as the secondary interface and RTDE number it.
@@ -141,6 +148,16 @@ fn unique_loopback() -> String {
 
 impl FakeController {
     pub(crate) fn start(profile: Profile) -> Self {
+        Self::start_with(profile, None)
+    }
+
+    /// One whose arm runs `movel` too, reaching each TCP pose (a UR pose vector) at the joints
+    /// `ik` gives near the current ones.
+    pub(crate) fn with_ik(profile: Profile, ik: Ik) -> Self {
+        Self::start_with(profile, Some(ik))
+    }
+
+    fn start_with(profile: Profile, ik: Option<Ik>) -> Self {
         let host = unique_loopback();
         let shared = Arc::new(Shared {
             profile,
@@ -151,6 +168,8 @@ impl FakeController {
             scripts: Mutex::new(Vec::new()),
             inputs: Mutex::new(HashMap::new()),
             asked: Mutex::new(Vec::new()),
+            ik,
+            rtde_drops: AtomicU32::new(0),
             arm: Mutex::new(Arm {
                 robot_mode: "RUNNING",
                 safety: "NORMAL",
@@ -252,6 +271,8 @@ impl FakeController {
 
     /// A protective stop, `ago` in the past.
     pub(crate) fn protective_stop(&self, ago: Duration) {
+        let mut joints = self.shared.joints.lock().unwrap();
+        *joints = Joints::at(joints.now(Instant::now()));
         let mut arm = self.shared.arm.lock().unwrap();
         arm.safety = "PROTECTIVE_STOP";
         arm.stopped_at = Some(Instant::now() - ago);
@@ -273,6 +294,11 @@ impl FakeController {
     /// Makes the gripper report fault `code` (its fingers stop).
     pub(crate) fn gripper_fault(&self, code: u8) {
         self.shared.fingers.lock().unwrap().flt = code;
+    }
+
+    /// Drops every RTDE connection, as a network hiccup does.
+    pub(crate) fn drop_rtde(&self) {
+        self.shared.rtde_drops.fetch_add(1, Ordering::Relaxed);
     }
 
     /// The output variables clients asked for so far.

@@ -2,6 +2,7 @@
 
 use std::collections::HashMap;
 use std::sync::Arc;
+use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
 
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
@@ -18,7 +19,13 @@ impl Shared {
             "actual_q" => Value::Vector6d(self.joints.lock().unwrap().now(Instant::now())),
             "target_q" => Value::Vector6d(self.joints.lock().unwrap().target()),
             "robot_mode" => Value::Int32(i32::from(self.robot_mode())),
-            "safety_mode" | "safety_status" => Value::Int32(1),
+            "safety_mode" | "safety_status" => {
+                Value::Int32(match self.arm.lock().unwrap().safety {
+                    "NORMAL" => 1,
+                    "PROTECTIVE_STOP" => 3,
+                    _ => 9,
+                })
+            }
             "joint_mode" => Value::Vector6Int32([253; 6]),
             "runtime_state" => Value::Uint32(1),
             "robot_status_bits" => Value::Uint32(1),
@@ -60,6 +67,7 @@ type Outputs = (u8, Vec<(String, RtdeType)>, Duration);
 
 /// One client's RTDE session.
 pub(super) async fn serve_rtde(stream: TcpStream, shared: Arc<Shared>) {
+    let drops = shared.rtde_drops.load(Ordering::Relaxed);
     let (mut reader, mut writer) = stream.into_split();
     let mut buffer = Vec::new();
     let mut outputs: Option<Outputs> = None;
@@ -149,6 +157,9 @@ pub(super) async fn serve_rtde(stream: TcpStream, shared: Arc<Shared>) {
                 }
             }
             _ = tick => {
+                if shared.rtde_drops.load(Ordering::Relaxed) != drops {
+                    return;
+                }
                 if let Some((id, variables, _)) = &outputs {
                     let mut payload = Vec::new();
                     for (name, rtde_type) in variables {

@@ -1,0 +1,181 @@
+//! The UR arms with `--env real`, against the project's fake controller: joint and linear
+//! moves sent as URScript arrive (joints read over RTDE); a UR5 configured on a UR5e is
+//! refused, naming both; a protective stop mid-move fails the motion saying so, and after
+//! unlocking it the arm moves again; a dropped RTDE stream is reconnected while the behaviour
+//! waits; the arm is stopped when the run ends.
+
+use std::time::Duration;
+
+use yarok::components::robots::ur::{
+    DhParameters, Kinematics, MotionError, Ur5, Ur5e, pose_from_vector, pose_to_vector,
+};
+use yarok::{Component, Declaration};
+
+#[path = "../yarok-hw/tests/support/ur_controller/mod.rs"]
+mod ur_controller;
+
+use ur_controller::{FakeController, Profile};
+
+/// A UR5e alone.
+struct ArmOnly;
+
+impl Component for ArmOnly {
+    fn declaration() -> Declaration {
+        Declaration::new("arm_only")
+            .uses::<Ur5e>()
+            .template(r#"<mujoco><worldbody><ur5e name="arm"/></worldbody></mujoco>"#)
+    }
+}
+
+/// A UR5 alone.
+struct Ur5Only;
+
+impl Component for Ur5Only {
+    fn declaration() -> Declaration {
+        Declaration::new("ur5_only")
+            .uses::<Ur5>()
+            .template(r#"<mujoco><worldbody><ur5 name="arm"/></worldbody></mujoco>"#)
+    }
+}
+
+/// A fake e-Series controller whose `movel` uses the UR5e's kinematics.
+fn fake_ur5e() -> FakeController {
+    let kinematics = Kinematics::new(DhParameters::UR5E);
+    let fake = FakeController::with_ik(
+        Profile::ESeries,
+        Box::new(move |pose, near| kinematics.nearest(&pose_from_vector(pose), &near).ok()),
+    );
+    fake.set_joints([0.0, -1.3, 1.2, -1.5, -1.57, 0.0]);
+    fake
+}
+
+fn real<W: Component>(fake: &FakeController) -> yarok::core::runtime::PlatformBuilder {
+    yarok::platform()
+        .world::<W>()
+        .args([
+            "--env".to_owned(),
+            "real".to_owned(),
+            "--set".to_owned(),
+            format!("interfaces/arm/host=\"{}\"", fake.host),
+        ])
+        .unwrap()
+}
+
+#[test]
+fn joint_and_linear_moves_arrive() {
+    let fake = fake_ur5e();
+    real::<ArmOnly>(&fake)
+        .behaviour(|pl| async move {
+            let arm: Ur5e = pl.get("/arm")?;
+            assert!(
+                arm.is_at(&[0.0, -1.3, 1.2, -1.5, -1.57, 0.0]),
+                "{:?}",
+                arm.q()
+            );
+            let q = [0.3, -1.2, 1.1, -1.4, -1.57, 0.2];
+            arm.move_j(q).speed(2.0).acceleration(4.0).await?;
+            assert!(arm.is_at(&q), "{:?}", arm.q());
+            let mut pose = pose_to_vector(&arm.tcp_pose());
+            pose[2] += 0.05;
+            arm.move_l_vector(pose).await?;
+            assert!(
+                arm.is_at_pose(&pose_from_vector(pose)),
+                "{:?}",
+                arm.tcp_pose()
+            );
+            Ok(())
+        })
+        .run()
+        .unwrap();
+    // The stop goes out as the run ends; the fake may read it a moment later.
+    let stopped = |scripts: &[String]| scripts.last().is_some_and(|last| last == "stopj(2.0)");
+    let asked = std::time::Instant::now();
+    while !stopped(&fake.scripts()) && asked.elapsed() < Duration::from_secs(2) {
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    let scripts = fake.scripts();
+    assert!(stopped(&scripts), "stopped at the end: {scripts:?}");
+    assert!(
+        scripts.iter().any(|s| s.starts_with("movej([0.300000")),
+        "{scripts:?}"
+    );
+    assert!(
+        scripts.iter().any(|s| s.trim().starts_with("movel(p[")),
+        "{scripts:?}"
+    );
+}
+
+#[test]
+fn a_ur5_configured_on_a_ur5e_is_refused_naming_both() {
+    let fake = fake_ur5e();
+    let error = real::<Ur5Only>(&fake)
+        .behaviour(|_| async { Ok(()) })
+        .run()
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("/arm")
+            && error.contains("a UR5e (d1 0.1625")
+            && error.contains("a UR5 (d1 0.0892"),
+        "{error}"
+    );
+}
+
+#[test]
+fn a_protective_stop_fails_the_motion_and_unlocking_recovers() {
+    let fake = fake_ur5e();
+    std::thread::scope(|scope| {
+        scope.spawn(|| {
+            while fake.scripts().is_empty() {
+                std::thread::sleep(Duration::from_millis(10));
+            }
+            std::thread::sleep(Duration::from_millis(200));
+            // Long enough ago that the dashboard lets it be unlocked.
+            fake.protective_stop(Duration::from_secs(6));
+        });
+        real::<ArmOnly>(&fake)
+            .behaviour(|pl| async move {
+                let arm: Ur5e = pl.get("/arm")?;
+                let far = [1.5, -1.3, 1.2, -1.5, -1.57, 0.0];
+                let stopped = arm.move_j(far).speed(0.5).await.unwrap_err();
+                assert_eq!(
+                    stopped,
+                    MotionError::SafetyStop {
+                        mode: "PROTECTIVE_STOP"
+                    }
+                );
+                arm.unlock_protective_stop().await?;
+                arm.move_j(far).speed(3.0).acceleration(6.0).await?;
+                assert!(arm.is_at(&far));
+                Ok(())
+            })
+            .run()
+            .unwrap();
+    });
+}
+
+#[test]
+fn a_dropped_rtde_stream_is_reconnected_while_the_behaviour_waits() {
+    let fake = fake_ur5e();
+    std::thread::scope(|scope| {
+        scope.spawn(|| {
+            while fake.scripts().is_empty() {
+                std::thread::sleep(Duration::from_millis(10));
+            }
+            std::thread::sleep(Duration::from_millis(100));
+            fake.drop_rtde();
+        });
+        real::<ArmOnly>(&fake)
+            .behaviour(|pl| async move {
+                let arm: Ur5e = pl.get("/arm")?;
+                let q = [0.8, -1.3, 1.2, -1.5, -1.57, 0.0];
+                arm.move_j(q).speed(1.0).await?;
+                assert!(arm.is_at(&q));
+                Ok(())
+            })
+            .run()
+            .unwrap();
+    });
+    let asked = fake.asked();
+    assert!(asked.len() >= 6, "the recipe was set up twice: {asked:?}");
+}

@@ -1,0 +1,363 @@
+//! The UR arms' `real` interface: the controller's RTDE stream (joints, speeds, safety) and
+//! its secondary interface (URScript `movej`/`movel`/`stopj`), with the robot's kinematics
+//! checked at connect and the RTDE stream reconnected when it drops.
+
+use std::cell::{Cell, RefCell};
+use std::collections::VecDeque;
+use std::rc::Rc;
+use std::time::Duration;
+
+use serde::Deserialize;
+use tokio::net::TcpStream;
+use tokio::sync::{Notify, oneshot};
+use yarok_core::component::{Bind, BindError};
+use yarok_hw::Real;
+use yarok_hw::ur::dashboard::Dashboard;
+use yarok_hw::ur::rtde::{Rtde, RtdeError, RtdeSettings, Value};
+use yarok_hw::ur::secondary::{KinematicsInfo, Secondary};
+
+use super::kinematics::{DhParameters, Joints, Kinematics};
+
+const RTDE_PORT: u16 = 30004;
+const SECONDARY_PORT: u16 = 30002;
+const DASHBOARD_PORT: u16 = 29999;
+
+/// What the arm streams over RTDE, in this order.
+const OUTPUTS: [&str; 3] = ["actual_q", "actual_qd", "safety_mode"];
+
+/// How far (metres) a DH length may differ from the configured one: calibration moves them by
+/// well under this, another model by centimetres.
+const DH_TOLERANCE: f64 = 5e-3;
+
+/// The interface settings of a real UR arm (`[interfaces."/path/to/arm"]`).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+struct Settings {
+    /// The controller's address.
+    host: String,
+    /// RTDE packages a second; the controller's most (125 on CB3, 500 on e-Series) when unset.
+    rtde_hz: Option<f64>,
+    /// Seconds a reply may take, and a dropped RTDE stream may take to come back.
+    reply_seconds: f64,
+    /// Seconds the first connection may take.
+    connect_seconds: f64,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self {
+            host: "192.168.1.10".into(),
+            rtde_hz: None,
+            reply_seconds: 2.0,
+            connect_seconds: 5.0,
+        }
+    }
+}
+
+/// Safety modes as RTDE numbers them; 1 and 2 let the arm move.
+fn safety_mode_name(mode: i32) -> &'static str {
+    match mode {
+        1 => "NORMAL",
+        2 => "REDUCED",
+        3 => "PROTECTIVE_STOP",
+        4 => "RECOVERY",
+        5 => "SAFEGUARD_STOP",
+        6 => "SYSTEM_EMERGENCY_STOP",
+        7 => "ROBOT_EMERGENCY_STOP",
+        8 => "VIOLATION",
+        9 => "FAULT",
+        _ => "UNKNOWN",
+    }
+}
+
+/// The arm as RTDE last reported it.
+#[derive(Debug, Clone, Copy)]
+struct Measured {
+    q: Joints,
+    qd: Joints,
+    safety_mode: i32,
+}
+
+/// What the arm's driver task is asked to do.
+enum Request {
+    Script(String),
+    UnlockProtectiveStop(oneshot::Sender<Result<(), String>>),
+}
+
+/// The link between the controller's motions and the driver's task.
+pub(super) struct RealLink {
+    measured: Cell<Measured>,
+    requests: RefCell<VecDeque<Request>>,
+    wake: Notify,
+}
+
+impl RealLink {
+    pub(super) fn q(&self) -> Joints {
+        self.measured.get().q
+    }
+
+    pub(super) fn qd(&self) -> Joints {
+        self.measured.get().qd
+    }
+
+    /// The safety mode's name when it stops the arm (a protective stop, an emergency stop, …).
+    pub(super) fn safety_stop(&self) -> Option<&'static str> {
+        let mode = self.measured.get().safety_mode;
+        (mode > 2).then(|| safety_mode_name(mode))
+    }
+
+    /// Sends `script` to the controller, which runs it at once.
+    pub(super) fn send_script(&self, script: String) {
+        self.requests
+            .borrow_mut()
+            .push_back(Request::Script(script));
+        self.wake.notify_one();
+    }
+
+    /// Unlocks a protective stop through the dashboard.
+    pub(super) async fn unlock_protective_stop(&self) -> Result<(), String> {
+        let (reply, replied) = oneshot::channel();
+        self.requests
+            .borrow_mut()
+            .push_back(Request::UnlockProtectiveStop(reply));
+        self.wake.notify_one();
+        replied
+            .await
+            .unwrap_or_else(|_| Err("the arm's driver has stopped".into()))
+    }
+}
+
+/// `movej` to `target` at `speed` rad/s and `acceleration` rad/s².
+pub(super) fn movej(target: &Joints, speed: f64, acceleration: f64) -> String {
+    let q: Vec<String> = target.iter().map(|q| format!("{q:.6}")).collect();
+    format!("movej([{}], a={acceleration}, v={speed})", q.join(", "))
+}
+
+/// A program that sets the TCP and runs `movel` to the TCP `pose` (a UR pose vector).
+pub(super) fn movel(pose: &[f64; 6], tcp: &[f64; 6], speed: f64, acceleration: f64) -> String {
+    let vector = |values: &[f64; 6]| {
+        let values: Vec<String> = values.iter().map(|v| format!("{v:.6}")).collect();
+        format!("p[{}]", values.join(", "))
+    };
+    format!(
+        "def yarok_move():\n  set_tcp({})\n  movel({}, a={acceleration}, v={speed})\nend",
+        vector(tcp),
+        vector(pose)
+    )
+}
+
+/// Which known arm DH parameters these are.
+fn model_name(dh: &DhParameters) -> &'static str {
+    let close = |known: &DhParameters| {
+        [
+            (dh.d1, known.d1),
+            (dh.a2, known.a2),
+            (dh.a3, known.a3),
+            (dh.d4, known.d4),
+            (dh.d5, known.d5),
+            (dh.d6, known.d6),
+        ]
+        .iter()
+        .all(|(a, b)| (a - b).abs() <= DH_TOLERANCE)
+    };
+    if close(&DhParameters::UR5) {
+        "a UR5"
+    } else if close(&DhParameters::UR5E) {
+        "a UR5e"
+    } else {
+        "another arm"
+    }
+}
+
+/// Refuses a controller whose arm's kinematics are not the configured ones.
+fn check_kinematics(
+    bind: &Bind<Real>,
+    configured: &DhParameters,
+    reported: &KinematicsInfo,
+) -> Result<(), BindError> {
+    let (a, d) = (reported.dh_a, reported.dh_d);
+    let robot = DhParameters {
+        d1: d[0],
+        a2: a[1],
+        a3: a[2],
+        d4: d[3],
+        d5: d[4],
+        d6: d[5],
+    };
+    if model_name(&robot) == model_name(configured) && model_name(configured) != "another arm" {
+        return Ok(());
+    }
+    let describe = |dh: &DhParameters| {
+        format!(
+            "{} (d1 {:.4}, a2 {:.4}, a3 {:.5}, d4 {:.4}, d5 {:.4}, d6 {:.4} m)",
+            model_name(dh),
+            dh.d1,
+            dh.a2,
+            dh.a3,
+            dh.d4,
+            dh.d5,
+            dh.d6
+        )
+    };
+    Err(bind.error(format!(
+        "the controller's arm is {}, but this component is {}",
+        describe(&robot),
+        describe(configured)
+    )))
+}
+
+/// Connects to RTDE at `host`, sets up the arm's outputs and starts them.
+async fn rtde_stream(
+    host: &str,
+    hz: Option<f64>,
+    reply: Duration,
+) -> Result<Rtde<TcpStream>, Box<dyn std::error::Error + Send + Sync>> {
+    let stream = tokio::time::timeout(reply, TcpStream::connect((host, RTDE_PORT))).await??;
+    let mut settings = RtdeSettings::new(host);
+    settings.reply_timeout = reply;
+    let mut rtde = Rtde::connect(stream, settings).await?;
+    let most = if rtde.controller_version().major >= 5 {
+        500.0
+    } else {
+        125.0
+    };
+    rtde.setup_outputs(hz.unwrap_or(most).min(most), &OUTPUTS)
+        .await?;
+    rtde.start().await?;
+    Ok(rtde)
+}
+
+/// What an RTDE package of [`OUTPUTS`] says.
+fn measured(values: &[Value]) -> Option<Measured> {
+    match *values {
+        [
+            Value::Vector6d(q),
+            Value::Vector6d(qd),
+            Value::Int32(safety_mode),
+        ] => Some(Measured { q, qd, safety_mode }),
+        _ => None,
+    }
+}
+
+/// Connects to the arm's controller: the kinematics checked, the first joints read, and a task
+/// that keeps the link fed; the arm is stopped at shutdown. Returns the link and the joints.
+pub(super) async fn connect(
+    bind: &mut Bind<Real>,
+    kinematics: &Kinematics,
+) -> Result<(Rc<RealLink>, Joints), BindError> {
+    let settings: Settings = bind.settings()?;
+    let host = settings.host.clone();
+    let reply = Duration::try_from_secs_f64(settings.reply_seconds).unwrap_or_default();
+    let connecting = async {
+        let stream = TcpStream::connect((host.as_str(), SECONDARY_PORT)).await?;
+        let secondary = Secondary::connect(stream, host.clone(), reply).await?;
+        let rtde = rtde_stream(&host, settings.rtde_hz, reply).await?;
+        Ok::<_, Box<dyn std::error::Error + Send + Sync>>((secondary, rtde))
+    };
+    let (mut secondary, mut rtde) = bind
+        .within(settings.connect_seconds, "the arm's controller", connecting)
+        .await?
+        .map_err(|e| bind.error(format!("controller {host}: {e}")))?;
+    let state = secondary.next_state().await.map_err(|e| bind.error(e))?;
+    let reported = state
+        .kinematics
+        .ok_or_else(|| bind.error(format!("controller {host} sent no kinematics")))?;
+    check_kinematics(bind, &kinematics.dh, &reported)?;
+    let first = rtde.receive().await.map_err(|e| bind.error(e))?;
+    let first = measured(&first).ok_or_else(|| bind.error("RTDE sent other values"))?;
+    let link = Rc::new(RealLink {
+        measured: Cell::new(first),
+        requests: RefCell::new(VecDeque::new()),
+        wake: Notify::new(),
+    });
+    bind.spawn(drive(Rc::clone(&link), settings, rtde, secondary));
+    let stopping = Rc::clone(&link);
+    bind.on_stop(async move {
+        // The driver's task has ended: a connection of its own stops the arm.
+        let stream = TcpStream::connect((host.as_str(), SECONDARY_PORT)).await?;
+        let mut secondary = Secondary::connect(stream, host.clone(), reply).await?;
+        secondary.send_script("stopj(2.0)").await?;
+        drop(stopping);
+        Ok(())
+    });
+    Ok((link, first.q))
+}
+
+/// Keeps the link fed from RTDE (reconnecting a dropped stream within the reply time), sends
+/// the scripts asked for, and serves dashboard requests.
+async fn drive(
+    link: Rc<RealLink>,
+    settings: Settings,
+    mut rtde: Rtde<TcpStream>,
+    mut secondary: Secondary<TcpStream>,
+) -> Result<(), yarok_core::BoxError> {
+    let reply = Duration::try_from_secs_f64(settings.reply_seconds).unwrap_or_default();
+    loop {
+        tokio::select! {
+            values = rtde.receive() => match values {
+                Ok(values) => {
+                    if let Some(now) = measured(&values) {
+                        link.measured.set(now);
+                    }
+                }
+                Err(error) => {
+                    tracing::warn!(controller = %settings.host, "RTDE dropped ({error}); reconnecting");
+                    rtde = reconnect(&settings, reply, error).await?;
+                }
+            },
+            state = secondary.next_state() => {
+                // Read to keep the controller's sending side flowing; RTDE is faster.
+                state?;
+            }
+            () = link.wake.notified() => {
+                let requests: Vec<Request> = link.requests.borrow_mut().drain(..).collect();
+                for request in requests {
+                    match request {
+                        Request::Script(script) => secondary.send_script(&script).await?,
+                        Request::UnlockProtectiveStop(reply_to) => {
+                            let unlocked = unlock(&settings.host, reply).await;
+                            let _ = reply_to.send(unlocked);
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// A new RTDE stream within `reply`, or the error that dropped the old one.
+async fn reconnect(
+    settings: &Settings,
+    reply: Duration,
+    dropped: RtdeError,
+) -> Result<Rtde<TcpStream>, yarok_core::BoxError> {
+    let until = tokio::time::Instant::now() + reply;
+    while tokio::time::Instant::now() < until {
+        if let Ok(Ok(rtde)) =
+            tokio::time::timeout_at(until, rtde_stream(&settings.host, settings.rtde_hz, reply))
+                .await
+        {
+            tracing::info!(controller = %settings.host, "RTDE reconnected");
+            return Ok(rtde);
+        }
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
+    Err(format!("{dropped}; not back within {} s", reply.as_secs_f64()).into())
+}
+
+/// `unlock protective stop` on the dashboard of `host`.
+async fn unlock(host: &str, reply: Duration) -> Result<(), String> {
+    let unlocking = async {
+        let stream = TcpStream::connect((host, DASHBOARD_PORT)).await?;
+        let mut dashboard = Dashboard::connect(stream, host, reply).await?;
+        dashboard.unlock_protective_stop().await?;
+        Ok::<_, Box<dyn std::error::Error + Send + Sync>>(())
+    };
+    match tokio::time::timeout(reply * 2, unlocking).await {
+        Ok(result) => result.map_err(|e| e.to_string()),
+        Err(_) => Err(format!(
+            "dashboard {host}: no answer within {} s",
+            reply.as_secs_f64() * 2.0
+        )),
+    }
+}
