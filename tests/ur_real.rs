@@ -1,8 +1,9 @@
 //! The UR arms with `--env real`, against the project's fake controller: joint and linear
 //! moves sent as URScript arrive (joints read over RTDE); a UR5 configured on a UR5e is
 //! refused, naming both; a protective stop mid-move fails the motion saying so, and after
-//! unlocking it the arm moves again; a dropped RTDE stream is reconnected while the behaviour
-//! waits; the arm is stopped when the run ends.
+//! unlocking it the arm moves again; dropped RTDE and secondary connections are reconnected
+//! while the behaviour waits; a CB3 UR5 moves too and takes its payload; the arm is stopped
+//! when the run ends.
 
 use std::time::Duration;
 
@@ -155,7 +156,7 @@ fn a_protective_stop_fails_the_motion_and_unlocking_recovers() {
 }
 
 #[test]
-fn a_dropped_rtde_stream_is_reconnected_while_the_behaviour_waits() {
+fn dropped_connections_are_reconnected_while_the_behaviour_waits() {
     let fake = fake_ur5e();
     std::thread::scope(|scope| {
         scope.spawn(|| {
@@ -163,7 +164,7 @@ fn a_dropped_rtde_stream_is_reconnected_while_the_behaviour_waits() {
                 std::thread::sleep(Duration::from_millis(10));
             }
             std::thread::sleep(Duration::from_millis(100));
-            fake.drop_rtde();
+            fake.drop_streams();
         });
         real::<ArmOnly>(&fake)
             .behaviour(|pl| async move {
@@ -171,6 +172,10 @@ fn a_dropped_rtde_stream_is_reconnected_while_the_behaviour_waits() {
                 let q = [0.8, -1.3, 1.2, -1.5, -1.57, 0.0];
                 arm.move_j(q).speed(1.0).await?;
                 assert!(arm.is_at(&q));
+                // The script goes over the new secondary connection.
+                let back = [0.6, -1.3, 1.2, -1.5, -1.57, 0.0];
+                arm.move_j(back).speed(2.0).await?;
+                assert!(arm.is_at(&back));
                 Ok(())
             })
             .run()
@@ -178,4 +183,35 @@ fn a_dropped_rtde_stream_is_reconnected_while_the_behaviour_waits() {
     });
     let asked = fake.asked();
     assert!(asked.len() >= 6, "the recipe was set up twice: {asked:?}");
+}
+
+#[test]
+fn a_cb3_ur5_moves_and_takes_its_payload() {
+    let fake = FakeController::start(Profile::Cb3);
+    fake.set_joints([0.0, -1.3, 1.2, -1.5, -1.57, 0.0]);
+    yarok::platform()
+        .world::<Ur5Only>()
+        .args([
+            "--env".to_owned(),
+            "real".to_owned(),
+            "--set".to_owned(),
+            format!("interfaces/arm/host=\"{}\"", fake.host),
+            "--set".to_owned(),
+            "interfaces/arm/payload=[1.2, 0.0, 0.0, 0.05]".to_owned(),
+        ])
+        .unwrap()
+        .behaviour(|pl| async move {
+            let arm: Ur5 = pl.get("/arm")?;
+            let q = [-0.4, -1.4, 1.3, -1.5, -1.57, 0.1];
+            arm.move_j(q).speed(2.0).acceleration(4.0).await?;
+            assert!(arm.is_at(&q), "{:?}", arm.q());
+            Ok(())
+        })
+        .run()
+        .unwrap();
+    let scripts = fake.scripts();
+    assert_eq!(
+        scripts.first().map(String::as_str),
+        Some("set_payload(1.2, [0, 0, 0.05])")
+    );
 }

@@ -2,9 +2,13 @@
 //! RTDEReceiveInterface (from PyPI, run as a separate process by
 //! `scripts/peers/ur_rtde_receive.py`; `scripts/setup-test-peers.sh` installs it) connects to
 //! it in both profiles — it negotiates, asks for its own long recipe at 125 or 500 Hz, starts —
-//! and reads the joint positions the fake arm holds, within 1e-6 rad, and its modes.
+//! and reads the joint positions the fake arm holds, within 1e-6 rad, and its modes; its
+//! RTDEIOInterface sets up its sixteen input recipes and writes a digital output, the speed
+//! slider and a register, which the fake receives.
 
 use std::process::Command;
+
+use yarok_hw::ur::rtde::Value;
 
 #[path = "support/peers.rs"]
 mod peers;
@@ -49,4 +53,32 @@ fn ur_rtde_reads_the_fake_arms_joints_in_both_profiles() {
         let asked = fake.asked();
         assert!(asked.len() >= 50, "ur_rtde's recipe: {asked:?}");
     }
+}
+
+#[test]
+fn ur_rtde_writes_outputs_and_registers_to_the_fake() {
+    let fake = FakeController::start(Profile::ESeries);
+    let output = Command::new(peers::python())
+        .arg(peers::script("ur_rtde_io.py"))
+        .arg(&fake.host)
+        .output()
+        .expect("ur_rtde's script runs");
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success() && stdout.contains("done"),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    // The values arrive on the fake's thread a moment after the client's last write.
+    let arrived = |name: &str, value: Value| {
+        let started = std::time::Instant::now();
+        while fake.input(name) != Some(value) && started.elapsed().as_secs() < 2 {
+            std::thread::sleep(std::time::Duration::from_millis(10));
+        }
+        fake.input(name) == Some(value)
+    };
+    assert!(arrived("standard_digital_output_mask", Value::Uint8(1 << 2)));
+    assert!(arrived("standard_digital_output", Value::Uint8(1 << 2)));
+    assert!(arrived("speed_slider_fraction", Value::Double(0.5)));
+    assert!(arrived("input_double_register_18", Value::Double(0.25)));
 }

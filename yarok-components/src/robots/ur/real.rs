@@ -14,7 +14,7 @@ use yarok_core::component::{Bind, BindError};
 use yarok_hw::Real;
 use yarok_hw::ur::dashboard::Dashboard;
 use yarok_hw::ur::rtde::{Rtde, RtdeError, RtdeSettings, Value};
-use yarok_hw::ur::secondary::{KinematicsInfo, Secondary};
+use yarok_hw::ur::secondary::{KinematicsInfo, Secondary, SecondaryError};
 
 use super::kinematics::{DhParameters, Joints, Kinematics};
 
@@ -41,6 +41,9 @@ struct Settings {
     reply_seconds: f64,
     /// Seconds the first connection may take.
     connect_seconds: f64,
+    /// The payload: its mass (kg) and centre of gravity (m, in the flange frame), set on the
+    /// controller at connect; the controller's own setting when unset.
+    payload: Option<[f64; 4]>,
 }
 
 impl Default for Settings {
@@ -50,6 +53,7 @@ impl Default for Settings {
             rtde_hz: None,
             reply_seconds: 2.0,
             connect_seconds: 5.0,
+            payload: None,
         }
     }
 }
@@ -265,6 +269,16 @@ pub(super) async fn connect(
     check_kinematics(bind, &kinematics.dh, &reported)?;
     let first = rtde.receive().await.map_err(|e| bind.error(e))?;
     let first = measured(&first).ok_or_else(|| bind.error("RTDE sent other values"))?;
+    if let Some([mass, x, y, z]) = settings.payload {
+        if !(mass >= 0.0 && [mass, x, y, z].iter().all(|v| v.is_finite())) {
+            return Err(bind.error(format!("payload mass {mass} kg must be a number ≥ 0")));
+        }
+        let script = format!("set_payload({mass}, [{x}, {y}, {z}])");
+        secondary
+            .send_script(&script)
+            .await
+            .map_err(|e| bind.error(e))?;
+    }
     let link = Rc::new(RealLink {
         measured: Cell::new(first),
         requests: RefCell::new(VecDeque::new()),
@@ -307,13 +321,21 @@ async fn drive(
             },
             state = secondary.next_state() => {
                 // Read to keep the controller's sending side flowing; RTDE is faster.
-                state?;
+                if let Err(error) = state {
+                    tracing::warn!(controller = %settings.host, "secondary interface dropped ({error}); reconnecting");
+                    secondary = reconnect_secondary(&settings.host, reply, error).await?;
+                }
             }
             () = link.wake.notified() => {
                 let requests: Vec<Request> = link.requests.borrow_mut().drain(..).collect();
                 for request in requests {
                     match request {
-                        Request::Script(script) => secondary.send_script(&script).await?,
+                        Request::Script(script) => {
+                            if let Err(error) = secondary.send_script(&script).await {
+                                secondary = reconnect_secondary(&settings.host, reply, error).await?;
+                                secondary.send_script(&script).await?;
+                            }
+                        }
                         Request::UnlockProtectiveStop(reply_to) => {
                             let unlocked = unlock(&settings.host, reply).await;
                             let _ = reply_to.send(unlocked);
@@ -339,6 +361,27 @@ async fn reconnect(
         {
             tracing::info!(controller = %settings.host, "RTDE reconnected");
             return Ok(rtde);
+        }
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
+    Err(format!("{dropped}; not back within {} s", reply.as_secs_f64()).into())
+}
+
+/// A new secondary connection to `host` within `reply`, or the error that dropped the old one.
+async fn reconnect_secondary(
+    host: &str,
+    reply: Duration,
+    dropped: SecondaryError,
+) -> Result<Secondary<TcpStream>, yarok_core::BoxError> {
+    let until = tokio::time::Instant::now() + reply;
+    while tokio::time::Instant::now() < until {
+        let connecting = async {
+            let stream = TcpStream::connect((host, SECONDARY_PORT)).await?;
+            Ok::<_, yarok_core::BoxError>(Secondary::connect(stream, host, reply).await?)
+        };
+        if let Ok(Ok(secondary)) = tokio::time::timeout_at(until, connecting).await {
+            tracing::info!(controller = %host, "secondary interface reconnected");
+            return Ok(secondary);
         }
         tokio::time::sleep(Duration::from_millis(100)).await;
     }

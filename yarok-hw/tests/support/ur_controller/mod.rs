@@ -100,8 +100,8 @@ struct Shared {
     scripts: Mutex<Vec<String>>,
     /// Inverse kinematics for `movel`, if the test gave some.
     ik: Option<Ik>,
-    /// Bumped to drop every RTDE connection.
-    rtde_drops: AtomicU32,
+    /// Bumped to drop every RTDE and secondary connection.
+    drops: AtomicU32,
 }
 
 /// Joints that put the TCP at a pose (a UR pose vector), near the given ones.
@@ -169,7 +169,7 @@ impl FakeController {
             inputs: Mutex::new(HashMap::new()),
             asked: Mutex::new(Vec::new()),
             ik,
-            rtde_drops: AtomicU32::new(0),
+            drops: AtomicU32::new(0),
             arm: Mutex::new(Arm {
                 robot_mode: "RUNNING",
                 safety: "NORMAL",
@@ -296,9 +296,9 @@ impl FakeController {
         self.shared.fingers.lock().unwrap().flt = code;
     }
 
-    /// Drops every RTDE connection, as a network hiccup does.
-    pub(crate) fn drop_rtde(&self) {
-        self.shared.rtde_drops.fetch_add(1, Ordering::Relaxed);
+    /// Drops every RTDE and secondary connection, as a network hiccup does.
+    pub(crate) fn drop_streams(&self) {
+        self.shared.drops.fetch_add(1, Ordering::Relaxed);
     }
 
     /// The output variables clients asked for so far.

@@ -67,7 +67,7 @@ type Outputs = (u8, Vec<(String, RtdeType)>, Duration);
 
 /// One client's RTDE session.
 pub(super) async fn serve_rtde(stream: TcpStream, shared: Arc<Shared>) {
-    let drops = shared.rtde_drops.load(Ordering::Relaxed);
+    let drops = shared.drops.load(Ordering::Relaxed);
     let (mut reader, mut writer) = stream.into_split();
     let mut buffer = Vec::new();
     let mut outputs: Option<Outputs> = None;
@@ -157,7 +157,7 @@ pub(super) async fn serve_rtde(stream: TcpStream, shared: Arc<Shared>) {
                 }
             }
             _ = tick => {
-                if shared.rtde_drops.load(Ordering::Relaxed) != drops {
+                if shared.drops.load(Ordering::Relaxed) != drops {
                     return;
                 }
                 if let Some((id, variables, _)) = &outputs {

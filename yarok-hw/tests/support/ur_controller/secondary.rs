@@ -2,6 +2,7 @@
 
 use std::f64::consts::FRAC_PI_2;
 use std::sync::Arc;
+use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
 
 use tokio::io::{AsyncBufReadExt, AsyncWriteExt};
@@ -207,6 +208,7 @@ fn sub_package(out: &mut Vec<u8>, kind: u8, content: impl FnOnce(&mut Vec<u8>)) 
 /// One client's secondary session: the version message, then a robot state every 100 ms;
 /// script lines run as they come.
 pub(super) async fn serve_secondary(stream: TcpStream, shared: Arc<Shared>) {
+    let drops = shared.drops.load(Ordering::Relaxed);
     let (reader, mut writer) = stream.into_split();
     if writer.write_all(&shared.version_message()).await.is_err() {
         return;
@@ -220,6 +222,9 @@ pub(super) async fn serve_secondary(stream: TcpStream, shared: Arc<Shared>) {
                 _ => return,
             },
             _ = states.tick() => {
+                if shared.drops.load(Ordering::Relaxed) != drops {
+                    return;
+                }
                 if writer.write_all(&shared.robot_state()).await.is_err() {
                     return;
                 }
