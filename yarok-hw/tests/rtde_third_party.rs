@@ -77,7 +77,10 @@ fn ur_rtde_writes_outputs_and_registers_to_the_fake() {
         }
         fake.input(name) == Some(value)
     };
-    assert!(arrived("standard_digital_output_mask", Value::Uint8(1 << 2)));
+    assert!(arrived(
+        "standard_digital_output_mask",
+        Value::Uint8(1 << 2)
+    ));
     assert!(arrived("standard_digital_output", Value::Uint8(1 << 2)));
     assert!(arrived("speed_slider_fraction", Value::Double(0.5)));
     assert!(arrived("input_double_register_18", Value::Double(0.25)));

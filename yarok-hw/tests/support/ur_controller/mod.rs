@@ -102,6 +102,8 @@ struct Shared {
     ik: Option<Ik>,
     /// Bumped to drop every RTDE and secondary connection.
     drops: AtomicU32,
+    /// Set when the fake is dropped: its sessions end.
+    closed: std::sync::atomic::AtomicBool,
 }
 
 /// Joints that put the TCP at a pose (a UR pose vector), near the given ones.
@@ -170,6 +172,7 @@ impl FakeController {
             asked: Mutex::new(Vec::new()),
             ik,
             drops: AtomicU32::new(0),
+            closed: std::sync::atomic::AtomicBool::new(false),
             arm: Mutex::new(Arm {
                 robot_mode: "RUNNING",
                 safety: "NORMAL",
@@ -210,7 +213,11 @@ impl FakeController {
                     loop {
                         tokio::select! {
                             Ok((stream, _)) = rtde.accept() => {
-                                tokio::spawn(serve_rtde(stream, Arc::clone(&serving)));
+                                let serving = Arc::clone(&serving);
+                                if let Ok(stream) = stream.into_std() {
+                                    let _ = stream.set_nonblocking(false);
+                                    std::thread::spawn(move || serve_rtde(stream, serving));
+                                }
                             }
                             Ok((stream, _)) = dashboard.accept() => {
                                 tokio::spawn(serve_dashboard(stream, Arc::clone(&serving)));
@@ -309,6 +316,7 @@ impl FakeController {
 
 impl Drop for FakeController {
     fn drop(&mut self) {
+        self.shared.closed.store(true, Ordering::Relaxed);
         if let Some(stop) = self.stop.take() {
             let _ = stop.send(());
         }

@@ -5,8 +5,9 @@ use std::sync::Arc;
 use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
 
-use tokio::io::{AsyncReadExt, AsyncWriteExt};
-use tokio::net::TcpStream;
+use std::io::{Read, Write};
+use std::sync::Mutex;
+use std::sync::atomic::AtomicBool;
 use yarok_hw::ur::rtde::{Reply, Request, RtdeType, Value, input_type, output_type, take_frame};
 
 use super::Shared;
@@ -65,114 +66,208 @@ fn named(names: Vec<String>) -> Vec<String> {
 /// An output recipe being streamed: its id, variables and period.
 type Outputs = (u8, Vec<(String, RtdeType)>, Duration);
 
-/// One client's RTDE session.
-pub(super) async fn serve_rtde(stream: TcpStream, shared: Arc<Shared>) {
+/// What an RTDE session's reader and streamer share.
+struct Session {
+    writer: Mutex<std::net::TcpStream>,
+    outputs: Mutex<Option<Outputs>>,
+    streaming: AtomicBool,
+    ended: AtomicBool,
+}
+
+impl Session {
+    fn send(&self, reply: &Reply) -> bool {
+        self.writer
+            .lock()
+            .unwrap()
+            .write_all(&reply.encode().unwrap())
+            .is_ok()
+    }
+}
+
+/// One client's RTDE session, on threads of its own: its requests answered on this one, and
+/// its data packages sent on another at the recipe's rate, each at its due time to within tens
+/// of microseconds (as a controller's real-time loop sends them; tokio's timer would add a
+/// millisecond).
+pub(super) fn serve_rtde(stream: std::net::TcpStream, shared: Arc<Shared>) {
+    let Ok(writer) = stream.try_clone() else {
+        return;
+    };
+    let _ = stream.set_read_timeout(Some(Duration::from_millis(50)));
+    let _ = stream.set_nodelay(true);
+    let session = Arc::new(Session {
+        writer: Mutex::new(writer),
+        outputs: Mutex::new(None),
+        streaming: AtomicBool::new(false),
+        ended: AtomicBool::new(false),
+    });
     let drops = shared.drops.load(Ordering::Relaxed);
-    let (mut reader, mut writer) = stream.into_split();
+    let streamer = {
+        let (session, shared) = (Arc::clone(&session), Arc::clone(&shared));
+        std::thread::spawn(move || stream_outputs(&session, &shared))
+    };
+    read_requests(stream, &session, &shared, drops);
+    session.ended.store(true, Ordering::Relaxed);
+    let _ = streamer.join();
+}
+
+/// Answers requests until the client leaves, the fake closes, or a drop is asked for.
+fn read_requests(mut stream: std::net::TcpStream, session: &Session, shared: &Shared, drops: u32) {
     let mut buffer = Vec::new();
-    let mut outputs: Option<Outputs> = None;
     let mut inputs: HashMap<u8, Vec<(String, RtdeType)>> = HashMap::new();
     let (mut next_output, mut next_input) = (1u8, 1u8);
-    let mut streaming: Option<tokio::time::Interval> = None;
+    let mut chunk = [0u8; 4096];
     loop {
-        let tick = async {
-            match &mut streaming {
-                Some(interval) => interval.tick().await,
-                None => std::future::pending().await,
+        if shared.drops.load(Ordering::Relaxed) != drops || shared.closed.load(Ordering::Relaxed) {
+            let _ = stream.shutdown(std::net::Shutdown::Both);
+            return;
+        }
+        match stream.read(&mut chunk) {
+            Ok(0) => return,
+            Ok(read) => buffer.extend_from_slice(&chunk[..read]),
+            Err(error)
+                if matches!(
+                    error.kind(),
+                    std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut
+                ) =>
+            {
+                continue;
             }
-        };
-        let mut replies = Vec::new();
-        tokio::select! {
-            read = reader.read_buf(&mut buffer) => {
-                if !matches!(read, Ok(1..)) {
-                    return;
+            Err(_) => return,
+        }
+        while let Ok(Some((kind, body))) = take_frame(&mut buffer) {
+            let Ok(request) = Request::decode(kind, &body) else {
+                return;
+            };
+            let reply = match request {
+                Request::ProtocolVersion(version) => Reply::ProtocolVersion {
+                    accepted: version == 2,
+                },
+                Request::ControllerVersion => Reply::ControllerVersion(shared.profile.version()),
+                Request::SetupOutputs { frequency, names } => {
+                    let names = named(names);
+                    shared.asked.lock().unwrap().extend(names.iter().cloned());
+                    let types: Vec<Option<RtdeType>> =
+                        names.iter().map(|name| output_type(name)).collect();
+                    let rate_ok = frequency > 0.0 && frequency <= shared.profile.max_frequency();
+                    let recipe = if types.iter().all(Option::is_some) && rate_ok {
+                        let id = next_output;
+                        next_output += 1;
+                        let variables = names
+                            .iter()
+                            .cloned()
+                            .zip(types.iter().flatten().copied())
+                            .collect();
+                        *session.outputs.lock().unwrap() =
+                            Some((id, variables, Duration::from_secs_f64(1.0 / frequency)));
+                        id
+                    } else {
+                        0
+                    };
+                    Reply::OutputsSetUp {
+                        recipe,
+                        types: types
+                            .iter()
+                            .map(|t| t.map_or("NOT_FOUND", RtdeType::name).to_owned())
+                            .collect(),
+                    }
                 }
-                while let Ok(Some((kind, body))) = take_frame(&mut buffer) {
-                    let Ok(request) = Request::decode(kind, &body) else { return };
-                    match request {
-                        Request::ProtocolVersion(version) => {
-                            replies.push(Reply::ProtocolVersion { accepted: version == 2 });
-                        }
-                        Request::ControllerVersion => {
-                            replies.push(Reply::ControllerVersion(shared.profile.version()));
-                        }
-                        Request::SetupOutputs { frequency, names } => {
-                            let names = named(names);
-                            shared.asked.lock().unwrap().extend(names.iter().cloned());
-                            let types: Vec<Option<RtdeType>> =
-                                names.iter().map(|name| output_type(name)).collect();
-                            let rate_ok = frequency > 0.0 && frequency <= shared.profile.max_frequency();
-                            let recipe = if types.iter().all(Option::is_some) && rate_ok {
-                                let id = next_output;
-                                next_output += 1;
-                                let variables = names.iter().cloned().zip(types.iter().flatten().copied()).collect();
-                                outputs = Some((id, variables, Duration::from_secs_f64(1.0 / frequency)));
-                                id
-                            } else {
-                                0
-                            };
-                            replies.push(Reply::OutputsSetUp {
-                                recipe,
-                                types: types.iter().map(|t| t.map_or("NOT_FOUND", RtdeType::name).to_owned()).collect(),
-                            });
-                        }
-                        Request::SetupInputs { names } => {
-                            let names = named(names);
-                            let types: Vec<Option<RtdeType>> =
-                                names.iter().map(|name| input_type(name)).collect();
-                            let recipe = if types.iter().all(Option::is_some) {
-                                let id = next_input;
-                                next_input += 1;
-                                inputs.insert(id, names.iter().cloned().zip(types.iter().flatten().copied()).collect());
-                                id
-                            } else {
-                                0
-                            };
-                            replies.push(Reply::InputsSetUp {
-                                recipe,
-                                types: types.iter().map(|t| t.map_or("NOT_FOUND", RtdeType::name).to_owned()).collect(),
-                            });
-                        }
-                        Request::Start => {
-                            let period = outputs.as_ref().map(|(_, _, period)| *period);
-                            streaming = period.map(tokio::time::interval);
-                            replies.push(Reply::Started { accepted: period.is_some() });
-                        }
-                        Request::Pause => {
-                            streaming = None;
-                            replies.push(Reply::Paused { accepted: true });
-                        }
-                        Request::Data { recipe, payload } => {
-                            let Some(variables) = inputs.get(&recipe) else { continue };
-                            let recipe = yarok_hw::ur::rtde::Recipe { id: recipe, variables: variables.clone() };
-                            if let Ok(values) = recipe.decode(&payload) {
-                                let mut known = shared.inputs.lock().unwrap();
-                                for ((name, _), value) in recipe.variables.iter().zip(values) {
-                                    known.insert(name.clone(), value);
-                                }
+                Request::SetupInputs { names } => {
+                    let names = named(names);
+                    let types: Vec<Option<RtdeType>> =
+                        names.iter().map(|name| input_type(name)).collect();
+                    let recipe = if types.iter().all(Option::is_some) {
+                        let id = next_input;
+                        next_input += 1;
+                        inputs.insert(
+                            id,
+                            names
+                                .iter()
+                                .cloned()
+                                .zip(types.iter().flatten().copied())
+                                .collect(),
+                        );
+                        id
+                    } else {
+                        0
+                    };
+                    Reply::InputsSetUp {
+                        recipe,
+                        types: types
+                            .iter()
+                            .map(|t| t.map_or("NOT_FOUND", RtdeType::name).to_owned())
+                            .collect(),
+                    }
+                }
+                Request::Start => {
+                    let accepted = session.outputs.lock().unwrap().is_some();
+                    session.streaming.store(accepted, Ordering::Relaxed);
+                    Reply::Started { accepted }
+                }
+                Request::Pause => {
+                    session.streaming.store(false, Ordering::Relaxed);
+                    Reply::Paused { accepted: true }
+                }
+                Request::Data { recipe, payload } => {
+                    if let Some(variables) = inputs.get(&recipe) {
+                        let recipe = yarok_hw::ur::rtde::Recipe {
+                            id: recipe,
+                            variables: variables.clone(),
+                        };
+                        if let Ok(values) = recipe.decode(&payload) {
+                            let mut known = shared.inputs.lock().unwrap();
+                            for ((name, _), value) in recipe.variables.iter().zip(values) {
+                                known.insert(name.clone(), value);
                             }
                         }
-                        _ => {}
                     }
+                    continue;
                 }
-            }
-            _ = tick => {
-                if shared.drops.load(Ordering::Relaxed) != drops {
-                    return;
-                }
-                if let Some((id, variables, _)) = &outputs {
-                    let mut payload = Vec::new();
-                    for (name, rtde_type) in variables {
-                        shared.output(name, *rtde_type).encode(&mut payload);
-                    }
-                    replies.push(Reply::Data { recipe: *id, payload });
-                }
-            }
-        }
-        for reply in replies {
-            if writer.write_all(&reply.encode().unwrap()).await.is_err() {
+                _ => continue,
+            };
+            if !session.send(&reply) {
                 return;
             }
         }
     }
 }
+
+/// Sends the output recipe's packages at its rate while streaming, until the session ends.
+fn stream_outputs(session: &Session, shared: &Shared) {
+    let mut due = Instant::now();
+    while !session.ended.load(Ordering::Relaxed) {
+        let outputs = session.outputs.lock().unwrap().clone();
+        let (Some((id, variables, period)), true) =
+            (outputs, session.streaming.load(Ordering::Relaxed))
+        else {
+            std::thread::sleep(Duration::from_millis(1));
+            due = Instant::now();
+            continue;
+        };
+        // Sleep to just before the due time, then spin: sleeps overshoot by tens of µs.
+        let now = Instant::now();
+        if due > now + SPIN {
+            std::thread::sleep(due - now - SPIN);
+        }
+        while Instant::now() < due {
+            std::hint::spin_loop();
+        }
+        let mut payload = Vec::new();
+        for (name, rtde_type) in &variables {
+            shared.output(name, *rtde_type).encode(&mut payload);
+        }
+        if !session.send(&Reply::Data {
+            recipe: id,
+            payload,
+        }) {
+            return;
+        }
+        due += period;
+        // A client that stalls the socket does not make the fake send bursts later.
+        if due + period < Instant::now() {
+            due = Instant::now() + period;
+        }
+    }
+}
+
+/// How long before a package is due its sender stops sleeping and spins.
+const SPIN: Duration = Duration::from_micros(300);
