@@ -12,7 +12,6 @@ use tokio::net::TcpStream;
 use yarok::hw::ur::rtde::{Rtde, RtdeSettings, Value};
 
 #[path = "../yarok-hw/tests/support/ur_controller/mod.rs"]
-#[allow(dead_code)]
 mod ur_controller;
 
 use ur_controller::{FakeController, Profile, RTDE_PORT};
