@@ -2,8 +2,8 @@
 //! moves sent as URScript arrive (joints read over RTDE); a UR5 configured on a UR5e is
 //! refused, naming both; a protective stop mid-move fails the motion saying so, and after
 //! unlocking it the arm moves again; dropped RTDE and secondary connections are reconnected
-//! while the behaviour waits; a CB3 UR5 moves too and takes its payload; the arm is stopped
-//! when the run ends.
+//! while the behaviour waits; a CB3 UR5 moves too and takes its payload; dropping a motion's
+//! future stops the arm; the arm is stopped when the run ends.
 
 use std::time::Duration;
 
@@ -213,5 +213,30 @@ fn a_cb3_ur5_moves_and_takes_its_payload() {
     assert_eq!(
         scripts.first().map(String::as_str),
         Some("set_payload(1.2, [0, 0, 0.05])")
+    );
+}
+
+#[test]
+fn dropping_a_motion_stops_the_arm() {
+    let fake = fake_ur5e();
+    real::<ArmOnly>(&fake)
+        .behaviour(|pl| async move {
+            let arm: Ur5e = pl.get("/arm")?;
+            let far = [1.5, -1.3, 1.2, -1.5, -1.57, 0.0];
+            let cut = pl.timeout(0.3, arm.move_j(far).speed(1.0)).await;
+            assert!(cut.is_err(), "the motion was still under way");
+            pl.wait_seconds(0.3).await?;
+            let stopped = arm.q()[0];
+            assert!(stopped > 0.1 && stopped < 1.0, "{stopped}");
+            pl.wait_seconds(0.3).await?;
+            assert!((arm.q()[0] - stopped).abs() < 1e-6, "it stays stopped");
+            Ok(())
+        })
+        .run()
+        .unwrap();
+    let scripts = fake.scripts();
+    assert!(
+        scripts.iter().any(|s| s.starts_with("stopj(") && s != "stopj(2.0)"),
+        "{scripts:?}"
     );
 }
