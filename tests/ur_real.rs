@@ -236,7 +236,9 @@ fn dropping_a_motion_stops_the_arm() {
         .unwrap();
     let scripts = fake.scripts();
     assert!(
-        scripts.iter().any(|s| s.starts_with("stopj(") && s != "stopj(2.0)"),
+        scripts
+            .iter()
+            .any(|s| s.starts_with("stopj(") && s != "stopj(2.0)"),
         "{scripts:?}"
     );
 }
