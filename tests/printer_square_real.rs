@@ -4,32 +4,19 @@
 //! quick stop (`M410`) last and closed its port.
 
 use std::io::{BufRead, BufReader};
-use std::path::PathBuf;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
+#[path = "support/example_binary.rs"]
+mod example_binary;
 #[path = "../yarok-hw/tests/support/virtual_printer.rs"]
 mod support;
 
+use example_binary::example_binary;
 use support::VirtualPrinter;
 
-/// The example's binary, built beside this test, or built now.
-fn printer_square() -> PathBuf {
-    let deps = std::env::current_exe().unwrap();
-    let profile = deps.parent().and_then(|d| d.parent()).unwrap();
-    let example = profile.join("examples").join("printer_square");
-    if !example.is_file() {
-        let status = Command::new(env!("CARGO"))
-            .args(["build", "--example", "printer_square"])
-            .status()
-            .unwrap();
-        assert!(status.success());
-    }
-    example
-}
-
 fn real(printer: &VirtualPrinter, laps: u32) -> Command {
-    let mut command = Command::new(printer_square());
+    let mut command = Command::new(example_binary("printer_square"));
     command.args([
         "--env".to_owned(),
         "real".to_owned(),

@@ -41,10 +41,12 @@ impl Component for Ur5Only {
 
 /// A fake e-Series controller whose `movel` uses the UR5e's kinematics.
 fn fake_ur5e() -> FakeController {
-    let kinematics = Kinematics::new(DhParameters::UR5E);
     let fake = FakeController::with_ik(
         Profile::ESeries,
-        Box::new(move |pose, near| kinematics.nearest(&pose_from_vector(pose), &near).ok()),
+        Box::new(|pose, tcp, near| {
+            let kinematics = Kinematics::new(DhParameters::UR5E).with_tcp(pose_from_vector(tcp));
+            kinematics.nearest(&pose_from_vector(pose), &near).ok()
+        }),
     );
     fake.set_joints([0.0, -1.3, 1.2, -1.5, -1.57, 0.0]);
     fake

@@ -6,6 +6,15 @@
 //! ```text
 //! cargo run --release --example pick_and_place
 //! ```
+//!
+//! The same behaviour drives a real UR5e and 2F-85 (the blocks where the world places them;
+//! measure yours and set `/large/pos` …): every motion and grasp must complete, and the
+//! blocks' positions are checked in `sim` only.
+//!
+//! ```text
+//! cargo run --release --example pick_and_place -- --env real \
+//!   --set 'interfaces/arm/host="192.168.1.10"' --set 'interfaces/arm/gripper/host="192.168.1.10"'
+//! ```
 
 use std::f64::consts::PI;
 
@@ -69,6 +78,10 @@ async fn stack(pl: Pl) -> yarok::BehaviourResult {
         places.push([tx, ty, stack_top + block.size() / 2.0]);
         stack_top += block.size();
         println!("t = {:5.2} s  {name} stacked", pl.time());
+    }
+    if pl.environment() != "sim" {
+        println!("every motion and grasp completed");
+        return Ok(());
     }
     pl.wait_seconds(0.5).await?;
     for ((name, block), place) in BLOCKS.iter().zip(&blocks).zip(places) {

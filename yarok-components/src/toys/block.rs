@@ -1,12 +1,16 @@
 //! [`Block`]: a cube to pick and place, and [`Spot`]: a marked place on a surface.
 
-use yarok_core::component::{Bind, BindError, Component, Declaration, Interface, Interfaces, Mock};
+use yarok_core::component::{
+    Bind, BindError, Component, Declaration, Environment, Interface, Interfaces, Mock,
+};
+use yarok_hw::Real;
 use yarok_mjc::{Body, Sim, SimBind, Site};
 
 /// A cube of side `size` metres (default 0.04) and `mass` kilograms (default 0.1), free to move,
 /// its centre placed at `pos`; colour `rgba`.
 ///
-/// Tag `block`. Environments: `sim` (where it is); `mock` (where it was placed).
+/// Tag `block`. Environments: `sim` (where it is); `mock` and `real` (where it was placed: on
+/// real hardware, where you measured the real block to be).
 #[derive(Debug, Clone)]
 pub struct Block {
     size: f64,
@@ -49,7 +53,7 @@ impl Component for Block {
     }
 
     fn interfaces(interfaces: &mut Interfaces<Self>) {
-        interfaces.add::<Sim>().add::<Mock>();
+        interfaces.add::<Sim>().add::<Mock>().add::<Real>();
     }
 }
 
@@ -63,8 +67,9 @@ impl Interface<Sim> for Block {
     }
 }
 
-impl Interface<Mock> for Block {
-    async fn bind(bind: &mut Bind<Mock>) -> Result<Self, BindError> {
+impl Block {
+    /// A block where its config places it.
+    fn placed<E: Environment>(bind: &Bind<E>) -> Result<Self, BindError> {
         Ok(Block {
             size: bind.config_value("size")?,
             body: None,
@@ -73,10 +78,22 @@ impl Interface<Mock> for Block {
     }
 }
 
+impl Interface<Mock> for Block {
+    async fn bind(bind: &mut Bind<Mock>) -> Result<Self, BindError> {
+        Block::placed(bind)
+    }
+}
+
+impl Interface<Real> for Block {
+    async fn bind(bind: &mut Bind<Real>) -> Result<Self, BindError> {
+        Block::placed(bind)
+    }
+}
+
 /// A place marked on a surface: a flat disc of `radius` metres (default 0.05) whose centre is
 /// at `pos`; it collides with nothing.
 ///
-/// Tag `spot`. Environments: `sim`, `mock`.
+/// Tag `spot`. Environments: `sim`; `mock` and `real` (where it was placed).
 #[derive(Debug, Clone)]
 pub struct Spot {
     site: Option<Site>,
@@ -109,7 +126,7 @@ impl Component for Spot {
     }
 
     fn interfaces(interfaces: &mut Interfaces<Self>) {
-        interfaces.add::<Sim>().add::<Mock>();
+        interfaces.add::<Sim>().add::<Mock>().add::<Real>();
     }
 }
 
@@ -122,11 +139,24 @@ impl Interface<Sim> for Spot {
     }
 }
 
-impl Interface<Mock> for Spot {
-    async fn bind(bind: &mut Bind<Mock>) -> Result<Self, BindError> {
+impl Spot {
+    /// A spot where its config places it.
+    fn placed<E: Environment>(bind: &Bind<E>) -> Result<Self, BindError> {
         Ok(Spot {
             site: None,
             placed: bind.config_value("pos")?,
         })
+    }
+}
+
+impl Interface<Mock> for Spot {
+    async fn bind(bind: &mut Bind<Mock>) -> Result<Self, BindError> {
+        Spot::placed(bind)
+    }
+}
+
+impl Interface<Real> for Spot {
+    async fn bind(bind: &mut Bind<Real>) -> Result<Self, BindError> {
+        Spot::placed(bind)
     }
 }

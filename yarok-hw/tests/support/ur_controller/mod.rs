@@ -98,6 +98,8 @@ struct Shared {
     fingers: Mutex<Fingers>,
     /// URScript lines clients sent.
     scripts: Mutex<Vec<String>>,
+    /// The TCP the last `set_tcp` set.
+    tcp: Mutex<[f64; 6]>,
     /// Inverse kinematics for `movel`, if the test gave some.
     ik: Option<Ik>,
     /// Bumped to drop every RTDE and secondary connection.
@@ -106,8 +108,9 @@ struct Shared {
     closed: std::sync::atomic::AtomicBool,
 }
 
-/// Joints that put the TCP at a pose (a UR pose vector), near the given ones.
-pub(crate) type Ik = Box<dyn Fn([f64; 6], [f64; 6]) -> Option<[f64; 6]> + Send + Sync>;
+/// Joints that put the TCP (the second pose vector, in the flange frame) at a pose (the first,
+/// a UR pose vector), near the given joints.
+pub(crate) type Ik = Box<dyn Fn([f64; 6], [f64; 6], [f64; 6]) -> Option<[f64; 6]> + Send + Sync>;
 
 impl Shared {
     /// The arm's mode as the secondary interface and RTDE number it.
@@ -168,6 +171,7 @@ impl FakeController {
                 0.0, -FRAC_PI_2, FRAC_PI_2, -FRAC_PI_2, -FRAC_PI_2, 0.0,
             ])),
             scripts: Mutex::new(Vec::new()),
+            tcp: Mutex::new([0.0; 6]),
             inputs: Mutex::new(HashMap::new()),
             asked: Mutex::new(Vec::new()),
             ik,

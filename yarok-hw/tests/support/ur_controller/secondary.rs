@@ -73,9 +73,10 @@ fn call(line: &str, name: &str) -> Option<Vec<f64>> {
 }
 
 impl Shared {
-    /// Runs one line of URScript — `movej([q…], a=…, v=…)`, `movel(p[pose…], a=…, v=…)` (with
-    /// inverse kinematics; its joints move at 2 rad/s), `stopj(…)`, `stopl(…)` — unless a
-    /// safety stop holds the arm; other lines (`def`, `set_tcp`, `end`, …) are kept only.
+    /// Runs one line of URScript — `movej([q…], a=…, v=…)`, `set_tcp(p[…])`,
+    /// `movel(p[pose…], a=…, v=…)` (with inverse kinematics; its joints move at 2 rad/s),
+    /// `stopj(…)`, `stopl(…)` — unless a safety stop holds the arm; other lines (`def`, `end`,
+    /// …) are kept only.
     fn run_script(&self, line: &str) {
         self.scripts.lock().unwrap().push(line.to_owned());
         if self.arm.lock().unwrap().safety != "NORMAL" {
@@ -89,10 +90,18 @@ impl Shared {
             let to: [f64; 6] = std::array::from_fn(|i| numbers[i]);
             let speed = numbers.get(7).copied().unwrap_or(1.05);
             joints.move_to(to, speed, now);
+        } else if let Some(numbers) = call(line, "set_tcp")
+            && numbers.len() == 6
+        {
+            *self.tcp.lock().unwrap() = std::array::from_fn(|i| numbers[i]);
         } else if let Some(numbers) = call(line, "movel")
             && numbers.len() >= 6
             && let Some(ik) = &self.ik
-            && let Some(to) = ik(std::array::from_fn(|i| numbers[i]), joints.now(now))
+            && let Some(to) = ik(
+                std::array::from_fn(|i| numbers[i]),
+                *self.tcp.lock().unwrap(),
+                joints.now(now),
+            )
         {
             joints.move_to(to, 2.0, now);
         } else if call(line, "stopj").is_some() || call(line, "stopl").is_some() {
