@@ -4,7 +4,6 @@
 //! and the fake's dashboard driven by ur_rtde's DashboardClient (a third-party client, run as a
 //! separate process), which accepts every reply.
 
-use std::process::Command;
 use std::time::Duration;
 
 use tokio::io::AsyncWriteExt;
@@ -117,24 +116,8 @@ fn ur_rtde_drives_the_fake_dashboard() {
         let fake = FakeController::start(profile);
         fake.power_off();
         fake.protective_stop(Duration::from_secs(6));
-        let output = Command::new(peers::python())
-            .arg(peers::script("ur_rtde_dashboard.py"))
-            .arg(&fake.host)
-            .output()
-            .expect("ur_rtde's script runs");
-        let stdout = String::from_utf8_lossy(&output.stdout);
-        assert!(
-            output.status.success(),
-            "{profile:?}: {stdout}\n{}",
-            String::from_utf8_lossy(&output.stderr)
-        );
-        let step = |name: &str| -> String {
-            stdout
-                .lines()
-                .find_map(|line| line.strip_prefix(name)?.strip_prefix(": "))
-                .unwrap_or_else(|| panic!("no {name} in {stdout}"))
-                .to_owned()
-        };
+        let stdout = peers::run("ur_rtde_dashboard.py", &[&fake.host]);
+        let step = |name: &str| peers::field(&stdout, name);
         assert!(!stdout.contains("error"), "{profile:?}: {stdout}");
         assert!(
             step("version").contains(&profile.version().to_string()),

@@ -4,7 +4,6 @@
 //! sockets (an odd reply, silence, a closed line) as errors; and the fake's socket driven by
 //! pyrobotiqur (a third-party client, run as a separate process), which grasps the same way.
 
-use std::process::Command;
 use std::time::{Duration, Instant};
 
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
@@ -127,24 +126,8 @@ async fn odd_replies_silence_and_a_closed_line_are_errors() {
 fn pyrobotiqur_grasps_with_the_fake_gripper() {
     let fake = FakeController::start(Profile::ESeries);
     fake.place_object(Some(140));
-    let output = Command::new(peers::python())
-        .arg(peers::script("pyrobotiqur_grasp.py"))
-        .arg(&fake.host)
-        .output()
-        .expect("pyrobotiqur's script runs");
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(
-        output.status.success(),
-        "{stdout}\n{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    let step = |name: &str| -> String {
-        stdout
-            .lines()
-            .find_map(|line| line.strip_prefix(name)?.strip_prefix(": "))
-            .unwrap_or_else(|| panic!("no {name} in {stdout}"))
-            .to_owned()
-    };
+    let stdout = peers::run("pyrobotiqur_grasp.py", &[&fake.host]);
+    let step = |name: &str| peers::field(&stdout, name);
     assert_eq!(step("status"), "3", "{stdout}");
     assert_eq!(
         step("closed"),

@@ -9,21 +9,17 @@ use tokio::io::{AsyncBufReadExt, AsyncWriteExt, BufReader};
 use yarok_hw::robotiq::{Gripper, GripperError};
 use yarok_hw::ur::dashboard::{Dashboard, DashboardError, RobotMode};
 
-/// A small deterministic generator (xorshift64*).
-struct Generator(u64);
+#[path = "support/generator.rs"]
+mod generator;
 
-impl Generator {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
+use generator::Generator;
 
-    fn pick<'a>(&mut self, from: &[&'a str]) -> &'a str {
-        from[(self.next() % from.len() as u64) as usize]
-    }
+/// Reply lines from the generator.
+trait ReplyLines {
+    fn line(&mut self) -> Vec<u8>;
+}
 
+impl ReplyLines for Generator {
     /// A reply line, without its ending.
     fn line(&mut self) -> Vec<u8> {
         let parts = [

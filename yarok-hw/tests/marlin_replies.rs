@@ -4,21 +4,18 @@
 
 use yarok_hw::marlin::Reply;
 
-/// A small deterministic generator (xorshift64*).
-struct Lines(u64);
+#[path = "support/generator.rs"]
+mod generator;
 
-impl Lines {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
+use generator::Generator;
 
-    fn pick<'a>(&mut self, from: &[&'a str]) -> &'a str {
-        from[(self.next() % from.len() as u64) as usize]
-    }
+/// Marlin-like lines from the generator.
+trait Lines {
+    fn number(&mut self) -> String;
+    fn line(&mut self) -> String;
+}
 
+impl Lines for Generator {
     /// A number as a printer might print it, or something almost like one.
     fn number(&mut self) -> String {
         let value = (self.next() % 200_000) as f64 / 100.0 - 1000.0;
@@ -113,7 +110,7 @@ impl Lines {
 
 #[test]
 fn a_hundred_thousand_generated_lines_parse_without_panic() {
-    let mut lines = Lines(0x9E37_79B9_7F4A_7C15);
+    let mut lines = Generator(0x9E37_79B9_7F4A_7C15);
     let mut understood = [0usize; 4];
     for _ in 0..100_000 {
         let line = lines.line();

@@ -3,6 +3,10 @@
 //! then 100 000 generated packets — well-formed ones mutated, and arbitrary bytes — through the
 //! framing and both decoders, never a panic, and every well-formed message decoding to itself.
 
+#[path = "support/generator.rs"]
+mod generator;
+
+use generator::Generator;
 use yarok_hw::ur::rtde::{
     ControllerVersion, MessageError, Recipe, RecipeError, Reply, Request, RtdeType, Text, Value,
     take_frame,
@@ -226,25 +230,14 @@ fn data_packages_through_their_recipes() {
     ));
 }
 
-/// A small deterministic generator (xorshift64*).
-struct Generator(u64);
+/// RTDE replies from the generator.
+trait Replies {
+    fn word(&mut self) -> String;
+    fn words(&mut self) -> Vec<String>;
+    fn reply(&mut self) -> Reply;
+}
 
-impl Generator {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
-    }
-
-    fn bytes(&mut self, n: usize) -> Vec<u8> {
-        (0..n).map(|_| self.next() as u8).collect()
-    }
-
+impl Replies for Generator {
     fn word(&mut self) -> String {
         let words = [
             "actual_q",

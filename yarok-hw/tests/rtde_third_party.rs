@@ -6,8 +6,6 @@
 //! RTDEIOInterface sets up its sixteen input recipes and writes a digital output, the speed
 //! slider and a register, which the fake receives.
 
-use std::process::Command;
-
 use yarok_hw::ur::rtde::Value;
 
 #[path = "support/peers.rs"]
@@ -23,25 +21,8 @@ fn ur_rtde_reads_the_fake_arms_joints_in_both_profiles() {
         let fake = FakeController::start(profile);
         let q = [0.25, -1.1, 1.9, -2.3, -1.57, 3.0];
         fake.set_joints(q);
-        let output = Command::new(peers::python())
-            .arg(peers::script("ur_rtde_receive.py"))
-            .arg(&fake.host)
-            .output()
-            .expect("ur_rtde's script runs");
-        let stdout = String::from_utf8_lossy(&output.stdout);
-        assert!(
-            output.status.success(),
-            "{profile:?}: {stdout}\n{}\nasked for {:?}",
-            String::from_utf8_lossy(&output.stderr),
-            fake.asked()
-        );
-        let read = |name: &str| -> Vec<f64> {
-            let line = stdout
-                .lines()
-                .find_map(|line| line.strip_prefix(name)?.strip_prefix(' '))
-                .unwrap_or_else(|| panic!("no {name} in {stdout}"));
-            line.split(' ').map(|v| v.parse().unwrap()).collect()
-        };
+        let stdout = peers::run("ur_rtde_receive.py", &[&fake.host]);
+        let read = |name: &str| peers::numbers(&stdout, name);
         let got = read("q");
         assert_eq!(got.len(), 6, "{stdout}");
         for (got, want) in got.iter().zip(q) {
@@ -58,17 +39,8 @@ fn ur_rtde_reads_the_fake_arms_joints_in_both_profiles() {
 #[test]
 fn ur_rtde_writes_outputs_and_registers_to_the_fake() {
     let fake = FakeController::start(Profile::ESeries);
-    let output = Command::new(peers::python())
-        .arg(peers::script("ur_rtde_io.py"))
-        .arg(&fake.host)
-        .output()
-        .expect("ur_rtde's script runs");
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(
-        output.status.success() && stdout.contains("done"),
-        "{stdout}\n{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    let stdout = peers::run("ur_rtde_io.py", &[&fake.host]);
+    assert!(stdout.contains("done"), "{stdout}");
     // The values arrive on the fake's thread a moment after the client's last write.
     let arrived = |name: &str, value: Value| {
         let started = std::time::Instant::now();

@@ -5,17 +5,19 @@
 //! and python-urx (a third-party client, run as a separate process) reading and moving the
 //! fake CB3 arm.
 
-use std::process::Command;
 use std::time::{Duration, Instant};
 
 use tokio::net::TcpStream;
 use yarok_hw::ur::secondary::{Packet, PacketError, Secondary, parse, take_packet};
 
+#[path = "support/generator.rs"]
+mod generator;
 #[path = "support/peers.rs"]
 mod peers;
 #[path = "support/ur_controller/mod.rs"]
 mod ur_controller;
 
+use generator::Generator;
 use ur_controller::{FakeController, Profile, SECONDARY_PORT};
 
 async fn connect(fake: &FakeController) -> Secondary<TcpStream> {
@@ -92,22 +94,6 @@ async fn stopj_stops_the_arm_where_it_is() {
     tokio::time::sleep(Duration::from_millis(300)).await;
     assert_eq!(fake.joints()[0], stopped);
     assert_eq!(fake.scripts().len(), 2);
-}
-
-/// A small deterministic generator (xorshift64*).
-struct Generator(u64);
-
-impl Generator {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
-    }
 }
 
 /// A robot state of sub-packages with the given content sizes and types.
@@ -199,27 +185,11 @@ fn urx_reads_and_moves_the_fake_cb3_arm() {
     let start = [0.0, -1.57, 1.57, -1.57, -1.57, 0.0];
     fake.set_joints(start);
     let target = [0.4, -1.4, 1.5, -1.6, -1.57, 0.2];
-    let output = Command::new(peers::python())
-        .arg(peers::script("urx_movej.py"))
-        .arg(&fake.host)
-        .args(target.map(|q| q.to_string()))
-        .output()
-        .expect("urx's script runs");
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(
-        output.status.success(),
-        "{stdout}\n{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    let read = |name: &str| -> Vec<f64> {
-        stdout
-            .lines()
-            .find_map(|line| line.strip_prefix(name)?.strip_prefix(' '))
-            .unwrap_or_else(|| panic!("no {name} in {stdout}"))
-            .split(' ')
-            .map(|q| q.parse().unwrap())
-            .collect()
-    };
+    let target_args = target.map(|q| q.to_string());
+    let mut args = vec![fake.host.as_str()];
+    args.extend(target_args.iter().map(String::as_str));
+    let stdout = peers::run("urx_movej.py", &args);
+    let read = |name: &str| peers::numbers(&stdout, name);
     for (got, want) in read("before:").iter().zip(start) {
         assert!((got - want).abs() <= 1e-6, "{stdout}");
     }

@@ -1,7 +1,9 @@
 //! The third-party test peers `scripts/setup-test-peers.sh` installs: their Python, and the
 //! project's scripts that drive them.
+#![allow(dead_code)]
 
 use std::path::PathBuf;
+use std::process::Command;
 
 /// The Python of the peers' virtual environment (`${YAROK_CACHE_DIR:-~/.cache/yarok}/peers`).
 pub(crate) fn python() -> PathBuf {
@@ -26,4 +28,44 @@ pub(crate) fn script(name: &str) -> PathBuf {
         .map(|folder| folder.join(&script))
         .find(|path| path.is_file())
         .unwrap_or_else(|| panic!("{script} not found above {}", env!("CARGO_MANIFEST_DIR")))
+}
+
+/// Runs the script `name` with `args` in the peers' Python; what it printed, once it exited
+/// successfully (else the test fails showing both its outputs).
+pub(crate) fn run(name: &str, args: &[&str]) -> String {
+    let output = Command::new(python())
+        .arg(script(name))
+        .args(args)
+        .output()
+        .unwrap_or_else(|error| panic!("{name} does not run: {error}"));
+    let stdout = String::from_utf8_lossy(&output.stdout).into_owned();
+    assert!(
+        output.status.success(),
+        "{name} failed:\n{stdout}\n{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    stdout
+}
+
+/// What follows `name` (and `: ` or a space) on the first line of `output` that starts with it.
+pub(crate) fn field<'a>(output: &'a str, name: &str) -> &'a str {
+    output
+        .lines()
+        .find_map(|line| {
+            let rest = line.strip_prefix(name)?;
+            rest.strip_prefix(": ").or_else(|| rest.strip_prefix(' '))
+        })
+        .unwrap_or_else(|| panic!("no {name} in {output}"))
+}
+
+/// [`field`]'s space-separated numbers.
+pub(crate) fn numbers(output: &str, name: &str) -> Vec<f64> {
+    field(output, name)
+        .split_whitespace()
+        .map(|value| {
+            value
+                .parse()
+                .unwrap_or_else(|_| panic!("{name}: {value} in {output}"))
+        })
+        .collect()
 }
