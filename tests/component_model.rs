@@ -145,17 +145,17 @@ fn one_component_runs_in_sim_mock_and_a_user_defined_environment() {
     assert_eq!(angle_in("replay"), 0.25);
 }
 
-/// Two blocks and the printer: the blocks exist only in simulation, the printer on hardware too.
-struct BlocksAndPrinter;
+/// Two ropes and the printer: the ropes exist only in simulation, the printer on hardware too.
+struct RopesAndPrinter;
 
-impl Component for BlocksAndPrinter {
+impl Component for RopesAndPrinter {
     fn declaration() -> Declaration {
-        Declaration::new("blocks_and_printer")
-            .uses::<yarok::components::toys::Block>()
+        Declaration::new("ropes_and_printer")
+            .uses::<yarok::components::toys::Rope>()
             .uses::<yarok::components::robots::AnetA30>()
             .template(
                 r#"<mujoco><worldbody>
-                  <block name="red"/><block name="blue" pos="0.1 0 0.02"/>
+                  <rope name="red"/><rope name="blue" pos="0.1 0 0.006"/>
                   <anet_a30 name="printer"/>
                 </worldbody></mujoco>"#,
             )
@@ -165,7 +165,7 @@ impl Component for BlocksAndPrinter {
 #[test]
 fn env_real_on_a_world_of_sim_components_fails_before_binding_and_lists_them() {
     let error = yarok::platform()
-        .world::<BlocksAndPrinter>()
+        .world::<RopesAndPrinter>()
         .args(["--env", "real"].map(String::from))
         .unwrap()
         .behaviour(|_| async { panic!("nothing runs") })
@@ -173,7 +173,7 @@ fn env_real_on_a_world_of_sim_components_fails_before_binding_and_lists_them() {
         .unwrap_err();
     assert_eq!(
         error.to_string(),
-        "components cannot run in `real`: /red (Block) supports sim, mock; /blue (Block) \
+        "components cannot run in `real`: /red (Rope) supports sim, mock; /blue (Rope) \
          supports sim, mock"
     );
 }
