@@ -3,7 +3,8 @@
 //! time with the program flag up, `stopj`); 100 000 generated packets — real layouts mutated,
 //! unknown and malformed sub-packages, arbitrary bytes — through the parser, never a panic;
 //! and python-urx (a third-party client, run as a separate process) reading and moving the
-//! fake CB3 arm.
+//! fake CB3 arm, and reading its joints from the real-time interface (port 30003) in both
+//! profiles.
 
 use std::time::{Duration, Instant};
 
@@ -202,4 +203,19 @@ fn urx_reads_and_moves_the_fake_cb3_arm() {
         scripts.iter().any(|s| s.starts_with("movej(")),
         "{scripts:?}"
     );
+}
+
+#[test]
+fn urx_reads_the_fake_arms_joints_from_the_real_time_interface() {
+    for profile in [Profile::Cb3, Profile::ESeries] {
+        let fake = FakeController::start(profile);
+        let q = [0.2, -1.3, 1.4, -1.5, -1.6, 0.7];
+        fake.set_joints(q);
+        let stdout = peers::run("urx_realtime.py", &[&fake.host]);
+        let got = peers::numbers(&stdout, "q:");
+        assert_eq!(got.len(), 6, "{stdout}");
+        for (got, want) in got.iter().zip(q) {
+            assert!((got - want).abs() <= 1e-6, "{profile:?}: {stdout}");
+        }
+    }
 }

@@ -5,7 +5,8 @@
 //! one) and loads and plays programs, with UR's replies; its secondary interface (port 30002)
 //! sends a version message and robot states at 10 Hz in the profile's layout (a UR5's
 //! kinematics on CB3, a UR5e's on e-Series) and runs `movej`/`stopj` lines, the joints moving
-//! in time at the speed asked for; its Robotiq gripper socket (port
+//! in time at the speed asked for; its real-time interface (port 30003) streams the 1116-byte
+//! packet at 125 or 500 Hz and runs script lines too; its Robotiq gripper socket (port
 //! 63352) activates a 2F-85 whose fingers move in time at the speed asked for and stop on an
 //! object the test places, or fault when told to. The arm holds the joint positions the test
 //! sets. Shared by yarok-hw's tests and the workspace's.
@@ -23,11 +24,13 @@ use yarok_hw::ur::rtde::{ControllerVersion, Value};
 
 mod dashboard;
 mod gripper;
+mod realtime;
 mod rtde;
 mod secondary;
 
 use dashboard::serve_dashboard;
 use gripper::{Fingers, serve_gripper};
+use realtime::serve_realtime;
 use rtde::serve_rtde;
 use secondary::{Joints, serve_secondary};
 
@@ -38,6 +41,8 @@ pub(crate) const DASHBOARD_PORT: u16 = 29999;
 pub(crate) const GRIPPER_PORT: u16 = 63352;
 /// The secondary interface.
 pub(crate) const SECONDARY_PORT: u16 = 30002;
+/// The real-time interface.
+pub(crate) const REALTIME_PORT: u16 = 30003;
 
 /// Which controller it plays.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -187,11 +192,12 @@ impl FakeController {
             fingers: Mutex::new(Fingers::new()),
         });
         let address = |port: u16| -> SocketAddr { format!("{host}:{port}").parse().unwrap() };
-        let (rtde, dashboard, gripper, secondary) = (
+        let (rtde, dashboard, gripper, secondary, realtime) = (
             address(RTDE_PORT),
             address(DASHBOARD_PORT),
             address(GRIPPER_PORT),
             address(SECONDARY_PORT),
+            address(REALTIME_PORT),
         );
         let (bound_tx, bound_rx) = std::sync::mpsc::channel();
         let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
@@ -212,6 +218,9 @@ impl FakeController {
                 let secondary = TcpListener::bind(secondary)
                     .await
                     .expect("the secondary port binds");
+                let realtime = TcpListener::bind(realtime)
+                    .await
+                    .expect("the real-time port binds");
                 bound_tx.send(()).unwrap();
                 let accepting = async {
                     loop {
@@ -231,6 +240,9 @@ impl FakeController {
                             }
                             Ok((stream, _)) = secondary.accept() => {
                                 tokio::spawn(serve_secondary(stream, Arc::clone(&serving)));
+                            }
+                            Ok((stream, _)) = realtime.accept() => {
+                                tokio::spawn(serve_realtime(stream, Arc::clone(&serving)));
                             }
                         }
                     }

@@ -43,7 +43,7 @@ impl Joints {
         self.to
     }
 
-    fn moving(&self, now: Instant) -> bool {
+    pub(super) fn moving(&self, now: Instant) -> bool {
         now.duration_since(self.started).as_secs_f64() < self.seconds
     }
 
@@ -77,7 +77,7 @@ impl Shared {
     /// `movel(p[pose…], a=…, v=…)` (with inverse kinematics; its joints move at 2 rad/s),
     /// `stopj(…)`, `stopl(…)` — unless a safety stop holds the arm; other lines (`def`, `end`,
     /// …) are kept only.
-    fn run_script(&self, line: &str) {
+    pub(super) fn run_script(&self, line: &str) {
         self.scripts.lock().unwrap().push(line.to_owned());
         if self.arm.lock().unwrap().safety != "NORMAL" {
             return;
