@@ -10,8 +10,8 @@
 mod backend;
 #[cfg(feature = "camera")]
 pub mod camera;
-mod lines;
 pub mod marlin;
+mod reading;
 pub mod robotiq;
 mod serial;
 pub mod ur;

@@ -7,7 +7,7 @@ use std::time::Duration;
 use tokio::io::{AsyncRead, AsyncWrite, AsyncWriteExt, BufReader};
 use tokio::time::Instant;
 
-use crate::lines::read_line;
+use crate::reading::{Unread, line_by};
 
 /// The longest reply line kept.
 const MAX_LINE: usize = 256;
@@ -296,30 +296,35 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Gripper<T> {
         }
     }
 
-    /// Sends `command` and reads its reply line, within the time limit.
+    /// Sends `command` and reads its reply line, both within the time limit.
     async fn exchange(&mut self, command: &str) -> Result<String, GripperError> {
-        let limit = self.timeout;
+        let deadline = Instant::now() + self.timeout;
         let line = format!("{command}\n");
-        let exchanged = async {
+        let written = async {
             self.stream.get_mut().write_all(line.as_bytes()).await?;
-            self.stream.get_mut().flush().await?;
-            read_line(&mut self.stream, &mut self.partial, MAX_LINE).await
+            self.stream.get_mut().flush().await
         };
-        match tokio::time::timeout(limit, exchanged).await {
-            Ok(Ok(Some(reply))) => Ok(reply.trim().to_owned()),
-            Ok(Ok(None)) => Err(GripperError::Closed {
-                gripper: self.gripper.clone(),
-                command: command.to_owned(),
-            }),
-            Ok(Err(source)) => Err(GripperError::Io {
-                gripper: self.gripper.clone(),
-                source,
-            }),
-            Err(_) => Err(GripperError::Timeout {
-                gripper: self.gripper.clone(),
-                command: command.to_owned(),
-                seconds: limit.as_secs_f64(),
-            }),
-        }
+        let unread = match tokio::time::timeout_at(deadline, written).await {
+            Ok(Ok(())) => line_by(&mut self.stream, &mut self.partial, MAX_LINE, deadline).await,
+            Ok(Err(source)) => Err(Unread::Failed(source)),
+            Err(_) => Err(Unread::TimedOut),
+        };
+        unread
+            .map(|reply| reply.trim().to_owned())
+            .map_err(|unread| match unread {
+                Unread::Closed => GripperError::Closed {
+                    gripper: self.gripper.clone(),
+                    command: command.to_owned(),
+                },
+                Unread::Failed(source) => GripperError::Io {
+                    gripper: self.gripper.clone(),
+                    source,
+                },
+                Unread::TimedOut => GripperError::Timeout {
+                    gripper: self.gripper.clone(),
+                    command: command.to_owned(),
+                    seconds: self.timeout.as_secs_f64(),
+                },
+            })
     }
 }

@@ -8,7 +8,7 @@ use tokio::time::Instant;
 use super::MarlinError;
 use super::line::numbered_line;
 use super::reply::{Position, Reply};
-use crate::lines::read_line;
+use crate::reading::{Unread, line_by, read_line};
 
 /// The longest line kept from the printer; the rest of a longer one is dropped.
 const MAX_LINE: usize = 512;
@@ -367,23 +367,23 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Marlin<T> {
             return Err(timeout(command));
         }
         let wait = silence.min(deadline - now);
-        match tokio::time::timeout(wait, self.read_line()).await {
-            Ok(Ok(Some(line))) => Ok(line),
-            Ok(Ok(None)) => Err(MarlinError::Closed {
+        let read = line_by(&mut self.stream, &mut self.partial, MAX_LINE, now + wait);
+        read.await.map_err(|unread| match unread {
+            Unread::Closed => MarlinError::Closed {
                 printer: self.settings.name.clone(),
                 command,
-            }),
-            Ok(Err(source)) => Err(MarlinError::Io {
+            },
+            Unread::Failed(source) => MarlinError::Io {
                 printer: self.settings.name.clone(),
                 source,
-            }),
-            Err(_) if wait < silence => Err(timeout(command)),
-            Err(_) => Err(MarlinError::Silent {
+            },
+            Unread::TimedOut if wait < silence => timeout(command),
+            Unread::TimedOut => MarlinError::Silent {
                 printer: self.settings.name.clone(),
                 command,
                 seconds: silence.as_secs_f64(),
-            }),
-        }
+            },
+        })
     }
 
     /// Reads boot lines until the line is quiet, the printer says `wait`, or the boot time is

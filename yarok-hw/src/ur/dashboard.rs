@@ -5,7 +5,7 @@ use std::time::Duration;
 
 use tokio::io::{AsyncRead, AsyncWrite, AsyncWriteExt, BufReader};
 
-use crate::lines::read_line;
+use crate::reading::{Unread, line_by};
 
 /// The longest reply line kept.
 const MAX_LINE: usize = 4096;
@@ -319,23 +319,22 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Dashboard<T> {
 
     /// The next reply line, without its ending, within the time limit.
     async fn reply(&mut self, command: &str) -> Result<String, DashboardError> {
-        let limit = self.timeout;
-        let read = read_line(&mut self.stream, &mut self.partial, MAX_LINE);
-        match tokio::time::timeout(limit, read).await {
-            Ok(Ok(Some(line))) => Ok(line),
-            Ok(Ok(None)) => Err(DashboardError::Closed {
+        let deadline = tokio::time::Instant::now() + self.timeout;
+        let read = line_by(&mut self.stream, &mut self.partial, MAX_LINE, deadline);
+        read.await.map_err(|unread| match unread {
+            Unread::Closed => DashboardError::Closed {
                 controller: self.controller.clone(),
                 command: command.to_owned(),
-            }),
-            Ok(Err(source)) => Err(DashboardError::Io {
+            },
+            Unread::Failed(source) => DashboardError::Io {
                 controller: self.controller.clone(),
                 source,
-            }),
-            Err(_) => Err(DashboardError::Timeout {
+            },
+            Unread::TimedOut => DashboardError::Timeout {
                 controller: self.controller.clone(),
                 command: command.to_owned(),
-                seconds: limit.as_secs_f64(),
-            }),
-        }
+                seconds: self.timeout.as_secs_f64(),
+            },
+        })
     }
 }

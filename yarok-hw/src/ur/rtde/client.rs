@@ -2,11 +2,12 @@
 
 use std::time::Duration;
 
-use tokio::io::{AsyncRead, AsyncReadExt, AsyncWrite, AsyncWriteExt};
+use tokio::io::{AsyncRead, AsyncWrite, AsyncWriteExt};
 use tokio::time::Instant;
 
 use super::message::{ControllerVersion, MessageError, Reply, Request, take_frame};
 use super::value::{Recipe, RecipeError, RtdeType, Value};
+use crate::reading::{Unread, read_more};
 
 /// The protocol version yarok speaks.
 const PROTOCOL: u16 = 2;
@@ -448,30 +449,22 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Rtde<T> {
                 }
                 continue;
             }
-            self.buffer.reserve(4096);
-            let read = tokio::time::timeout_at(deadline, self.stream.read_buf(&mut self.buffer));
-            match read.await {
-                Ok(Ok(0)) => {
-                    return Err(RtdeError::Closed {
-                        controller: controller(),
-                        waiting_for,
-                    });
-                }
-                Ok(Ok(_)) => {}
-                Ok(Err(source)) => {
-                    return Err(RtdeError::Io {
-                        controller: controller(),
-                        source,
-                    });
-                }
-                Err(_) => {
-                    return Err(RtdeError::Timeout {
-                        controller: controller(),
-                        waiting_for,
-                        seconds: limit.as_secs_f64(),
-                    });
-                }
-            }
+            let read = read_more(&mut self.stream, &mut self.buffer, deadline).await;
+            read.map_err(|unread| match unread {
+                Unread::Closed => RtdeError::Closed {
+                    controller: controller(),
+                    waiting_for,
+                },
+                Unread::Failed(source) => RtdeError::Io {
+                    controller: controller(),
+                    source,
+                },
+                Unread::TimedOut => RtdeError::Timeout {
+                    controller: controller(),
+                    waiting_for,
+                    seconds: limit.as_secs_f64(),
+                },
+            })?;
         }
     }
 }
