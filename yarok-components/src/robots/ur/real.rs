@@ -13,8 +13,8 @@ use tokio::sync::{Notify, oneshot};
 use yarok_core::component::{Bind, BindError};
 use yarok_hw::Real;
 use yarok_hw::ur::dashboard::Dashboard;
-use yarok_hw::ur::rtde::{Rtde, RtdeError, RtdeSettings, Value};
-use yarok_hw::ur::secondary::{KinematicsInfo, Secondary, SecondaryError};
+use yarok_hw::ur::rtde::{Rtde, RtdeSettings, Value};
+use yarok_hw::ur::secondary::{KinematicsInfo, Secondary};
 
 use super::kinematics::{DhParameters, Joints, Kinematics};
 
@@ -231,6 +231,15 @@ async fn rtde_stream(
     Ok(rtde)
 }
 
+/// Connects to the secondary interface at `host`, which has sent its first robot state.
+async fn secondary_stream(
+    host: &str,
+    reply: Duration,
+) -> Result<Secondary<TcpStream>, yarok_core::BoxError> {
+    let stream = tokio::time::timeout(reply, TcpStream::connect((host, SECONDARY_PORT))).await??;
+    Ok(Secondary::connect(stream, host, reply).await?)
+}
+
 /// What an RTDE package of [`OUTPUTS`] says.
 fn measured(values: &[Value]) -> Option<Measured> {
     match *values {
@@ -253,17 +262,16 @@ pub(super) async fn connect(
     let host = settings.host.clone();
     let reply = Duration::try_from_secs_f64(settings.reply_seconds).unwrap_or_default();
     let connecting = async {
-        let stream = TcpStream::connect((host.as_str(), SECONDARY_PORT)).await?;
-        let secondary = Secondary::connect(stream, host.clone(), reply).await?;
+        let secondary = secondary_stream(&host, reply).await?;
         let rtde = rtde_stream(&host, settings.rtde_hz, reply).await?;
-        Ok::<_, Box<dyn std::error::Error + Send + Sync>>((secondary, rtde))
+        Ok::<_, yarok_core::BoxError>((secondary, rtde))
     };
     let (mut secondary, mut rtde) = bind
         .within(settings.connect_seconds, "the arm's controller", connecting)
         .await?
         .map_err(|e| bind.error(format!("controller {host}: {e}")))?;
-    let state = secondary.next_state().await.map_err(|e| bind.error(e))?;
-    let reported = state
+    let reported = secondary
+        .latest()
         .kinematics
         .ok_or_else(|| bind.error(format!("controller {host} sent no kinematics")))?;
     check_kinematics(bind, &kinematics.dh, &reported)?;
@@ -285,13 +293,10 @@ pub(super) async fn connect(
         wake: Notify::new(),
     });
     bind.spawn(drive(Rc::clone(&link), settings, rtde, secondary));
-    let stopping = Rc::clone(&link);
     bind.on_stop(async move {
         // The driver's task has ended: a connection of its own stops the arm.
-        let stream = TcpStream::connect((host.as_str(), SECONDARY_PORT)).await?;
-        let mut secondary = Secondary::connect(stream, host.clone(), reply).await?;
+        let mut secondary = secondary_stream(&host, reply).await?;
         secondary.send_script("stopj(2.0)").await?;
-        drop(stopping);
         Ok(())
     });
     Ok((link, first.q))
@@ -306,6 +311,8 @@ async fn drive(
     mut secondary: Secondary<TcpStream>,
 ) -> Result<(), yarok_core::BoxError> {
     let reply = Duration::try_from_secs_f64(settings.reply_seconds).unwrap_or_default();
+    let host = settings.host.as_str();
+    let secondary_again = async || secondary_stream(host, reply).await;
     loop {
         tokio::select! {
             values = rtde.receive() => match values {
@@ -315,15 +322,19 @@ async fn drive(
                     }
                 }
                 Err(error) => {
-                    tracing::warn!(controller = %settings.host, "RTDE dropped ({error}); reconnecting");
-                    rtde = reconnect(&settings, reply, error).await?;
+                    tracing::warn!(controller = %host, "RTDE dropped ({error}); reconnecting");
+                    rtde = reconnect("RTDE", host, reply, error, async || {
+                        rtde_stream(host, settings.rtde_hz, reply).await
+                    })
+                    .await?;
                 }
             },
             state = secondary.next_state() => {
                 // Read to keep the controller's sending side flowing; RTDE is faster.
                 if let Err(error) = state {
-                    tracing::warn!(controller = %settings.host, "secondary interface dropped ({error}); reconnecting");
-                    secondary = reconnect_secondary(&settings.host, reply, error).await?;
+                    tracing::warn!(controller = %host, "secondary interface dropped ({error}); reconnecting");
+                    secondary =
+                        reconnect("secondary interface", host, reply, error, secondary_again).await?;
                 }
             }
             () = link.wake.notified() => {
@@ -332,12 +343,14 @@ async fn drive(
                     match request {
                         Request::Script(script) => {
                             if let Err(error) = secondary.send_script(&script).await {
-                                secondary = reconnect_secondary(&settings.host, reply, error).await?;
+                                secondary =
+                                    reconnect("secondary interface", host, reply, error, secondary_again)
+                                        .await?;
                                 secondary.send_script(&script).await?;
                             }
                         }
                         Request::UnlockProtectiveStop(reply_to) => {
-                            let unlocked = unlock(&settings.host, reply).await;
+                            let unlocked = unlock(host, reply).await;
                             let _ = reply_to.send(unlocked);
                         }
                     }
@@ -347,41 +360,20 @@ async fn drive(
     }
 }
 
-/// A new RTDE stream within `reply`, or the error that dropped the old one.
-async fn reconnect(
-    settings: &Settings,
-    reply: Duration,
-    dropped: RtdeError,
-) -> Result<Rtde<TcpStream>, yarok_core::BoxError> {
-    let until = tokio::time::Instant::now() + reply;
-    while tokio::time::Instant::now() < until {
-        if let Ok(Ok(rtde)) =
-            tokio::time::timeout_at(until, rtde_stream(&settings.host, settings.rtde_hz, reply))
-                .await
-        {
-            tracing::info!(controller = %settings.host, "RTDE reconnected");
-            return Ok(rtde);
-        }
-        tokio::time::sleep(Duration::from_millis(100)).await;
-    }
-    Err(format!("{dropped}; not back within {} s", reply.as_secs_f64()).into())
-}
-
-/// A new secondary connection to `host` within `reply`, or the error that dropped the old one.
-async fn reconnect_secondary(
+/// The `what` connection to `host` made again with `open` within `reply`, or the error that
+/// dropped the old one.
+async fn reconnect<T>(
+    what: &str,
     host: &str,
     reply: Duration,
-    dropped: SecondaryError,
-) -> Result<Secondary<TcpStream>, yarok_core::BoxError> {
+    dropped: impl std::fmt::Display,
+    mut open: impl AsyncFnMut() -> Result<T, yarok_core::BoxError>,
+) -> Result<T, yarok_core::BoxError> {
     let until = tokio::time::Instant::now() + reply;
     while tokio::time::Instant::now() < until {
-        let connecting = async {
-            let stream = TcpStream::connect((host, SECONDARY_PORT)).await?;
-            Ok::<_, yarok_core::BoxError>(Secondary::connect(stream, host, reply).await?)
-        };
-        if let Ok(Ok(secondary)) = tokio::time::timeout_at(until, connecting).await {
-            tracing::info!(controller = %host, "secondary interface reconnected");
-            return Ok(secondary);
+        if let Ok(Ok(connection)) = tokio::time::timeout_at(until, open()).await {
+            tracing::info!(controller = %host, "{what} reconnected");
+            return Ok(connection);
         }
         tokio::time::sleep(Duration::from_millis(100)).await;
     }

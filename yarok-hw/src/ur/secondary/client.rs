@@ -3,9 +3,10 @@
 
 use std::time::Duration;
 
-use tokio::io::{AsyncRead, AsyncReadExt, AsyncWrite, AsyncWriteExt};
+use tokio::io::{AsyncRead, AsyncWrite, AsyncWriteExt};
 
 use super::packet::{Packet, PacketError, RobotState, VersionMessage, parse, take_packet};
+use crate::reading::{Unread, read_more};
 
 /// What went wrong on the secondary interface. Every variant names the controller.
 #[derive(Debug, thiserror::Error)]
@@ -72,11 +73,12 @@ pub struct Secondary<T> {
     controller: String,
     silence: Duration,
     version: Option<VersionMessage>,
+    latest: RobotState,
 }
 
 impl<T: AsyncRead + AsyncWrite + Unpin> Secondary<T> {
     /// Reads from `transport` (the controller called `controller` in errors) until the first
-    /// robot state; a state may take up to `silence` to come.
+    /// robot state ([`Secondary::latest`]); a state may take up to `silence` to come.
     ///
     /// # Errors
     ///
@@ -92,6 +94,7 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Secondary<T> {
             controller: controller.into(),
             silence,
             version: None,
+            latest: RobotState::default(),
         };
         secondary.next_state().await?;
         Ok(secondary)
@@ -100,6 +103,11 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Secondary<T> {
     /// The controller's version message, once it came (it comes first on connect).
     pub fn version(&self) -> Option<&VersionMessage> {
         self.version.as_ref()
+    }
+
+    /// The newest robot state read (the first one, right after connecting).
+    pub fn latest(&self) -> &RobotState {
+        &self.latest
     }
 
     /// The next robot state, within the silence limit.
@@ -113,34 +121,29 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Secondary<T> {
             let taken = take_packet(&mut self.buffer).map_err(|source| self.packet(source))?;
             if let Some(packet) = taken {
                 match parse(&packet).map_err(|source| self.packet(source))? {
-                    Packet::RobotState(state) => return Ok(*state),
+                    Packet::RobotState(state) => {
+                        self.latest = *state;
+                        return Ok(self.latest);
+                    }
                     Packet::Version(version) => self.version = Some(version),
                     _ => {}
                 }
                 continue;
             }
-            self.buffer.reserve(4096);
-            let read = tokio::time::timeout_at(deadline, self.stream.read_buf(&mut self.buffer));
-            match read.await {
-                Ok(Ok(0)) => {
-                    return Err(SecondaryError::Closed {
-                        controller: self.controller.clone(),
-                    });
-                }
-                Ok(Ok(_)) => {}
-                Ok(Err(source)) => {
-                    return Err(SecondaryError::Io {
-                        controller: self.controller.clone(),
-                        source,
-                    });
-                }
-                Err(_) => {
-                    return Err(SecondaryError::Silent {
-                        controller: self.controller.clone(),
-                        seconds: self.silence.as_secs_f64(),
-                    });
-                }
-            }
+            let read = read_more(&mut self.stream, &mut self.buffer, deadline).await;
+            read.map_err(|unread| match unread {
+                Unread::Closed => SecondaryError::Closed {
+                    controller: self.controller.clone(),
+                },
+                Unread::Failed(source) => SecondaryError::Io {
+                    controller: self.controller.clone(),
+                    source,
+                },
+                Unread::TimedOut => SecondaryError::Silent {
+                    controller: self.controller.clone(),
+                    seconds: self.silence.as_secs_f64(),
+                },
+            })?;
         }
     }
 
