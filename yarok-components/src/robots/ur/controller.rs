@@ -173,15 +173,18 @@ impl Controller {
         };
         let dt = self.clock.timestep();
         let t = now + dt - motion.started;
-        let stopped_by_safety = match &self.drive {
+        let safety_stop = match &self.drive {
             Drive::Real(link) => link.safety_stop(),
             _ => None,
         };
-        let outcome = match motion.reference(t, dt, &self.kinematics, &state.reference) {
-            _ if stopped_by_safety.is_some() => Some(Err(MotionError::SafetyStop {
-                mode: stopped_by_safety.unwrap_or_default(),
-            })),
-            Err(error) => Some(Err(error.into())),
+        let reference = match safety_stop {
+            Some(mode) => Err(MotionError::SafetyStop { mode }),
+            None => motion
+                .reference(t, dt, &self.kinematics, &state.reference)
+                .map_err(MotionError::from),
+        };
+        let outcome = match reference {
+            Err(error) => Some(Err(error)),
             Ok((q, speed)) => {
                 let before = state.reference;
                 state.acceleration =
