@@ -5,7 +5,7 @@
 
 use std::time::Duration;
 
-use tokio::io::{AsyncBufReadExt, AsyncWriteExt, BufReader};
+use tokio::io::{AsyncBufReadExt, AsyncWriteExt, BufReader, DuplexStream};
 use yarok_hw::robotiq::{Gripper, GripperError};
 use yarok_hw::ur::dashboard::{Dashboard, DashboardError, RobotMode};
 
@@ -56,29 +56,30 @@ impl ReplyLines for Generator {
 
 const ROUNDS: usize = 50_000;
 
+/// A peer that sends `welcome`, then answers each command line with the next of `replies`.
+async fn answer(peer: DuplexStream, welcome: &'static [u8], replies: Vec<Vec<u8>>) {
+    let (reader, mut writer) = tokio::io::split(peer);
+    writer.write_all(welcome).await.unwrap();
+    let mut lines = BufReader::new(reader).lines();
+    for reply in replies {
+        if lines.next_line().await.unwrap().is_none() {
+            return;
+        }
+        writer
+            .write_all(&[reply.as_slice(), b"\n"].concat())
+            .await
+            .unwrap();
+    }
+}
+
 #[tokio::test(start_paused = true)]
 async fn a_hundred_thousand_generated_replies_never_panic() {
     // The dashboard: a welcome, then a generated reply to every `robotmode`.
     let (ours, theirs) = tokio::io::duplex(1 << 16);
     let mut generator = Generator(0x9E37_79B9_7F4A_7C15);
     let replies: Vec<Vec<u8>> = (0..ROUNDS).map(|_| generator.line()).collect();
-    let server = tokio::spawn(async move {
-        let (reader, mut writer) = tokio::io::split(theirs);
-        writer
-            .write_all(b"Connected: Universal Robots Dashboard Server\n")
-            .await
-            .unwrap();
-        let mut lines = BufReader::new(reader).lines();
-        for reply in replies {
-            if lines.next_line().await.unwrap().is_none() {
-                return;
-            }
-            writer
-                .write_all(&[reply.as_slice(), b"\n"].concat())
-                .await
-                .unwrap();
-        }
-    });
+    let welcome = b"Connected: Universal Robots Dashboard Server\n";
+    let server = tokio::spawn(answer(theirs, welcome, replies));
     let mut dashboard = Dashboard::connect(ours, "dash-test", Duration::from_secs(1))
         .await
         .unwrap();
@@ -106,19 +107,7 @@ async fn a_hundred_thousand_generated_replies_never_panic() {
             value.trim().parse().ok()
         })
         .collect();
-    let server = tokio::spawn(async move {
-        let (reader, mut writer) = tokio::io::split(theirs);
-        let mut lines = BufReader::new(reader).lines();
-        for reply in replies {
-            if lines.next_line().await.unwrap().is_none() {
-                return;
-            }
-            writer
-                .write_all(&[reply.as_slice(), b"\n"].concat())
-                .await
-                .unwrap();
-        }
-    });
+    let server = tokio::spawn(answer(theirs, b"", replies));
     let mut gripper = Gripper::new(ours, "gripper-test", Duration::from_secs(1));
     let mut positions = 0;
     for expected in expected {
