@@ -63,8 +63,9 @@ fn named(names: Vec<String>) -> Vec<String> {
     names.into_iter().filter(|name| !name.is_empty()).collect()
 }
 
-/// An output recipe being streamed: its id, variables and period.
-type Outputs = (u8, Vec<(String, RtdeType)>, Duration);
+/// An output recipe being streamed: its id, variables (shared, so that the streamer takes them
+/// each package without copying the names) and period.
+type Outputs = (u8, Arc<[(String, RtdeType)]>, Duration);
 
 /// What an RTDE session's reader and streamer share.
 struct Session {
@@ -152,7 +153,7 @@ fn read_requests(mut stream: std::net::TcpStream, session: &Session, shared: &Sh
                     let recipe = if types.iter().all(Option::is_some) && rate_ok {
                         let id = next_output;
                         next_output += 1;
-                        let variables = names
+                        let variables: Arc<[(String, RtdeType)]> = names
                             .iter()
                             .cloned()
                             .zip(types.iter().flatten().copied())
@@ -252,7 +253,7 @@ fn stream_outputs(session: &Session, shared: &Shared) {
             std::hint::spin_loop();
         }
         let mut payload = Vec::new();
-        for (name, rtde_type) in &variables {
+        for (name, rtde_type) in variables.iter() {
             shared.output(name, *rtde_type).encode(&mut payload);
         }
         if !session.send(&Reply::Data {
