@@ -1,6 +1,9 @@
 //! The RTDE client against the project's fake e-Series controller on loopback, at 500 Hz: the
 //! period between data packages as the client receives them — its median and 99th-percentile
-//! deviation from 2 ms (target p99 < 200 µs) — and the client thread's CPU time per package.
+//! deviation from 2 ms (target p99 < 200 µs) — beside the same for the periods as the fake sent
+//! them (a real controller sends on a real-time kernel; the fake, on a shared virtual machine,
+//! is late by milliseconds when its thread is not scheduled) and the jitter the client adds
+//! (each received period less its sent one); and the client thread's CPU time per package.
 //!
 //! ```text
 //! cargo bench --bench ur_rtde
@@ -89,6 +92,12 @@ fn main() {
         .collect();
     let at_client = deviations(&received);
     let at_fake = deviations(&sent);
+    let mut added: Vec<f64> = received
+        .windows(2)
+        .zip(sent.windows(2))
+        .map(|(r, s)| ((r[1] - r[0]) - (s[1] - s[0])).abs() * 1e6)
+        .collect();
+    added.sort_by(f64::total_cmp);
     // How much later than its sending each package was read, beyond the quickest one.
     let mut latency: Vec<f64> = received.iter().zip(&sent).map(|(r, s)| r - s).collect();
     let quickest = latency.iter().copied().fold(f64::INFINITY, f64::min);
@@ -109,11 +118,19 @@ fn main() {
     );
     row("period's deviation from 2 ms, as received", &at_client);
     row("period's deviation from 2 ms, as the fake sent", &at_fake);
+    row("jitter the client adds to the period", &added);
     row("read later than sent, beyond the quickest", &latency);
     println!(
         "  client thread CPU: {:.1} µs a package ({:.2} % of a core)",
         cpu.as_secs_f64() * 1e6 / PACKAGES as f64,
         100.0 * cpu.as_secs_f64() / span
     );
-    println!("target: p99 of the received period's deviation < 200 µs");
+    println!(
+        "target: p99 of the received period's deviation < 200 µs (the client's own share: {})",
+        if percentile(&added, 0.99) < 200.0 {
+            "met"
+        } else {
+            "not met"
+        }
+    );
 }

@@ -1,30 +1,27 @@
 //! The `pick_and_place` example with `--env real` against the project's fake UR controller (a
-//! UR5e with a 2F-85 on its URCap socket, an object between the fingers at every grasp): the
-//! same behaviour that stacks the blocks in `sim` completes every motion and grasp and exits 0.
+//! simulated UR5e with a 2F-85 on its URCap socket, an object between the fingers at every grasp):
+//! the same behaviour that stacks the blocks in `sim` completes every motion and grasp and exits 0.
 
 use std::process::Command;
 
-use yarok::components::robots::ur::{DhParameters, Kinematics, pose_from_vector};
-
 #[path = "support/example_binary.rs"]
 mod example_binary;
+#[path = "support/simulated_ur.rs"]
+mod simulated_ur;
 #[path = "../yarok-hw/tests/support/ur_controller/mod.rs"]
 mod ur_controller;
 
 use example_binary::example_binary;
+use simulated_ur::SimulatedArm;
 use ur_controller::{FakeController, Profile};
 
 #[test]
 fn pick_and_place_runs_on_the_fake_controller() {
-    let fake = FakeController::with_ik(
-        Profile::ESeries,
-        Box::new(|pose, tcp, near| {
-            let kinematics = Kinematics::new(DhParameters::UR5E).with_tcp(pose_from_vector(tcp));
-            kinematics.nearest(&pose_from_vector(pose), &near).ok()
-        }),
-    );
     // The world's start pose; a block between the fingers whenever they close.
-    fake.set_joints([0.0, -1.9, 1.9, -1.57, -1.57, 0.0]);
+    let fake = FakeController::with_arm(
+        Profile::ESeries,
+        SimulatedArm::ur5e([0.0, -1.9, 1.9, -1.57, -1.57, 0.0]),
+    );
     fake.place_object(Some(200));
     let host = format!("\"{}\"", fake.host);
     let output = Command::new(example_binary("pick_and_place"))

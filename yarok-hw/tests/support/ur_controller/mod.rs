@@ -4,12 +4,13 @@
 //! 29999) powers the arm, releases its brakes, unlocks protective stops (not within 5 s of
 //! one) and loads and plays programs, with UR's replies; its secondary interface (port 30002)
 //! sends a version message and robot states at 10 Hz in the profile's layout (a UR5's
-//! kinematics on CB3, a UR5e's on e-Series) and runs `movej`/`stopj` lines, the joints moving
-//! in time at the speed asked for; its real-time interface (port 30003) streams the 1116-byte
-//! packet at 125 or 500 Hz and runs script lines too; its Robotiq gripper socket (port
-//! 63352) activates a 2F-85 whose fingers move in time at the speed asked for and stop on an
-//! object the test places, or fault when told to. The arm holds the joint positions the test
-//! sets. Shared by yarok-hw's tests and the workspace's.
+//! kinematics on CB3, a UR5e's on e-Series) and runs `movej`/`movel`/`stopj`/`stopl` lines;
+//! its real-time interface (port 30003) streams the 1116-byte packet at 125 or 500 Hz and runs
+//! script lines too; its Robotiq gripper socket (port 63352) activates a 2F-85 whose fingers
+//! move in time at the speed asked for and stop on an object the test places, or fault when
+//! told to. The arm moves as its [`ArmMotion`] does: the project's simulated UR model in the
+//! workspace's tests, a linear stand-in in yarok-hw's protocol tests. Shared by yarok-hw's
+//! tests and the workspace's.
 #![allow(dead_code)]
 
 use std::collections::HashMap;
@@ -24,15 +25,18 @@ use yarok_hw::ur::rtde::{ControllerVersion, Value};
 
 mod dashboard;
 mod gripper;
+pub(crate) mod motion;
 mod realtime;
 mod rtde;
 mod secondary;
+
+use motion::{ArmCommand, ArmMotion, Interpolated};
 
 use dashboard::serve_dashboard;
 use gripper::{Fingers, serve_gripper};
 use realtime::serve_realtime;
 use rtde::serve_rtde;
-use secondary::{Joints, serve_secondary};
+use secondary::serve_secondary;
 
 /// RTDE's and the dashboard's ports, which third-party clients do not let one change.
 pub(crate) const RTDE_PORT: u16 = 30004;
@@ -94,7 +98,7 @@ impl Profile {
 struct Shared {
     profile: Profile,
     started: Instant,
-    joints: Mutex<Joints>,
+    motion: Mutex<Box<dyn ArmMotion>>,
     /// Input variables clients have written.
     inputs: Mutex<HashMap<String, Value>>,
     /// Output variables clients asked for, in order.
@@ -105,17 +109,11 @@ struct Shared {
     scripts: Mutex<Vec<String>>,
     /// The TCP the last `set_tcp` set.
     tcp: Mutex<[f64; 6]>,
-    /// Inverse kinematics for `movel`, if the test gave some.
-    ik: Option<Ik>,
     /// Bumped to drop every RTDE and secondary connection.
     drops: AtomicU32,
     /// Set when the fake is dropped: its sessions end.
     closed: std::sync::atomic::AtomicBool,
 }
-
-/// Joints that put the TCP (the second pose vector, in the flange frame) at a pose (the first,
-/// a UR pose vector), near the given joints.
-pub(crate) type Ik = Box<dyn Fn([f64; 6], [f64; 6], [f64; 6]) -> Option<[f64; 6]> + Send + Sync>;
 
 impl Shared {
     /// The arm's mode as the secondary interface and RTDE number it.
@@ -157,29 +155,27 @@ fn unique_loopback() -> String {
 }
 
 impl FakeController {
+    /// One whose arm is the [`Interpolated`] stand-in, upright.
     pub(crate) fn start(profile: Profile) -> Self {
-        Self::start_with(profile, None)
+        Self::with_arm(
+            profile,
+            Box::new(Interpolated::at([
+                0.0, -FRAC_PI_2, FRAC_PI_2, -FRAC_PI_2, -FRAC_PI_2, 0.0,
+            ])),
+        )
     }
 
-    /// One whose arm runs `movel` too, reaching each TCP pose (a UR pose vector) at the joints
-    /// `ik` gives near the current ones.
-    pub(crate) fn with_ik(profile: Profile, ik: Ik) -> Self {
-        Self::start_with(profile, Some(ik))
-    }
-
-    fn start_with(profile: Profile, ik: Option<Ik>) -> Self {
+    /// One whose arm moves as `motion` does.
+    pub(crate) fn with_arm(profile: Profile, motion: Box<dyn ArmMotion>) -> Self {
         let host = unique_loopback();
         let shared = Arc::new(Shared {
             profile,
             started: Instant::now(),
-            joints: Mutex::new(Joints::at([
-                0.0, -FRAC_PI_2, FRAC_PI_2, -FRAC_PI_2, -FRAC_PI_2, 0.0,
-            ])),
+            motion: Mutex::new(motion),
             scripts: Mutex::new(Vec::new()),
             tcp: Mutex::new([0.0; 6]),
             inputs: Mutex::new(HashMap::new()),
             asked: Mutex::new(Vec::new()),
-            ik,
             drops: AtomicU32::new(0),
             closed: std::sync::atomic::AtomicBool::new(false),
             arm: Mutex::new(Arm {
@@ -262,14 +258,14 @@ impl FakeController {
         }
     }
 
-    /// Puts the arm at `q` (radians).
+    /// Puts the arm at rest at `q` (radians).
     pub(crate) fn set_joints(&self, q: [f64; 6]) {
-        *self.shared.joints.lock().unwrap() = Joints::at(q);
+        self.shared.motion.lock().unwrap().place(q);
     }
 
     /// Where the arm is now (moving, if a script moves it).
     pub(crate) fn joints(&self) -> [f64; 6] {
-        self.shared.joints.lock().unwrap().now(Instant::now())
+        self.shared.motion.lock().unwrap().state().q
     }
 
     /// The URScript clients sent, a line each.
@@ -294,8 +290,7 @@ impl FakeController {
 
     /// A protective stop, `ago` in the past.
     pub(crate) fn protective_stop(&self, ago: Duration) {
-        let mut joints = self.shared.joints.lock().unwrap();
-        *joints = Joints::at(joints.now(Instant::now()));
+        self.shared.motion.lock().unwrap().command(ArmCommand::Stop);
         let mut arm = self.shared.arm.lock().unwrap();
         arm.safety = "PROTECTIVE_STOP";
         arm.stopped_at = Some(Instant::now() - ago);

@@ -4,11 +4,12 @@
 
 use std::sync::Arc;
 use std::sync::atomic::Ordering;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use tokio::io::{AsyncBufReadExt, AsyncWriteExt};
 use tokio::net::TcpStream;
 
+use super::motion::ArmState;
 use super::{Profile, Shared};
 
 /// Doubles in the 3.10+ / 5.x packet.
@@ -17,6 +18,7 @@ const DOUBLES: usize = 139;
 /// Where fields start, in doubles.
 const Q_TARGET: usize = 1;
 const Q_ACTUAL: usize = 31;
+const QD_ACTUAL: usize = 37;
 const ROBOT_MODE: usize = 94;
 const JOINT_MODES: usize = 95;
 const SAFETY_MODE: usize = 101;
@@ -27,11 +29,12 @@ const SAFETY_STATUS: usize = 138;
 impl Shared {
     /// A real-time packet now.
     fn realtime_packet(&self) -> Vec<u8> {
-        let now = Instant::now();
-        let (q, target, moving) = {
-            let joints = self.joints.lock().unwrap();
-            (joints.now(now), joints.target(), joints.moving(now))
-        };
+        let ArmState {
+            q,
+            qd,
+            target,
+            moving,
+        } = self.motion.lock().unwrap().state();
         let safety = if self.arm.lock().unwrap().safety == "NORMAL" {
             1.0
         } else {
@@ -41,6 +44,7 @@ impl Shared {
         values[0] = self.started.elapsed().as_secs_f64();
         values[Q_TARGET..Q_TARGET + 6].copy_from_slice(&target);
         values[Q_ACTUAL..Q_ACTUAL + 6].copy_from_slice(&q);
+        values[QD_ACTUAL..QD_ACTUAL + 6].copy_from_slice(&qd);
         values[ROBOT_MODE] = f64::from(self.robot_mode());
         values[JOINT_MODES..JOINT_MODES + 6].fill(253.0);
         values[SAFETY_MODE] = safety;

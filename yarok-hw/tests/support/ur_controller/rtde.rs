@@ -17,8 +17,9 @@ impl Shared {
     fn output(&self, name: &str, rtde_type: RtdeType) -> Value {
         match name {
             "timestamp" => Value::Double(self.started.elapsed().as_secs_f64()),
-            "actual_q" => Value::Vector6d(self.joints.lock().unwrap().now(Instant::now())),
-            "target_q" => Value::Vector6d(self.joints.lock().unwrap().target()),
+            "actual_q" => Value::Vector6d(self.motion.lock().unwrap().state().q),
+            "actual_qd" => Value::Vector6d(self.motion.lock().unwrap().state().qd),
+            "target_q" => Value::Vector6d(self.motion.lock().unwrap().state().target),
             "robot_mode" => Value::Int32(i32::from(self.robot_mode())),
             "safety_mode" | "safety_status" => {
                 Value::Int32(match self.arm.lock().unwrap().safety {

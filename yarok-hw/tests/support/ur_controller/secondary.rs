@@ -3,62 +3,13 @@
 use std::f64::consts::FRAC_PI_2;
 use std::sync::Arc;
 use std::sync::atomic::Ordering;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use tokio::io::{AsyncBufReadExt, AsyncWriteExt};
 use tokio::net::TcpStream;
 
+use super::motion::{ArmCommand, ArmState};
 use super::{Profile, Shared};
-
-/// The joints: at rest, or moving linearly from one position to another.
-#[derive(Debug, Clone)]
-pub(crate) struct Joints {
-    from: [f64; 6],
-    to: [f64; 6],
-    started: Instant,
-    seconds: f64,
-}
-
-impl Joints {
-    pub(crate) fn at(q: [f64; 6]) -> Self {
-        Self {
-            from: q,
-            to: q,
-            started: Instant::now(),
-            seconds: 0.0,
-        }
-    }
-
-    /// Where they are at `now`.
-    pub(crate) fn now(&self, now: Instant) -> [f64; 6] {
-        let fraction = if self.seconds > 0.0 {
-            (now.duration_since(self.started).as_secs_f64() / self.seconds).min(1.0)
-        } else {
-            1.0
-        };
-        std::array::from_fn(|i| self.from[i] + (self.to[i] - self.from[i]) * fraction)
-    }
-
-    pub(crate) fn target(&self) -> [f64; 6] {
-        self.to
-    }
-
-    pub(super) fn moving(&self, now: Instant) -> bool {
-        now.duration_since(self.started).as_secs_f64() < self.seconds
-    }
-
-    /// Starts a joint move to `to` at `speed` rad/s for the joint that moves most.
-    fn move_to(&mut self, to: [f64; 6], speed: f64, now: Instant) {
-        let from = self.now(now);
-        let farthest = (0..6).map(|i| (to[i] - from[i]).abs()).fold(0.0, f64::max);
-        *self = Self {
-            from,
-            to,
-            started: now,
-            seconds: farthest / speed.max(1e-3),
-        };
-    }
-}
 
 /// The numbers of a URScript call `name(…)` in `line` — its list's, then its keywords' — if
 /// the line is that call.
@@ -74,48 +25,52 @@ fn call(line: &str, name: &str) -> Option<Vec<f64>> {
 
 impl Shared {
     /// Runs one line of URScript — `movej([q…], a=…, v=…)`, `set_tcp(p[…])`,
-    /// `movel(p[pose…], a=…, v=…)` (with inverse kinematics; its joints move at 2 rad/s),
-    /// `stopj(…)`, `stopl(…)` — unless a safety stop holds the arm; other lines (`def`, `end`,
-    /// …) are kept only.
+    /// `movel(p[pose…], a=…, v=…)`, `stopj(…)`, `stopl(…)` — unless a safety stop holds the
+    /// arm; other lines (`def`, `end`, …) are kept only.
     pub(super) fn run_script(&self, line: &str) {
         self.scripts.lock().unwrap().push(line.to_owned());
         if self.arm.lock().unwrap().safety != "NORMAL" {
             return;
         }
-        let now = Instant::now();
-        let mut joints = self.joints.lock().unwrap();
-        if let Some(numbers) = call(line, "movej")
+        let six = |numbers: &[f64]| -> [f64; 6] { std::array::from_fn(|i| numbers[i]) };
+        let command = if let Some(numbers) = call(line, "movej")
             && numbers.len() >= 6
         {
-            let to: [f64; 6] = std::array::from_fn(|i| numbers[i]);
-            let speed = numbers.get(7).copied().unwrap_or(1.05);
-            joints.move_to(to, speed, now);
+            ArmCommand::Joints {
+                to: six(&numbers),
+                acceleration: numbers.get(6).copied().unwrap_or(1.4),
+                speed: numbers.get(7).copied().unwrap_or(1.05),
+            }
         } else if let Some(numbers) = call(line, "set_tcp")
             && numbers.len() == 6
         {
-            *self.tcp.lock().unwrap() = std::array::from_fn(|i| numbers[i]);
+            *self.tcp.lock().unwrap() = six(&numbers);
+            return;
         } else if let Some(numbers) = call(line, "movel")
             && numbers.len() >= 6
-            && let Some(ik) = &self.ik
-            && let Some(to) = ik(
-                std::array::from_fn(|i| numbers[i]),
-                *self.tcp.lock().unwrap(),
-                joints.now(now),
-            )
         {
-            joints.move_to(to, 2.0, now);
+            ArmCommand::Line {
+                pose: six(&numbers),
+                tcp: *self.tcp.lock().unwrap(),
+                acceleration: numbers.get(6).copied().unwrap_or(1.2),
+                speed: numbers.get(7).copied().unwrap_or(0.25),
+            }
         } else if call(line, "stopj").is_some() || call(line, "stopl").is_some() {
-            *joints = Joints::at(joints.now(now));
-        }
+            ArmCommand::Stop
+        } else {
+            return;
+        };
+        self.motion.lock().unwrap().command(command);
     }
 
     /// A robot-state packet in the profile's layout.
     fn robot_state(&self) -> Vec<u8> {
-        let now = Instant::now();
-        let (q, target, moving) = {
-            let joints = self.joints.lock().unwrap();
-            (joints.now(now), joints.target(), joints.moving(now))
-        };
+        let ArmState {
+            q,
+            qd,
+            target,
+            moving,
+        } = self.motion.lock().unwrap().state();
         let e_series = self.profile == Profile::ESeries;
         let protective = self.arm.lock().unwrap().safety == "PROTECTIVE_STOP";
         let mode = self.robot_mode();
@@ -143,7 +98,7 @@ impl Shared {
         });
         sub_package(&mut body, 1, |out| {
             for i in 0..6 {
-                for value in [q[i], target[i], 0.0] {
+                for value in [q[i], target[i], qd[i]] {
                     out.extend(value.to_be_bytes());
                 }
                 for value in [0.5f32, 48.0, 30.0, 30.0] {
