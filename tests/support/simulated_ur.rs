@@ -149,7 +149,13 @@ fn follow(arm: &Arm, commands: &Receiver<ArmCommand>, target: &mut [f64; 6]) {
                 speed,
                 acceleration,
             } => {
-                if arm.move_j(to).speed(speed).acceleration(acceleration).start().is_ok() {
+                if arm
+                    .move_j(to)
+                    .speed(speed)
+                    .acceleration(acceleration)
+                    .start()
+                    .is_ok()
+                {
                     *target = to;
                 }
             }
@@ -162,7 +168,11 @@ fn follow(arm: &Arm, commands: &Receiver<ArmCommand>, target: &mut [f64; 6]) {
                 // The script's TCP pose, as the pose of the simulated arm's own TCP.
                 let flange = pose_from_vector(pose) * pose_from_vector(tcp).inverse();
                 let goal = flange * arm.kinematics().tcp;
-                let started = arm.move_l(goal).speed(speed).acceleration(acceleration).start();
+                let started = arm
+                    .move_l(goal)
+                    .speed(speed)
+                    .acceleration(acceleration)
+                    .start();
                 if let (Ok(()), Ok(end)) = (started, arm.kinematics().nearest(&goal, &arm.q())) {
                     *target = end;
                 }
