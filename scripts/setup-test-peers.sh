@@ -7,7 +7,8 @@
 #    OctoPrint's VirtualPrinter, a Marlin emulator (AGPL: the tests only run it as a separate
 #    process, through scripts/peers/virtual_printer_bridge.py; nothing links or ships it), and
 #    ur_rtde, pyrobotiqur (both MIT) and python-urx (LGPL, with math3d, AGPL), the UR and
-#    Robotiq clients the fake controller's faithfulness is checked with (separate processes).
+#    Robotiq clients the fake controller's faithfulness is checked with (separate processes);
+#    the `mcap` reader (MIT) and Pillow (MIT-CMU), which read back yarok's recordings.
 set -euo pipefail
 
 source "$(dirname "$0")/debian-packages.sh"
@@ -37,4 +38,6 @@ octoprint.plugins.virtual_printer octoprint==1.11.8
 rtde_receive ur_rtde==1.6.5
 pyrobotiqur pyrobotiqur==0.2.2
 urx urx==0.11.0 math3d==3.4.1 numpy==2.4.6
+mcap mcap==1.6.0
+PIL pillow==12.0.0
 PEERS

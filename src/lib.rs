@@ -51,7 +51,8 @@ pub const MOCK_TIMESTEP: f64 = 0.002;
 
 /// A platform builder with yarok's environments and plugins registered: environments `sim`
 /// (MuJoCo, the default), `real` (hardware, ticking at `[platform] tick_hz`) and `mock` (no
-/// backend, 2 ms ticks); plugin `joints_csv` ([`components::plugins::JointRecorder`]).
+/// backend, 2 ms ticks); plugins `joints_csv` ([`components::plugins::JointRecorder`]), `mcap`
+/// ([`components::plugins::McapRecorder`]) and `video` ([`components::plugins::VideoRecorder`]).
 ///
 /// # Examples
 ///
@@ -76,4 +77,6 @@ pub fn platform() -> PlatformBuilder {
         .backend::<hw::Real>(hw::HardwareBackend::from_settings)
         .backend::<Mock>(|_, _| Ok(MockBackend::new(MOCK_TIMESTEP, false)))
         .plugin_factory("joints_csv", components::plugins::JointRecorder::new)
+        .plugin_factory("mcap", components::plugins::McapRecorder::new)
+        .plugin_factory("video", components::plugins::VideoRecorder::new)
 }

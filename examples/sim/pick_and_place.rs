@@ -77,10 +77,10 @@ async fn stack(pl: Pl) -> yarok::BehaviourResult {
             .await?;
         places.push([tx, ty, stack_top + block.size() / 2.0]);
         stack_top += block.size();
-        println!("t = {:5.2} s  {name} stacked", pl.time());
+        pl.log(format!("t = {:5.2} s  {name} stacked", pl.time()));
     }
     if pl.environment() != "sim" {
-        println!("every motion and grasp completed");
+        pl.log("every motion and grasp completed");
         return Ok(());
     }
     pl.wait_seconds(0.5).await?;
@@ -90,7 +90,7 @@ async fn stack(pl: Pl) -> yarok::BehaviourResult {
             .map(|i| (at[i] - place[i]).powi(2))
             .sum::<f64>()
             .sqrt();
-        println!("{name}: {:.1} mm from its place", off * 1000.0);
+        pl.log(format!("{name}: {:.1} mm from its place", off * 1000.0));
         if off > 0.01 || at[2] < table {
             return Err(format!(
                 "{name} is {:.1} mm from its place {place:?}: at {at:?}",

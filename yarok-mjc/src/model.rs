@@ -280,13 +280,32 @@ impl Model {
     /// When `joint` was resolved in a different model.
     #[track_caller]
     pub fn joint_name(&self, joint: JointId) -> Option<String> {
-        let index = self.index_of(joint);
+        self.name_of(ObjectKind::Joint, self.index_of(joint))
+    }
+
+    /// Every body but the world body, in MuJoCo's order (parents before their children).
+    pub fn bodies(&self) -> impl Iterator<Item = BodyId> + '_ {
+        (1..self.count(ObjectKind::Body)).map(|index| BodyId {
+            index,
+            signature: self.signature(),
+        })
+    }
+
+    /// A body's name in the model (`arm/flange`), or `None` when it has none.
+    ///
+    /// # Panics
+    ///
+    /// When `body` was resolved in a different model.
+    #[track_caller]
+    pub fn body_name(&self, body: BodyId) -> Option<String> {
+        self.name_of(ObjectKind::Body, self.index_of(body))
+    }
+
+    /// The name of object `index` of `kind`, if it has one.
+    fn name_of(&self, kind: ObjectKind, index: usize) -> Option<String> {
         let index = i32::try_from(index).ok()?;
-        // SAFETY: the model pointer is valid and `index` is one of its joints.
-        let name = unsafe {
-            self.mj
-                .mj_id2name(self.raw.as_ptr(), ObjectKind::Joint.mj_obj(), index)
-        };
+        // SAFETY: the model pointer is valid and `index` is one of its objects of `kind`.
+        let name = unsafe { self.mj.mj_id2name(self.raw.as_ptr(), kind.mj_obj(), index) };
         if name.is_null() {
             return None;
         }

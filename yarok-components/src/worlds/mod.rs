@@ -75,7 +75,8 @@ impl Component for TowerWorld {
 /// ([`DigitWorld`]), `"geltip"` a GelTip along each finger; `rope` lays a rope on the table
 /// ([`GelTipWorld`]).
 ///
-/// Paths: `/arm`, `/arm/gripper`, `/large`, `/medium`, `/small`, `/target`. The arm's base frame
+/// Paths: `/arm`, `/arm/gripper`, `/large`, `/medium`, `/small`, `/target`; the camera `overview`
+/// looks at the table from the front right (for recordings). The arm's base frame
 /// is the world frame raised to the table top.
 #[derive(Debug, Clone)]
 pub struct PickAndPlaceWorld;

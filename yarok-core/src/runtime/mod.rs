@@ -43,7 +43,7 @@ mod plugin;
 mod thread;
 
 pub use builder::PlatformBuilder;
-pub use pl::Pl;
+pub use pl::{LogLine, Pl};
 pub use platform::Platform;
 pub use plugin::{Plugin, World};
 pub use thread::PlatformThread;

@@ -27,6 +27,18 @@ struct Shared {
     handles: Rc<RefCell<Handles>>,
     behaviour: Config,
     stop: Arc<AtomicBool>,
+    /// Lines logged since the behaviours' last turn began, kept when plugins may read them.
+    log: RefCell<Vec<LogLine>>,
+    keeps_log: bool,
+}
+
+/// A line a behaviour logged with [`Pl::log`], and when.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LogLine {
+    /// Platform time (seconds) when it was logged.
+    pub time: f64,
+    /// The line.
+    pub text: String,
 }
 
 impl std::fmt::Debug for Pl {
@@ -53,6 +65,7 @@ impl Pl {
         handles: Rc<RefCell<Handles>>,
         behaviour: Config,
         stop: Arc<AtomicBool>,
+        keeps_log: bool,
     ) -> Self {
         Self {
             clock,
@@ -61,6 +74,8 @@ impl Pl {
                 handles,
                 behaviour,
                 stop,
+                log: RefCell::new(Vec::new()),
+                keeps_log,
             }),
         }
     }
@@ -84,6 +99,37 @@ impl Pl {
     /// component without a run-time interface.
     pub fn get<C: Clone + 'static>(&self, path: &str) -> Result<C, HandleError> {
         self.inner.handles.borrow().get(path)
+    }
+
+    /// Prints `line` on standard output and keeps it, with the platform time, for plugins
+    /// ([`World::log`](super::World::log)): a recorder stores it beside the run's data.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// # async fn behaviour(pl: yarok_core::runtime::Pl) {
+    /// pl.log(format!("{:.2} s: the block is grasped", pl.time()));
+    /// # }
+    /// ```
+    pub fn log(&self, line: impl Into<String>) {
+        let text = line.into();
+        println!("{text}");
+        if self.inner.keeps_log {
+            self.inner.log.borrow_mut().push(LogLine {
+                time: self.time(),
+                text,
+            });
+        }
+    }
+
+    /// The lines logged since the behaviours' last turn began.
+    pub(crate) fn logged(&self) -> std::cell::Ref<'_, [LogLine]> {
+        std::cell::Ref::map(self.inner.log.borrow(), Vec::as_slice)
+    }
+
+    /// Forgets the lines logged so far: every plugin has seen them.
+    pub(crate) fn clear_log(&self) {
+        self.inner.log.borrow_mut().clear();
     }
 
     /// Asks the platform to stop after the current tick; `run` then returns `Ok`.

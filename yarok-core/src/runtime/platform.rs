@@ -118,6 +118,7 @@ impl Platform {
             Rc::clone(&handles),
             prepared.behaviour,
             prepared.stop,
+            !prepared.plugins.is_empty(),
         );
         Self {
             environment: prepared.environment,
@@ -404,6 +405,7 @@ impl Platform {
         }
         if !self.plugins.is_empty() {
             self.step_plugins()?;
+            self.pl.clear_log();
         }
         self.clock.advance(self.backend.time());
         if !self.executor.tick() {

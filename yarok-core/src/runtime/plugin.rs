@@ -48,6 +48,12 @@ impl<'a> World<'a> {
         self.settings
     }
 
+    /// The lines behaviours logged ([`Pl::log`]) since the plugins' last step (at the first
+    /// step, since the behaviours started; at the end, since the last step).
+    pub fn log(&self) -> std::cell::Ref<'a, [super::LogLine]> {
+        self.pl.logged()
+    }
+
     /// Every component's probes (images of what it senses), in binding order.
     pub fn probes(&self) -> &'a [Probe] {
         self.probes

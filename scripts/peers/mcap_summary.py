@@ -1,0 +1,62 @@
+"""Reads an MCAP recording with the `mcap` library from PyPI (a third-party reader, run as a
+separate process) and decodes its images with Pillow, to check that yarok's recordings open in
+others' tools.
+
+Usage: mcap_summary.py FILE
+Prints, a line each:
+  `topic NAME SCHEMA ENCODING COUNT` for every channel;
+  `joint_names NAME...`, then `joint_state TIME POSITION...` for every /joint_states message;
+  `image TOPIC TIME WIDTH HEIGHT MODE SPREAD` for every image message, decoded (SPREAD: the
+  difference between its brightest and darkest pixel values);
+  `transforms COUNT` for the bodies in the last /tf message;
+  `log TIME TEXT` for every /log message.
+"""
+
+import base64
+import io
+import json
+import sys
+from collections import Counter
+
+from mcap.reader import make_reader
+from PIL import Image
+
+
+def seconds(stamp):
+    return stamp["sec"] + stamp["nsec"] * 1e-9
+
+
+def main():
+    counts = Counter()
+    kinds = {}
+    names_printed = False
+    last_transforms = 0
+    with open(sys.argv[1], "rb") as stream:
+        reader = make_reader(stream)
+        for schema, channel, message in reader.iter_messages(log_time_order=True):
+            topic = channel.topic
+            counts[topic] += 1
+            kinds[topic] = (schema.name if schema else "-", channel.message_encoding)
+            body = json.loads(message.data)
+            if topic == "/joint_states":
+                if not names_printed:
+                    print("joint_names", *body["name"])
+                    names_printed = True
+                print("joint_state", repr(message.log_time * 1e-9), *(repr(p) for p in body["position"]))
+            elif schema is not None and schema.name == "foxglove.CompressedImage":
+                image = Image.open(io.BytesIO(base64.b64decode(body["data"])))
+                image.load()
+                low, high = image.getextrema()[0] if image.mode == "RGB" else image.getextrema()
+                print("image", topic, repr(seconds(body["timestamp"])), image.width, image.height, image.mode, high - low)
+            elif topic == "/tf":
+                last_transforms = len(body["transforms"])
+            elif topic == "/log":
+                print("log", repr(seconds(body["timestamp"])), body["message"])
+    for topic, count in sorted(counts.items()):
+        schema, encoding = kinds[topic]
+        print("topic", topic, schema, encoding, count)
+    print("transforms", last_transforms)
+
+
+if __name__ == "__main__":
+    main()
