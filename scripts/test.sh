@@ -51,12 +51,19 @@ echo "== embedding and behaviour examples"
 for example in threaded local_set pendulum_clock pick_and_place printer_square; do
   env -u LD_LIBRARY_PATH "$examples/$example"
 done
-env -u LD_LIBRARY_PATH "$examples/printer_camera" --set "behaviour/out=\"$out\""
-test -s "$out/printer_camera_3.png" || { echo "error: printer_camera wrote no images" >&2; exit 1; }
-echo "== the manipulation examples in release, as the README runs them"
+echo "== yarok run: every bundled world with its demo behaviour, in release, as the README runs them"
+cargo build --release --locked --bin yarok
+yarok="${CARGO_TARGET_DIR:-target}/release/yarok"
+"$yarok" run --list | while read -r world behaviour; do
+  echo "-- yarok run $world ($behaviour)"
+  case "$behaviour" in
+    idle | stack) "$yarok" run "$world" </dev/null ;;
+    *) "$yarok" run "$world" --set "behaviour/out=\"$out/$world\"" </dev/null ;;
+  esac
+done
+for image in digit_world/digit_left.png geltip_world/geltip_left.png tactile_rig_world/press_2.png \
+  printer_world/printer_camera_3.png; do
+  test -s "$out/$image" || { echo "error: yarok run wrote no $image" >&2; exit 1; }
+done
 cargo run --release --locked --example pick_and_place
-cargo run --release --locked --example digit_world -- --set "behaviour/out=\"$out\""
-test -s "$out/digit_left.png" || { echo "error: digit_world wrote no tactile image" >&2; exit 1; }
-cargo run --release --locked --example geltip_world -- --set "behaviour/out=\"$out\""
-test -s "$out/geltip_left.png" || { echo "error: geltip_world wrote no tactile image" >&2; exit 1; }
 echo "== all checks passed"

@@ -1,19 +1,9 @@
 //! `yarok compose` dumps composed MJCF from a bundled component or a template file.
 
-use std::process::Command;
+#[path = "support/yarok_binary.rs"]
+mod yarok_binary;
 
-fn yarok(args: &[&str]) -> (i32, String, String) {
-    let output = Command::new(env!("CARGO_BIN_EXE_yarok"))
-        .args(args)
-        .output()
-        .unwrap();
-    let text = |bytes: Vec<u8>| String::from_utf8(bytes).unwrap();
-    (
-        output.status.code().unwrap(),
-        text(output.stdout),
-        text(output.stderr),
-    )
-}
+use yarok_binary::yarok;
 
 #[test]
 fn composes_a_bundled_component_with_overrides() {
@@ -88,15 +78,17 @@ fn help_goes_to_stdout_and_succeeds() {
         &["-h"],
         &["compose", "--help"],
         &["tactile", "--help"],
+        &["run", "--help"],
     ] {
         let (code, out, err) = yarok(args);
         assert_eq!(code, 0, "{args:?}: {err}");
-        assert!(out.starts_with("usage: yarok compose"), "{args:?}: {out}");
+        assert!(out.starts_with("usage: yarok run"), "{args:?}: {out}");
+        assert!(out.contains("yarok compose"), "{args:?}: {out}");
         assert!(err.is_empty(), "{args:?}: {err}");
     }
     let (code, out, err) = yarok(&[]);
     assert_eq!((code, out.as_str()), (2, ""));
-    assert!(err.contains("usage: yarok compose"), "{err}");
+    assert!(err.contains("usage: yarok run"), "{err}");
 }
 
 #[test]

@@ -1,23 +1,16 @@
 //! `yarok tactile` turns depth maps into tactile images from the command line.
 
 use std::path::PathBuf;
-use std::process::Command;
+
+#[path = "support/yarok_binary.rs"]
+mod yarok_binary;
+
+use yarok_binary::yarok;
 
 fn golden(path: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("tests/golden/tactile")
         .join(path)
-}
-
-fn yarok(args: &[&str]) -> (i32, String) {
-    let output = Command::new(env!("CARGO_BIN_EXE_yarok"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        output.status.code().unwrap(),
-        String::from_utf8(output.stderr).unwrap(),
-    )
 }
 
 #[test]
@@ -26,7 +19,7 @@ fn the_digit_model_from_the_command_line_matches_the_reference() {
     let out = dir.path().join("digit.png");
     let depth = golden("digit/sphere_center/input_depth.npy.gz");
     let background = golden("digit/background.png");
-    let (code, stderr) = yarok(&[
+    let (code, _, stderr) = yarok(&[
         "tactile",
         "digit",
         depth.to_str().unwrap(),
@@ -60,7 +53,7 @@ fn millimetre_pngs_and_geltip_geometry_are_read() {
         image::ImageBuffer::<image::Luma<u16>, _>::from_pixel(320, 240, image::Luma([30u16]));
     flat.save(&depth_png).unwrap();
     let out = dir.path().join("out.png");
-    let (code, stderr) = yarok(&[
+    let (code, _, stderr) = yarok(&[
         "tactile",
         "gelsight",
         depth_png.to_str().unwrap(),
@@ -74,7 +67,7 @@ fn millimetre_pngs_and_geltip_geometry_are_read() {
 
     let depth = golden("geltip/sphere_center/input_depth.npy.gz");
     let params = golden("geltip/params");
-    let (code, stderr) = yarok(&[
+    let (code, _, stderr) = yarok(&[
         "tactile",
         "geltip",
         depth.to_str().unwrap(),
@@ -103,7 +96,7 @@ fn geltip_light_fields_are_computed_from_the_membrane() {
     let render = |case: &str, method: &str| {
         let out = dir.path().join(format!("{case}_{method}.png"));
         let depth = golden(&format!("geltip/{case}/input_depth.npy.gz"));
-        let (code, stderr) = yarok(&[
+        let (code, _, stderr) = yarok(&[
             "tactile",
             "geltip",
             depth.to_str().unwrap(),
@@ -123,7 +116,7 @@ fn geltip_light_fields_are_computed_from_the_membrane() {
     }
     assert_ne!(render("flat", "linear"), render("flat", "plane"));
     let depth = golden("geltip/flat/input_depth.npy.gz");
-    let (code, stderr) = yarok(&[
+    let (code, _, stderr) = yarok(&[
         "tactile",
         "geltip",
         depth.to_str().unwrap(),
@@ -141,12 +134,12 @@ fn geltip_light_fields_are_computed_from_the_membrane() {
 fn mistakes_are_explained() {
     let depth = golden("geltip/sphere_center/input_depth.npy.gz");
     let depth = depth.to_str().unwrap();
-    let (code, stderr) = yarok(&["tactile", "geltip", depth, "/tmp/x.png"]);
+    let (code, _, stderr) = yarok(&["tactile", "geltip", depth, "/tmp/x.png"]);
     assert_eq!(
         (code, stderr.trim()),
         (2, "error: geltip needs --geltip-params DIR")
     );
-    let (code, stderr) = yarok(&[
+    let (code, _, stderr) = yarok(&[
         "tactile",
         "geltip",
         depth,
@@ -158,13 +151,13 @@ fn mistakes_are_explained() {
         code == 2 && stderr.contains("--light-fields curved: expected files, linear or plane"),
         "{stderr}"
     );
-    let (code, stderr) = yarok(&["tactile", "digits", depth, "/tmp/x.png"]);
+    let (code, _, stderr) = yarok(&["tactile", "digits", depth, "/tmp/x.png"]);
     assert!(
         code == 2 && stderr.contains("unknown sensor \"digits\""),
         "{stderr}"
     );
     let background = golden("digit/background.png");
-    let (code, stderr) = yarok(&[
+    let (code, _, stderr) = yarok(&[
         "tactile",
         "gelsight",
         depth,
@@ -176,7 +169,7 @@ fn mistakes_are_explained() {
         code == 2 && stderr.contains("is 240×320, the depth map 320×240"),
         "{stderr}"
     );
-    let (code, stderr) = yarok(&["tactile", "gelsight", "/nonexistent.npy", "/tmp/x.png"]);
+    let (code, _, stderr) = yarok(&["tactile", "gelsight", "/nonexistent.npy", "/tmp/x.png"]);
     assert!(code == 2 && stderr.contains("/nonexistent.npy"), "{stderr}");
 }
 
@@ -225,7 +218,7 @@ fn a_millimetre_png_gives_the_same_image_as_the_equivalent_metric_npy() {
     write_npy(&npy, rows, columns, &metres);
     let render = |input: &std::path::Path| {
         let out = dir.path().join("out.png");
-        let (code, stderr) = yarok(&[
+        let (code, _, stderr) = yarok(&[
             "tactile",
             "gelsight",
             input.to_str().unwrap(),

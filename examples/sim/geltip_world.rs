@@ -2,90 +2,15 @@
 //! lying on the table by one end and pulls it 25 cm across; it saves what each GelTip sees while
 //! holding the rope (`out/geltip_left.png`, `out/geltip_right.png`). Exits non-zero if the rope's
 //! end moved less than 10 cm.
+//! The behaviour is [`demos::pull`](yarok::components::demos::pull), which `yarok run geltip_world`
+//! runs too.
 //!
 //! ```text
 //! cargo run --release --example geltip_world [-- --set behaviour/out="shots"]
 //! ```
 
-use std::f64::consts::PI;
-
-use yarok::Pl;
-use yarok::components::grippers::Robotiq2f85;
-use yarok::components::robots::ur::{Ur5e, pose_from_vector};
-use yarok::components::tactile_sensors::GelTip;
-use yarok::components::toys::{Rope, Spot};
+use yarok::components::demos;
 use yarok::components::worlds::GelTipWorld;
-
-/// How high above the table the TCP grips: the GelTips' domes just clear the table.
-const GRIP_HEIGHT: f64 = 0.032;
-
-async fn pull(pl: Pl) -> yarok::BehaviourResult {
-    let arm: Ur5e = pl.get("/arm")?;
-    let gripper: Robotiq2f85 = pl.get("/arm/gripper")?;
-    let sensors: [GelTip; 2] = [
-        pl.get("/arm/gripper/left_geltip")?,
-        pl.get("/arm/gripper/right_geltip")?,
-    ];
-    let rope: Rope = pl.get("/rope")?;
-    let table = pl.get::<Spot>("/target")?.position()[2];
-    let Some(out) = pl.config().get("out").and_then(|out| out.as_str()) else {
-        return Err("behaviour/out must be a folder".into());
-    };
-    std::fs::create_dir_all(out)?;
-    // The TCP pointing down (fingers closing across the rope), `z` above the table.
-    let down = |x: f64, y: f64, z: f64| pose_from_vector([x, y, z, PI, 0.0, 0.0]);
-
-    let [end, _] = rope.ends();
-    let [x, y, _] = end;
-    gripper.open().await?;
-    // Above the rope's end with the shoulder lifted and the elbow up, clear of the table: of
-    // the arm's inverse solutions, the nearest of that posture.
-    let current = arm.q();
-    let above = arm
-        .kinematics()
-        .solutions(&down(x, y, 0.12), &current)
-        .into_iter()
-        .filter(|q| q[1] < 0.0 && q[1] > -PI && q[2] > 0.0)
-        .min_by(|a, b| motion(a, &current).total_cmp(&motion(b, &current)))
-        .ok_or("the rope's end is out of reach")?;
-    arm.move_j(above).await?;
-    arm.move_l(down(x, y, GRIP_HEIGHT)).await?;
-    if !gripper.close().force(150).await?.object_detected {
-        return Err("the gripper closed on nothing".into());
-    }
-    pl.wait_seconds(0.1).await?;
-    for (sensor, side) in sensors.iter().zip(["left", "right"]) {
-        let path = format!("{out}/geltip_{side}.png");
-        sensor.read().save(&path)?;
-        let contact = sensor.contact()?;
-        println!(
-            "{side} GelTip: {:.2} mm deep over {:.1} mm² → {path}",
-            contact.max_indentation * 1e3,
-            contact.area * 1e6
-        );
-    }
-    arm.move_l(down(x, y, GRIP_HEIGHT + 0.02)).await?;
-    arm.move_l(down(x, y + 0.25, GRIP_HEIGHT + 0.02))
-        .speed(0.1)
-        .await?;
-    let [moved, _] = rope.ends();
-    let distance = (moved[0] - end[0]).hypot(moved[1] - end[1]);
-    println!(
-        "t = {:.2} s: the rope's end moved {:.1} cm (table at {table:.2} m)",
-        pl.time(),
-        distance * 100.0
-    );
-    gripper.open().await?;
-    if distance < 0.10 {
-        return Err(format!("the rope's end moved only {:.1} cm", distance * 100.0).into());
-    }
-    Ok(())
-}
-
-/// How far (sum of joint angles, radians) `q` is from `current`.
-fn motion(q: &[f64; 6], current: &[f64; 6]) -> f64 {
-    q.iter().zip(current).map(|(a, b)| (a - b).abs()).sum()
-}
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let started = std::time::Instant::now();
@@ -93,7 +18,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .world::<GelTipWorld>()
         .behaviour_default("out", "out")
         .args(std::env::args().skip(1))?
-        .behaviour(pull)
+        .behaviour(demos::pull)
         .run()?;
     println!(
         "done in {:.1} s of wall time",

@@ -5,11 +5,14 @@
 //! sensors ([`tactile`]), the Anet A30 printer used as a cartesian robot ([`robots::AnetA30`]),
 //! the UR5 and UR5e arms with their closed-form kinematics ([`robots::ur`]), the Robotiq
 //! 2F-85 gripper ([`grippers::Robotiq2f85`]), a tumble tower
-//! ([`toys::TumbleTower`]) and worlds ([`worlds`]). [`nalgebra`] is re-exported for poses.
+//! ([`toys::TumbleTower`]) and worlds ([`worlds`]), each world with behaviours that show it at
+//! work ([`demos`]); plugins that record runs ([`plugins`]). [`nalgebra`] is re-exported for
+//! poses.
 //!
 pub use nalgebra;
 
 pub mod cameras;
+pub mod demos;
 pub mod grippers;
 pub mod plugins;
 mod probe_images;

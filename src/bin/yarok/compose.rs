@@ -1,0 +1,76 @@
+//! `yarok compose`: the composed MJCF of a world.
+
+use std::path::PathBuf;
+
+use yarok::components::catalogue;
+use yarok::core::component::Declaration;
+use yarok::core::compose::{compose_configured, compose_declaration};
+use yarok::core::config::{RunConfig, Settings};
+
+use super::USAGE;
+
+struct Args {
+    world: String,
+    settings: Settings,
+    out: Option<PathBuf>,
+}
+
+fn parse(mut args: impl Iterator<Item = String>) -> Result<Args, String> {
+    let mut world = None;
+    let mut config = RunConfig::default();
+    let mut out = None;
+    while let Some(arg) = args.next() {
+        match arg.as_str() {
+            "--set" => {
+                let assignment = args.next().ok_or("--set needs KEY=VALUE")?;
+                config.set(&assignment).map_err(|e| e.to_string())?;
+            }
+            "--out" => out = Some(PathBuf::from(args.next().ok_or("--out needs a file")?)),
+            _ if world.is_none() => world = Some(arg),
+            _ => return Err(format!("unexpected argument {arg:?}\n{USAGE}")),
+        }
+    }
+    Ok(Args {
+        world: world.ok_or(USAGE)?,
+        settings: config.settings("sim"),
+        out,
+    })
+}
+
+/// Runs `yarok compose` with the arguments after `compose`.
+pub(super) fn run(args: &[String]) -> Result<(), String> {
+    let args = parse(args.iter().cloned())?;
+    let bundled = catalogue();
+    let composition = match bundled.iter().find(|c| c.declaration().tag() == args.world) {
+        Some(component) => compose_configured(*component, &args.settings),
+        None if PathBuf::from(&args.world).is_file() => {
+            let world = bundled.iter().fold(
+                Declaration::new("world").template_file(&args.world),
+                |d, c| d.uses_type(*c),
+            );
+            compose_declaration(world, &args.settings)
+        }
+        None => {
+            let tags: Vec<String> = bundled
+                .iter()
+                .map(|c| c.declaration().tag().to_owned())
+                .collect();
+            return Err(format!(
+                "{} is neither a bundled component ({}) nor a file",
+                args.world,
+                tags.join(", ")
+            ));
+        }
+    }
+    .map_err(|e| e.to_string())?;
+    let xml = composition.to_xml();
+    match args.out {
+        Some(path) => {
+            std::fs::write(&path, xml).map_err(|e| format!("cannot write {}: {e}", path.display()))
+        }
+        None => {
+            print!("{xml}");
+            Ok(())
+        }
+    }
+}

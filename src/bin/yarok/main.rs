@@ -1,0 +1,78 @@
+//! The `yarok` command line.
+//!
+//! ```text
+//! yarok --help
+//! yarok run WORLD [--behaviour NAME] [--record FILE.mcap] [--video FILE.mp4]
+//!           [--env ENV] [--set TARGET=VALUE]... [--config FILE]
+//! yarok run --list
+//! yarok compose WORLD [--set [/PATH/]KEY=VALUE]... [--out FILE]
+//! yarok tactile digit|gelsight|geltip DEPTH OUT.png [--background PNG] [--geltip-params DIR]
+//!               [--noise SIGMA] [--seed N]
+//! ```
+//!
+//! `run` runs a bundled world (`pick_and_place_world`, …; `--list` lists them) with one of its
+//! demo behaviours (the first by default), optionally recorded in MCAP and filmed; while
+//! standard error is a terminal it shows platform time, the real-time factor and ticks per
+//! second. `--env`, `--set` and `--config` are the platform's own options.
+//!
+//! `compose` writes the composed MJCF of WORLD — a bundled component's tag (e.g.
+//! `tumble-tower`) or an MJCF template file, in which bundled components' tags may be used — to
+//! standard output or FILE. `--set` overrides a config value of the world (`rows=4`) or of the
+//! component at a path (`/tower/rows=4`).
+//!
+//! `tactile` turns a depth map into a tactile image with a sensor's optical model. DEPTH is a
+//! 16-bit PNG in millimetres or a `.npy`/`.npy.gz` float array in the model's unit (DIGIT: the raw
+//! z-buffer, as the reference; a PNG selects DIGIT's metric mode). GelTip needs its geometry:
+//! `--geltip-params DIR` with `bkg_depth_m.npy.gz` and `light_field_{0,1,2}.npy.gz`.
+
+mod compose;
+mod run;
+mod tactile;
+
+use std::process::ExitCode;
+
+const USAGE: &str = "usage: yarok run WORLD [--behaviour NAME] [--record FILE.mcap] [--video FILE.mp4]
+                 [--env ENV] [--set TARGET=VALUE]... [--config FILE]
+       yarok run --list
+       yarok compose WORLD [--set [/PATH/]KEY=VALUE]... [--out FILE]
+       yarok tactile digit|gelsight|geltip DEPTH OUT.png [--background PNG] [--noise SIGMA] [--seed N]
+                     [--geltip-params DIR] [--light-fields files|linear|plane]
+  WORLD  run: a bundled world's tag (see --list); compose: a bundled component's tag, or an
+         MJCF template file
+  DEPTH  a 16-bit PNG in millimetres, or a .npy/.npy.gz float array
+  DIR    GelTip geometry: bkg_depth_m.npy.gz (the membrane's depth) and, for --light-fields files
+         (the default), light_field_{0,1,2}.npy.gz; linear and plane compute the fields for three
+         LEDs on a 12.6 mm ring at the membrane's nearest depth";
+
+/// How a command failed: its message, and the exit status.
+struct Failure {
+    message: String,
+    status: u8,
+}
+
+impl From<String> for Failure {
+    fn from(message: String) -> Self {
+        Self { message, status: 2 }
+    }
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.iter().any(|a| a == "-h" || a == "--help") {
+        println!("{USAGE}");
+        return ExitCode::SUCCESS;
+    }
+    let result = match args.first().map(String::as_str) {
+        Some("run") => run::run(&args[1..]),
+        Some("compose") => compose::run(&args[1..]).map_err(Failure::from),
+        Some("tactile") => tactile::run(&args[1..]).map_err(Failure::from),
+        _ => Err(Failure::from(USAGE.to_owned())),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(Failure { message, status }) => {
+            eprintln!("error: {message}");
+            ExitCode::from(status)
+        }
+    }
+}

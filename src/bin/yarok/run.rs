@@ -1,0 +1,119 @@
+//! `yarok run`: a bundled world with one of its demo behaviours.
+
+use std::io::IsTerminal;
+
+use yarok::RuntimeError;
+use yarok::components::demos::{self, Demo};
+use yarok::components::plugins::StatusLine;
+use yarok::core::suggest::did_you_mean;
+
+use super::{Failure, USAGE};
+
+/// The options `yarok run` reads itself; the platform reads `--env`, `--set` and `--config`.
+const OWN_OPTIONS: [&str; 3] = ["--behaviour", "--record", "--video"];
+const PLATFORM_OPTIONS: [&str; 3] = ["--env", "--set", "--config"];
+
+/// What to run.
+#[derive(Debug, Default)]
+struct Args {
+    world: Option<String>,
+    behaviour: Option<String>,
+    /// For the platform: `--env`, `--set` and `--config` with their values, and the settings
+    /// `--record` and `--video` stand for.
+    platform: Vec<String>,
+    list: bool,
+}
+
+fn parse(args: &[String]) -> Result<Args, String> {
+    let mut parsed = Args::default();
+    let mut args = args.iter();
+    while let Some(arg) = args.next() {
+        let mut value = || {
+            args.next()
+                .cloned()
+                .ok_or_else(|| format!("{arg} needs a value"))
+        };
+        match arg.as_str() {
+            "--list" => parsed.list = true,
+            "--behaviour" => parsed.behaviour = Some(value()?),
+            "--record" => parsed.set(&format!("plugins/mcap/path={:?}", value()?)),
+            "--video" => parsed.set(&format!("plugins/video/path={:?}", value()?)),
+            option if PLATFORM_OPTIONS.contains(&option) => {
+                let value = value()?;
+                parsed.platform.extend([arg.clone(), value]);
+            }
+            option if option.starts_with('-') => {
+                let known = OWN_OPTIONS.iter().chain(&PLATFORM_OPTIONS).copied();
+                return Err(format!(
+                    "unknown option {option}{}\n{USAGE}",
+                    did_you_mean(option, known.chain(["--list"]))
+                ));
+            }
+            _ if parsed.world.is_none() => parsed.world = Some(arg.clone()),
+            _ => return Err(format!("unexpected argument {arg:?}\n{USAGE}")),
+        }
+    }
+    Ok(parsed)
+}
+
+impl Args {
+    fn set(&mut self, assignment: &str) {
+        self.platform
+            .extend(["--set".to_owned(), assignment.to_owned()]);
+    }
+}
+
+/// The bundled worlds and their behaviours, a line each.
+fn list() -> String {
+    demos::demos()
+        .iter()
+        .map(|demo| {
+            let names: Vec<&str> = demo.behaviours.iter().map(|b| b.name).collect();
+            format!("{:<22} {}", demo.tag(), names.join(", "))
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+fn find(world: &str) -> Result<Demo, String> {
+    demos::find(world).ok_or_else(|| {
+        let tags: Vec<String> = demos::demos().iter().map(Demo::tag).collect();
+        format!(
+            "no bundled world {world:?}{} (yarok run --list shows them)",
+            did_you_mean(world, tags.iter().map(String::as_str))
+        )
+    })
+}
+
+/// Runs `yarok run` with the arguments after `run`.
+pub(super) fn run(args: &[String]) -> Result<(), Failure> {
+    let args = parse(args)?;
+    if args.list {
+        println!("{}", list());
+        return Ok(());
+    }
+    let world = args.world.ok_or_else(|| USAGE.to_owned())?;
+    let demo = find(&world)?;
+    let behaviour = demo.behaviour(args.behaviour.as_deref()).ok_or_else(|| {
+        let names = demo.behaviours.iter().map(|b| b.name);
+        format!(
+            "{world} has no behaviour {:?}{}",
+            args.behaviour.as_deref().unwrap_or_default(),
+            did_you_mean(args.behaviour.as_deref().unwrap_or_default(), names)
+        )
+    })?;
+    let mut platform = behaviour
+        .install(yarok::platform().world_type(demo.world))
+        .args(args.platform)
+        .map_err(|e| e.to_string())?;
+    if std::io::stderr().is_terminal() {
+        platform = platform.plugin(StatusLine::new());
+    }
+    platform.run().map_err(|error| match error {
+        RuntimeError::Interrupted => Failure {
+            message: "interrupted".into(),
+            status: 130,
+        },
+        error => Failure::from(error.to_string()),
+    })
+}

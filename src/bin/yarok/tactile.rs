@@ -1,0 +1,164 @@
+//! `yarok tactile`: a depth map turned into a tactile image by a sensor's optical model.
+
+use yarok::components::tactile::geltip::{GelTipModel, GelTipParams, read_membrane};
+use yarok::components::tactile::light_fields::{LightFieldMethod, led_ring};
+use yarok::components::tactile::phong::{PhongModel, PhongParams};
+use yarok::components::tactile::{default_background, npy};
+
+struct Options<'a> {
+    sensor: &'a str,
+    depth: &'a str,
+    out: &'a str,
+    background: Option<&'a str>,
+    geltip_params: Option<&'a str>,
+    light_fields: Option<LightFieldMethod>,
+    noise: Option<f64>,
+    seed: u64,
+}
+
+fn options(args: &[String]) -> Result<Options<'_>, String> {
+    let [sensor, depth, out, rest @ ..] = args else {
+        return Err(super::USAGE.to_owned());
+    };
+    let mut options = Options {
+        sensor,
+        depth,
+        out,
+        background: None,
+        geltip_params: None,
+        light_fields: None,
+        noise: None,
+        seed: 0,
+    };
+    let mut rest = rest.iter();
+    while let Some(flag) = rest.next() {
+        let value = rest.next().ok_or_else(|| format!("{flag} needs a value"))?;
+        match flag.as_str() {
+            "--background" => options.background = Some(value),
+            "--geltip-params" => options.geltip_params = Some(value),
+            "--light-fields" => {
+                options.light_fields = match value.as_str() {
+                    "files" => None,
+                    "linear" => Some(LightFieldMethod::Linear),
+                    "plane" => Some(LightFieldMethod::Plane),
+                    other => {
+                        return Err(format!(
+                            "--light-fields {other}: expected files, linear or plane"
+                        ));
+                    }
+                }
+            }
+            "--noise" => {
+                options.noise = Some(
+                    value
+                        .parse()
+                        .map_err(|_| format!("--noise {value}: not a number"))?,
+                )
+            }
+            "--seed" => {
+                options.seed = value
+                    .parse()
+                    .map_err(|_| format!("--seed {value}: not an integer"))?
+            }
+            other => return Err(format!("unknown option {other}\n{}", super::USAGE)),
+        }
+    }
+    Ok(options)
+}
+
+/// The depth map and its width; PNGs are millimetres, converted to metres.
+fn depth(path: &str) -> Result<(Vec<f32>, usize, bool), String> {
+    if path.ends_with(".png") {
+        let image = image::open(path)
+            .map_err(|e| format!("{path}: {e}"))?
+            .to_luma16();
+        let width = image.width() as usize;
+        return Ok((
+            image.pixels().map(|p| f32::from(p[0]) / 1000.0).collect(),
+            width,
+            true,
+        ));
+    }
+    let array = npy::read(path).map_err(|e| e.to_string())?;
+    match array.shape[..] {
+        [_, width] => Ok((array.data, width, false)),
+        _ => Err(format!(
+            "{path}: expected a 2-D array, got shape {:?}",
+            array.shape
+        )),
+    }
+}
+
+/// The GelTip model of the geometry in `dir`, its light fields read from there or computed.
+fn geltip(dir: &str, method: Option<LightFieldMethod>) -> Result<GelTipModel, String> {
+    let params = GelTipParams::default();
+    let Some(method) = method else {
+        return GelTipModel::load(params, dir).map_err(|e| e.to_string());
+    };
+    let (membrane, width) = read_membrane(dir).map_err(|e| e.to_string())?;
+    let nearest = membrane.iter().copied().fold(f32::INFINITY, f32::min);
+    let leds = led_ring(params.lights.len(), 0.0126, f64::from(nearest));
+    GelTipModel::from_geometry(params, &membrane, width, &leds, method)
+        .map_err(|e| format!("{dir}: {e}"))
+}
+
+/// Runs `yarok tactile` with the arguments after `tactile`.
+pub(super) fn run(args: &[String]) -> Result<(), String> {
+    let options = options(args)?;
+    let (depth, width, metric) = depth(options.depth)?;
+    let height = depth.len() / width.max(1);
+    let background = match options.background {
+        Some(path) => {
+            let image = image::open(path)
+                .map_err(|e| format!("{path}: {e}"))?
+                .to_rgb8();
+            if (image.width() as usize, image.height() as usize) != (width, height) {
+                return Err(format!(
+                    "{path} is {}×{}, the depth map {width}×{height}",
+                    image.width(),
+                    image.height()
+                ));
+            }
+            image.into_raw()
+        }
+        None => default_background(width, height),
+    };
+    let image = match options.sensor {
+        "digit" | "gelsight" => {
+            let mut params = match (options.sensor, metric) {
+                ("digit", true) => PhongParams::digit_metric(),
+                ("digit", false) => PhongParams::digit(),
+                _ => PhongParams::gelsight2014(),
+            };
+            params.texture_sigma = options.noise.unwrap_or(params.texture_sigma);
+            params.seed = options.seed;
+            PhongModel::new(params)
+                .render(&depth, width, &background)
+                .map_err(|e| format!("{}: {e}", options.depth))?
+        }
+        "geltip" => {
+            let dir = options
+                .geltip_params
+                .ok_or("geltip needs --geltip-params DIR")?;
+            let mut model = geltip(dir, options.light_fields)?;
+            if model.size() != (width, height) {
+                let (w, h) = model.size();
+                return Err(format!(
+                    "the GelTip geometry is {h}×{w}, the depth map {height}×{width}"
+                ));
+            }
+            model
+                .render(&depth, &background)
+                .map_err(|e| format!("{}: {e}", options.depth))?
+        }
+        other => {
+            return Err(format!(
+                "unknown sensor {other:?}: digit, gelsight or geltip"
+            ));
+        }
+    };
+    image::RgbImage::from_raw(width as u32, height as u32, image)
+        .ok_or("internal: image size")?
+        .save(options.out)
+        .map_err(|e| format!("{}: {e}", options.out))
+}

@@ -1,0 +1,79 @@
+//! `yarok run` runs the bundled worlds with their demo behaviours: it lists them, records a run
+//! in MCAP, and refuses a world, a behaviour or an option it does not know with the nearest
+//! name. (Every world's run is in `scripts/test.sh`, in release.)
+
+#[path = "support/yarok_binary.rs"]
+mod yarok_binary;
+
+use yarok::components::demos;
+use yarok_binary::yarok;
+
+#[test]
+fn lists_every_bundled_world_with_its_behaviours() {
+    let (code, stdout, _) = yarok(&["run", "--list"]);
+    assert_eq!(code, 0);
+    let lines: Vec<&str> = stdout.lines().collect();
+    assert_eq!(lines.len(), demos::demos().len(), "{stdout}");
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.split_whitespace().collect::<Vec<_>>() == ["pick_and_place_world", "stack"]),
+        "{stdout}"
+    );
+}
+
+#[test]
+fn records_a_run_in_mcap() {
+    let folder = tempfile::tempdir().unwrap();
+    let file = folder.path().join("tower.mcap");
+    let (code, stdout, stderr) = yarok(&[
+        "run",
+        "tower_world",
+        "--record",
+        file.to_str().unwrap(),
+        "--set",
+        "behaviour/seconds=0.5",
+        "--set",
+        "/tower/rows=2",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("t = 0.50 s: 250 ticks"), "{stdout}");
+    let bytes = std::fs::read(&file).unwrap();
+    let magic = b"\x89MCAP0\r\n";
+    assert!(bytes.starts_with(magic) && bytes.ends_with(magic));
+    let text = String::from_utf8_lossy(&bytes);
+    // Two rows of three blocks, each a free joint of seven coordinates.
+    assert!(
+        text.contains("/joint_states") && text.contains("[6]"),
+        "no joint states"
+    );
+    assert!(
+        text.contains("t = 0.50 s: 250 ticks"),
+        "the log line is recorded"
+    );
+}
+
+#[test]
+fn unknown_names_get_the_nearest() {
+    let (code, _, stderr) = yarok(&["run", "pick_and_plac_world"]);
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains("did you mean `pick_and_place_world`"),
+        "{stderr}"
+    );
+    let (code, _, stderr) = yarok(&["run", "pick_and_place_world", "--behaviour", "stak"]);
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains("no behaviour \"stak\"; did you mean `stack`"),
+        "{stderr}"
+    );
+    let (code, _, stderr) = yarok(&["run", "empty_world", "--recrd", "x.mcap"]);
+    assert_eq!(code, 2);
+    assert!(stderr.contains("did you mean `--record`"), "{stderr}");
+    let (code, _, stderr) = yarok(&["run", "empty_world", "--set", "behaviour/out=\"x\""]);
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains("no config key `out` (it has seconds)"),
+        "{stderr}"
+    );
+}

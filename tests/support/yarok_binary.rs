@@ -1,0 +1,17 @@
+//! The `yarok` command line, run as a user runs it.
+
+use std::process::Command;
+
+/// What `yarok ARGS` did: its exit status, standard output and standard error.
+pub(crate) fn yarok(args: &[&str]) -> (i32, String, String) {
+    let output = Command::new(env!("CARGO_BIN_EXE_yarok"))
+        .args(args)
+        .output()
+        .unwrap();
+    let text = |bytes: Vec<u8>| String::from_utf8(bytes).unwrap();
+    (
+        output.status.code().unwrap(),
+        text(output.stdout),
+        text(output.stderr),
+    )
+}
