@@ -11,6 +11,8 @@
 //! # Cargo features
 //!
 //! - `render` (default): offscreen camera rendering through EGL (see [`mjc::Renderer`]).
+//! - `viewer`: the viewer and inspector windows on X11 (`components::plugins::Viewer`,
+//!   `components::plugins::Inspector`; `yarok run WORLD --viewer --inspect`).
 //!
 //! # The project's README
 //!
@@ -52,7 +54,8 @@ pub const MOCK_TIMESTEP: f64 = 0.002;
 /// A platform builder with yarok's environments and plugins registered: environments `sim`
 /// (MuJoCo, the default), `real` (hardware, ticking at `[platform] tick_hz`) and `mock` (no
 /// backend, 2 ms ticks); plugins `joints_csv` ([`components::plugins::JointRecorder`]), `mcap`
-/// ([`components::plugins::McapRecorder`]) and `video` ([`components::plugins::VideoRecorder`]).
+/// ([`components::plugins::McapRecorder`]) and `video` ([`components::plugins::VideoRecorder`]);
+/// with the feature `viewer`, `viewer` and `inspector` (the windows).
 ///
 /// # Examples
 ///
@@ -72,11 +75,16 @@ pub const MOCK_TIMESTEP: f64 = 0.002;
 /// # Ok::<(), yarok::RuntimeError>(())
 /// ```
 pub fn platform() -> PlatformBuilder {
-    Platform::builder()
+    let builder = Platform::builder()
         .backend::<mjc::Sim>(mjc::SimBackend::from_settings)
         .backend::<hw::Real>(hw::HardwareBackend::from_settings)
         .backend::<Mock>(|_, _| Ok(MockBackend::new(MOCK_TIMESTEP, false)))
         .plugin_factory("joints_csv", components::plugins::JointRecorder::new)
         .plugin_factory("mcap", components::plugins::McapRecorder::new)
-        .plugin_factory("video", components::plugins::VideoRecorder::new)
+        .plugin_factory("video", components::plugins::VideoRecorder::new);
+    #[cfg(feature = "viewer")]
+    let builder = builder
+        .plugin_factory("viewer", components::plugins::Viewer::new)
+        .plugin_factory("inspector", components::plugins::Inspector::new);
+    builder
 }

@@ -40,6 +40,8 @@
 //!
 //! - `render` (default): [`Renderer`], offscreen rendering through EGL (libEGL is opened at run
 //!   time; Mesa's llvmpipe serves machines without a GPU).
+//! - `viewer`: [`View`], a model's scene drawn live into an X11 [`Window`] (libX11 is opened at
+//!   run time).
 //!
 //! # Logging
 //!
@@ -91,6 +93,10 @@ pub use image;
 pub use model::{
     ActuatorId, BodyId, CameraId, GeomId, JointId, KeyframeId, Model, ObjectKind, SensorId, SiteId,
     TendonId,
+};
+#[cfg(feature = "viewer")]
+pub use render::{
+    Button, Corner, Gallery, Key, Overlay, Picture, View, Visual, Window, WindowEvent,
 };
 #[cfg(feature = "render")]
 pub use render::{

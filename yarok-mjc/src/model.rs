@@ -302,7 +302,7 @@ impl Model {
     }
 
     /// The name of object `index` of `kind`, if it has one.
-    fn name_of(&self, kind: ObjectKind, index: usize) -> Option<String> {
+    pub(crate) fn name_of(&self, kind: ObjectKind, index: usize) -> Option<String> {
         let index = i32::try_from(index).ok()?;
         // SAFETY: the model pointer is valid and `index` is one of its objects of `kind`.
         let name = unsafe { self.mj.mj_id2name(self.raw.as_ptr(), kind.mj_obj(), index) };

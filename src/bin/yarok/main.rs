@@ -2,8 +2,8 @@
 //!
 //! ```text
 //! yarok --help
-//! yarok run WORLD [--behaviour NAME] [--record FILE.mcap] [--video FILE.mp4]
-//!           [--env ENV] [--set TARGET=VALUE]... [--config FILE]
+//! yarok run WORLD [--behaviour NAME] [--viewer] [--inspect] [--record FILE.mcap]
+//!           [--video FILE.mp4] [--env ENV] [--set TARGET=VALUE]... [--config FILE]
 //! yarok run --list
 //! yarok compose WORLD [--set [/PATH/]KEY=VALUE]... [--out FILE]
 //! yarok tactile digit|gelsight|geltip DEPTH OUT.png [--background PNG] [--geltip-params DIR]
@@ -11,7 +11,8 @@
 //! ```
 //!
 //! `run` runs a bundled world (`pick_and_place_world`, …; `--list` lists them) with one of its
-//! demo behaviours (the first by default), optionally recorded in MCAP and filmed; while
+//! demo behaviours (the first by default), optionally watched in a window (`--viewer`; the
+//! probes' images in another, `--inspect`: feature `viewer`), recorded in MCAP and filmed; while
 //! standard error is a terminal it shows platform time, the real-time factor and ticks per
 //! second. `--env`, `--set` and `--config` are the platform's own options.
 //!
@@ -31,8 +32,8 @@ mod tactile;
 
 use std::process::ExitCode;
 
-const USAGE: &str = "usage: yarok run WORLD [--behaviour NAME] [--record FILE.mcap] [--video FILE.mp4]
-                 [--env ENV] [--set TARGET=VALUE]... [--config FILE]
+const USAGE: &str = "usage: yarok run WORLD [--behaviour NAME] [--viewer] [--inspect] [--record FILE.mcap]
+                 [--video FILE.mp4] [--env ENV] [--set TARGET=VALUE]... [--config FILE]
        yarok run --list
        yarok compose WORLD [--set [/PATH/]KEY=VALUE]... [--out FILE]
        yarok tactile digit|gelsight|geltip DEPTH OUT.png [--background PNG] [--noise SIGMA] [--seed N]

@@ -10,7 +10,13 @@ use yarok::core::suggest::did_you_mean;
 use super::{Failure, USAGE};
 
 /// The options `yarok run` reads itself; the platform reads `--env`, `--set` and `--config`.
-const OWN_OPTIONS: [&str; 3] = ["--behaviour", "--record", "--video"];
+const OWN_OPTIONS: [&str; 5] = [
+    "--behaviour",
+    "--record",
+    "--video",
+    "--viewer",
+    "--inspect",
+];
 const PLATFORM_OPTIONS: [&str; 3] = ["--env", "--set", "--config"];
 
 /// What to run.
@@ -18,8 +24,10 @@ const PLATFORM_OPTIONS: [&str; 3] = ["--env", "--set", "--config"];
 struct Args {
     world: Option<String>,
     behaviour: Option<String>,
-    /// For the platform: `--env`, `--set` and `--config` with their values, and the settings
-    /// `--record` and `--video` stand for.
+    /// The settings `--record`, `--video`, `--viewer` and `--inspect` stand for, as `--set`
+    /// arguments: before the user's, which may refine them.
+    plugins: Vec<String>,
+    /// For the platform: `--env`, `--set` and `--config` with their values.
     platform: Vec<String>,
     list: bool,
 }
@@ -38,6 +46,8 @@ fn parse(args: &[String]) -> Result<Args, String> {
             "--behaviour" => parsed.behaviour = Some(value()?),
             "--record" => parsed.set(&format!("plugins/mcap/path={:?}", value()?)),
             "--video" => parsed.set(&format!("plugins/video/path={:?}", value()?)),
+            "--viewer" => parsed.set(&windows("viewer", "paused=false")?),
+            "--inspect" => parsed.set(&windows("inspector", "rate=5.0")?),
             option if PLATFORM_OPTIONS.contains(&option) => {
                 let value = value()?;
                 parsed.platform.extend([arg.clone(), value]);
@@ -58,8 +68,21 @@ fn parse(args: &[String]) -> Result<Args, String> {
 
 impl Args {
     fn set(&mut self, assignment: &str) {
-        self.platform
+        self.plugins
             .extend(["--set".to_owned(), assignment.to_owned()]);
+    }
+}
+
+/// The setting that creates window plugin `plugin` (`key=value`, its default), if this
+/// `yarok` has windows.
+fn windows(plugin: &str, default: &str) -> Result<String, String> {
+    if cfg!(feature = "viewer") {
+        Ok(format!("plugins/{plugin}/{default}"))
+    } else {
+        Err(format!(
+            "this yarok was built without windows: build it with the `viewer` feature \
+             (cargo run --release --features viewer --bin yarok -- run …) to use the {plugin}"
+        ))
     }
 }
 
@@ -104,7 +127,7 @@ pub(super) fn run(args: &[String]) -> Result<(), Failure> {
     })?;
     let mut platform = behaviour
         .install(yarok::platform().world_type(demo.world))
-        .args(args.platform)
+        .args(args.plugins.into_iter().chain(args.platform))
         .map_err(|e| e.to_string())?;
     if std::io::stderr().is_terminal() {
         platform = platform.plugin(StatusLine::new());

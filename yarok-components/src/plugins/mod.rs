@@ -1,15 +1,23 @@
 //! Plugins: code that runs beside the behaviours and sees the world.
 
 mod foxglove;
+#[cfg(feature = "viewer")]
+mod inspector;
 mod joint_recorder;
 mod mcap_recorder;
 mod status_line;
 mod video_recorder;
+#[cfg(feature = "viewer")]
+mod viewer;
 
+#[cfg(feature = "viewer")]
+pub use inspector::{Inspector, InspectorSettings};
 pub use joint_recorder::{JointRecorder, JointRecorderSettings};
 pub use mcap_recorder::{McapRecorder, McapRecorderSettings};
 pub use status_line::StatusLine;
 pub use video_recorder::{VideoRecorder, VideoRecorderSettings};
+#[cfg(feature = "viewer")]
+pub use viewer::{Viewer, ViewerSettings};
 
 /// The render preset of a recorder's cameras: MuJoCo's defaults when `quality` is asked for,
 /// else the fast one (software GL renders it several times faster).

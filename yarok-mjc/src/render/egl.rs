@@ -11,7 +11,7 @@ use libloading::os::unix::{Library, RTLD_GLOBAL, RTLD_NOW};
 
 use super::RenderError;
 
-type Egl = egl::DynamicInstance<egl::EGL1_4>;
+pub(super) type Egl = egl::DynamicInstance<egl::EGL1_4>;
 
 const PLATFORM_DEVICE: egl::Enum = 0x313F;
 const PLATFORM_SURFACELESS_MESA: egl::Enum = 0x31DD;
@@ -177,10 +177,9 @@ const CONFIG: [egl::Int; 15] = [
     egl::NONE,
 ];
 
-/// Every display worth trying, device platform first, and the first that initialises.
-fn open_display(egl: &Egl) -> Result<egl::Display, RenderError> {
-    let get_display = egl
-        .get_proc_address("eglGetPlatformDisplayEXT")
+/// `eglGetPlatformDisplayEXT`.
+fn platform_display_function(egl: &Egl) -> Result<GetPlatformDisplay, RenderError> {
+    egl.get_proc_address("eglGetPlatformDisplayEXT")
         // SAFETY: eglGetPlatformDisplayEXT has the GetPlatformDisplay signature (EGL_EXT_platform_base).
         .map(|f| unsafe { std::mem::transmute::<extern "system" fn(), GetPlatformDisplay>(f) })
         .ok_or_else(|| {
@@ -188,7 +187,39 @@ fn open_display(egl: &Egl) -> Result<egl::Display, RenderError> {
                 "find eglGetPlatformDisplayEXT",
                 "EGL_EXT_platform_base missing",
             )
-        })?;
+        })
+}
+
+/// The EGL display of an X11 connection, initialised.
+///
+/// # Safety
+///
+/// `x11` is an open Xlib `Display*` that outlives the returned display's use.
+#[cfg(feature = "viewer")]
+pub(super) unsafe fn x11_display(
+    x11: *mut c_void,
+) -> Result<(&'static Egl, egl::Display), RenderError> {
+    const PLATFORM_X11: egl::Enum = 0x31D5;
+    let egl = egl_library()?;
+    let get_display = platform_display_function(egl)?;
+    // SAFETY: the caller passes an open Xlib display; the attribute list is empty (null).
+    let raw = unsafe { get_display(PLATFORM_X11, x11, std::ptr::null()) };
+    if raw.is_null() {
+        return Err(egl_error(
+            "get the X11 display",
+            "EGL_KHR_platform_x11 missing",
+        ));
+    }
+    // SAFETY: `raw` is a non-null display handle just returned by EGL.
+    let display = unsafe { egl::Display::from_ptr(raw) };
+    egl.initialize(display)
+        .map_err(|e| egl_error("initialise the X11 display", e))?;
+    Ok((egl, display))
+}
+
+/// Every display worth trying, device platform first, and the first that initialises.
+fn open_display(egl: &Egl) -> Result<egl::Display, RenderError> {
+    let get_display = platform_display_function(egl)?;
     let mut candidates: Vec<(egl::Enum, *mut c_void)> = devices(egl)
         .into_iter()
         .map(|device| (PLATFORM_DEVICE, device))
@@ -231,7 +262,7 @@ fn devices(egl: &Egl) -> Vec<*mut c_void> {
     devices[..usize::try_from(count).unwrap_or(0).min(MAX_DEVICES)].to_vec()
 }
 
-fn egl_error(step: &'static str, reason: impl ToString) -> RenderError {
+pub(super) fn egl_error(step: &'static str, reason: impl ToString) -> RenderError {
     RenderError::Egl {
         step,
         reason: reason.to_string(),

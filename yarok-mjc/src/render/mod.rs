@@ -1,7 +1,20 @@
 //! [`Renderer`]: headless offscreen rendering of a model's cameras to RGB and metric depth.
 
 mod egl;
+#[cfg(feature = "viewer")]
+mod gallery;
 mod reach;
+#[cfg(feature = "viewer")]
+mod view;
+#[cfg(feature = "viewer")]
+mod window;
+
+#[cfg(feature = "viewer")]
+pub use gallery::{Gallery, Picture};
+#[cfg(feature = "viewer")]
+pub use view::{Corner, Overlay, View, Visual};
+#[cfg(feature = "viewer")]
+pub use window::{Button, Key, Window, WindowEvent};
 
 use std::fmt;
 use std::marker::PhantomData;
@@ -71,6 +84,17 @@ pub enum RenderError {
     /// The data handed to the renderer belongs to another model.
     #[error("the data belongs to another model than the renderer was built for")]
     ModelMismatch,
+    /// No X server to open a window on.
+    #[error(
+        "no window can open on display {display:?}: {reason} (set DISPLAY to a running X \
+         server, or run headless: Xvfb, xvfb-run)"
+    )]
+    NoDisplay {
+        /// `$DISPLAY`.
+        display: String,
+        /// What went wrong.
+        reason: String,
+    },
 }
 
 yarok_core::debug_as_report!(RenderError);

@@ -1,0 +1,172 @@
+//! What watching and recording cost, in PickAndPlaceWorld while the arm stacks blocks: ticks per
+//! second without a plugin, with the MCAP recorder (joint states and poses every 10 ticks; then
+//! also the overview camera at 320×240, 10 images a second), measured side by side; and, with
+//! the viewer's window (800×600, under Xvfb when no display is set) pacing the run to the wall
+//! clock, the share of wall time the viewer spends drawing.
+//!
+//! ```text
+//! cargo bench --features viewer --bench see_and_record
+//! ```
+
+use std::cell::Cell;
+use std::process::{Child, Command, Stdio};
+use std::rc::Rc;
+use std::time::{Duration, Instant};
+
+use yarok::components::demos;
+use yarok::components::plugins::{McapRecorder, McapRecorderSettings, Viewer, ViewerSettings};
+use yarok::components::worlds::PickAndPlaceWorld;
+use yarok::{BoxError, Plugin, World};
+
+#[path = "measure.rs"]
+mod measure;
+
+use measure::mean_times;
+
+/// Platform seconds each measured run lasts.
+const RUN: f64 = 6.0;
+
+/// PickAndPlaceWorld stacking for `seconds`, with `plugin`; the ticks it made.
+fn run(seconds: f64, plugin: Option<Box<dyn Plugin>>) -> u64 {
+    let ticks = Rc::new(Cell::new(0));
+    let counted = Rc::clone(&ticks);
+    let mut platform =
+        yarok::platform()
+            .world::<PickAndPlaceWorld>()
+            .behaviour(move |pl| async move {
+                let _stacking_cut_short = pl.timeout(seconds, demos::stack(pl.clone())).await;
+                counted.set(pl.ticks());
+                Ok(())
+            });
+    if let Some(plugin) = plugin {
+        platform = platform.plugin(Boxed(plugin));
+    }
+    platform.run().expect("the run");
+    ticks.get()
+}
+
+/// A boxed plugin, as one.
+struct Boxed(Box<dyn Plugin>);
+
+impl Plugin for Boxed {
+    fn start(&mut self, world: &World<'_>) -> Result<(), BoxError> {
+        self.0.start(world)
+    }
+    fn step(&mut self, world: &World<'_>) -> Result<(), BoxError> {
+        self.0.step(world)
+    }
+    fn end(&mut self, world: &World<'_>) -> Result<(), BoxError> {
+        self.0.end(world)
+    }
+}
+
+/// A viewer that tells how long it drew once the run ends.
+struct MeasuredViewer {
+    viewer: Viewer,
+    drawing: Rc<Cell<(Duration, u64)>>,
+}
+
+impl Plugin for MeasuredViewer {
+    fn start(&mut self, world: &World<'_>) -> Result<(), BoxError> {
+        self.viewer.start(world)
+    }
+    fn step(&mut self, world: &World<'_>) -> Result<(), BoxError> {
+        self.viewer.step(world)
+    }
+    fn end(&mut self, world: &World<'_>) -> Result<(), BoxError> {
+        self.drawing.set(self.viewer.drawing());
+        self.viewer.end(world)
+    }
+}
+
+/// An X server for the viewer when none is set: Xvfb on a free display.
+fn display() -> Option<Child> {
+    if std::env::var_os("DISPLAY").is_some() {
+        return None;
+    }
+    let number = (90..190)
+        .find(|n| !std::path::Path::new(&format!("/tmp/.X11-unix/X{n}")).exists())
+        .expect("a free display number");
+    let server = Command::new("Xvfb")
+        .args([
+            &format!(":{number}"),
+            "-screen",
+            "0",
+            "1280x1024x24",
+            "-nolisten",
+            "tcp",
+        ])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("Xvfb (scripts/setup-test-peers.sh installs it)");
+    while !std::path::Path::new(&format!("/tmp/.X11-unix/X{number}")).exists() {
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    // SAFETY: set before any other thread of this process reads the environment.
+    unsafe { std::env::set_var("DISPLAY", format!(":{number}")) };
+    Some(server)
+}
+
+fn recorder(folder: &std::path::Path, cameras: Vec<String>) -> Box<dyn Plugin> {
+    let settings = McapRecorderSettings {
+        path: folder.join("bench.mcap"),
+        cameras,
+        size: [320, 240],
+        ..McapRecorderSettings::default()
+    };
+    Box::new(McapRecorder::new(settings).expect("valid settings"))
+}
+
+fn main() {
+    let mut xvfb = display();
+    let folder = tempfile::tempdir().unwrap();
+    let ticks = run(RUN, None);
+    let [bare, recorded, filmed] = mean_times(|variant| match variant {
+        0 => run(RUN, None),
+        1 => run(RUN, Some(recorder(folder.path(), Vec::new()))),
+        _ => run(RUN, Some(recorder(folder.path(), vec!["overview".into()]))),
+    });
+    let rate = |time: Duration| ticks as f64 / time.as_secs_f64();
+    println!("PickAndPlaceWorld stacking, {RUN} s of platform time ({ticks} ticks), side by side:");
+    println!(
+        "  no plugin                                  {:>8.0} ticks/s",
+        rate(bare)
+    );
+    println!(
+        "  MCAP recorder (joints, poses)              {:>8.0} ticks/s  ({:.1} % of the bare rate)",
+        rate(recorded),
+        100.0 * bare.as_secs_f64() / recorded.as_secs_f64()
+    );
+    println!(
+        "  MCAP recorder + overview camera 320×240    {:>8.0} ticks/s  ({:.1} % of the bare rate)",
+        rate(filmed),
+        100.0 * bare.as_secs_f64() / filmed.as_secs_f64()
+    );
+
+    let drawing = Rc::new(Cell::new((Duration::ZERO, 0)));
+    let shared = Rc::clone(&drawing);
+    let seconds = 4.0;
+    let started = Instant::now();
+    run(
+        seconds,
+        Some(Box::new(MeasuredViewer {
+            viewer: Viewer::new(ViewerSettings::default()).expect("valid settings"),
+            drawing: shared,
+        })),
+    );
+    let wall = started.elapsed().as_secs_f64();
+    let (drawing, frames) = drawing.get();
+    let drawing = drawing.as_secs_f64();
+    println!(
+        "viewer 800×600 at real-time pacing: {seconds} s of platform time in {wall:.2} s of wall \
+         time; {frames} frames ({:.1} a second, {:.1} ms each) took {:.1} % of the wall time",
+        frames as f64 / wall,
+        1e3 * drawing / frames.max(1) as f64,
+        100.0 * drawing / wall
+    );
+    if let Some(server) = &mut xvfb {
+        let _ = server.kill();
+        let _ = server.wait();
+    }
+}

@@ -1,0 +1,195 @@
+//! The viewer and the inspector (feature `viewer`) under Xvfb, driven from outside by a
+//! third-party X client (python-xlib, a separate process) as a user would: the viewer's window
+//! shows the scene (the table's and the arm's colours), the space bar pauses it (platform time
+//! stops) and resumes it, and closing the window ends the run cleanly; the inspector's window
+//! shows the DIGITs' images; without an X server the viewer fails saying so, or runs on when
+//! asked to.
+#![cfg(feature = "viewer")]
+
+use std::path::Path;
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+#[path = "../yarok-hw/tests/support/peers.rs"]
+mod peers;
+
+/// An X server of its own, on a display no other test uses, killed when dropped.
+struct Xvfb {
+    display: String,
+    server: Child,
+}
+
+impl Xvfb {
+    fn start() -> Self {
+        let first = 100 + std::process::id() % 800;
+        let number = (first..first + 100)
+            .find(|n| !Path::new(&format!("/tmp/.X11-unix/X{n}")).exists())
+            .expect("a free display number");
+        let display = format!(":{number}");
+        let server = Command::new("Xvfb")
+            .args([&display, "-screen", "0", "1280x1024x24", "-nolisten", "tcp"])
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("Xvfb runs (scripts/setup-test-peers.sh installs it)");
+        let socket = format!("/tmp/.X11-unix/X{number}");
+        let started = Instant::now();
+        while !Path::new(&socket).exists() {
+            assert!(
+                started.elapsed() < Duration::from_secs(10),
+                "Xvfb did not start"
+            );
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        Self { display, server }
+    }
+
+    /// Runs `x11_window.py` on this display for the window titled `title…`.
+    fn window(&self, title: &str, command: &[&str]) -> String {
+        let mut args = vec![self.display.as_str(), title];
+        args.extend(command);
+        peers::run("x11_window.py", &args)
+    }
+
+    /// `yarok ARGS` on this display.
+    fn yarok(&self, args: &[&str]) -> Child {
+        Command::new(env!("CARGO_BIN_EXE_yarok"))
+            .args(args)
+            .env("DISPLAY", &self.display)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap()
+    }
+}
+
+impl Drop for Xvfb {
+    fn drop(&mut self) {
+        let _ = self.server.kill();
+        let _ = self.server.wait();
+    }
+}
+
+/// The platform time in a viewer's title (`yarok - t = 1.23 s`), and whether it is paused.
+fn title_time(title: &str) -> (f64, bool) {
+    let time = title
+        .split("t = ")
+        .nth(1)
+        .and_then(|rest| rest.split(' ').next())
+        .and_then(|t| t.parse().ok())
+        .unwrap_or_else(|| panic!("no time in the title {title:?}"));
+    (time, title.contains("paused"))
+}
+
+/// Waits for `child` to exit, at most `within`; its status and standard error.
+fn finished(mut child: Child, within: Duration) -> (std::process::ExitStatus, String) {
+    let started = Instant::now();
+    loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            let output = child.wait_with_output().unwrap();
+            return (status, String::from_utf8_lossy(&output.stderr).into_owned());
+        }
+        if started.elapsed() > within {
+            let _ = child.kill();
+            panic!("still running after {within:?}");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+#[test]
+fn the_viewer_shows_the_scene_pauses_on_a_key_and_ends_the_run_when_closed() {
+    let x = Xvfb::start();
+    let run = x.yarok(&["run", "pick_and_place_world", "--viewer"]);
+    x.window("yarok - t", &["wait", "60"]);
+    std::thread::sleep(Duration::from_millis(500));
+
+    let folder = tempfile::tempdir().unwrap();
+    let shot = folder.path().join("viewer.png");
+    let size = x.window("yarok - t", &["screenshot", shot.to_str().unwrap()]);
+    assert_eq!(size.trim(), "size 800 600");
+    let image = image::open(&shot).unwrap().to_rgb8();
+    let share = |matches: fn(&image::Rgb<u8>) -> bool| {
+        image.pixels().filter(|p| matches(p)).count() as f64 / f64::from(800 * 600)
+    };
+    // The table's wood, lit, and the arm's blue caps.
+    let table = share(|p| p[0] > 150 && (100..170).contains(&p[1]) && p[2] < 120);
+    let arm = share(|p| p[2] > 170 && p[0] < 120 && p[1] > 80);
+    assert!(table > 0.02, "table pixels {table}");
+    assert!(arm > 0.001, "arm pixels {arm}");
+
+    x.window("yarok - t", &["key", "space"]);
+    std::thread::sleep(Duration::from_millis(300));
+    let (paused_at, paused) = title_time(&x.window("yarok - t", &["title"]));
+    assert!(paused, "the title says paused");
+    std::thread::sleep(Duration::from_secs(1));
+    let (later, _) = title_time(&x.window("yarok - t", &["title"]));
+    assert_eq!(later, paused_at, "platform time stands still while paused");
+    x.window("yarok - t", &["key", "space"]);
+    std::thread::sleep(Duration::from_millis(500));
+    let (resumed, paused) = title_time(&x.window("yarok - t", &["title"]));
+    assert!(
+        !paused && resumed > paused_at,
+        "{resumed} after {paused_at}"
+    );
+
+    x.window("yarok - t", &["close"]);
+    let (status, stderr) = finished(run, Duration::from_secs(10));
+    assert!(status.success(), "{status}: {stderr}");
+}
+
+#[test]
+fn the_inspector_shows_the_probes_images() {
+    let x = Xvfb::start();
+    let folder = tempfile::tempdir().unwrap();
+    let out = format!("behaviour/out={:?}", folder.path().display().to_string());
+    let run = x.yarok(&["run", "digit_world", "--inspect", "--set", &out]);
+    x.window("yarok inspector", &["wait", "60"]);
+    std::thread::sleep(Duration::from_millis(500));
+    let shot = folder.path().join("inspector.png");
+    let size = x.window("yarok inspector", &["screenshot", shot.to_str().unwrap()]);
+    // Four images (each DIGIT's tactile image and depth, 240×320) side by side.
+    assert_eq!(size.trim(), "size 980 348");
+    let image = image::open(&shot).unwrap().to_rgb8();
+    // The tactile images' grey-blue gel, under each label.
+    let gel = image
+        .pixels()
+        .filter(|p| (90..200).contains(&p[2]) && p[2] >= p[0] && p[0] > 60)
+        .count();
+    assert!(gel > 2 * 240 * 200, "{gel} gel pixels");
+    x.window("yarok inspector", &["close"]);
+    let (status, stderr) = finished(run, Duration::from_secs(30));
+    assert!(status.success(), "{status}: {stderr}");
+}
+
+#[test]
+fn without_an_x_server_the_viewer_says_so_or_runs_on_when_asked() {
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "run",
+            "empty_world",
+            "--viewer",
+            "--set",
+            "behaviour/seconds=0.1",
+        ];
+        args.extend(extra);
+        Command::new(env!("CARGO_BIN_EXE_yarok"))
+            .args(&args)
+            .env("DISPLAY", ":9999")
+            .output()
+            .unwrap()
+    };
+    let failed = run(&[]);
+    let stderr = String::from_utf8_lossy(&failed.stderr);
+    assert_eq!(failed.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("viewer") && stderr.contains("no window can open on display \":9999\""),
+        "{stderr}"
+    );
+    let headless = run(&["--set", "plugins/viewer/headless=true"]);
+    assert!(
+        headless.status.success(),
+        "{}",
+        String::from_utf8_lossy(&headless.stderr)
+    );
+}
