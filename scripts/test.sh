@@ -54,7 +54,8 @@ for example in threaded local_set pendulum_clock pick_and_place printer_square; 
   env -u LD_LIBRARY_PATH "$examples/$example"
 done
 echo "== yarok run: every bundled world with its demo behaviour, in release, as the README runs them"
-cargo build --release --locked --bin yarok
+# One release build for both (an example's dev-dependencies unify features: built apart, twice).
+cargo build --release --locked --bin yarok --example pick_and_place
 yarok="${CARGO_TARGET_DIR:-target}/release/yarok"
 "$yarok" run --list | while read -r world behaviour; do
   echo "-- yarok run $world ($behaviour)"

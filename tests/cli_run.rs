@@ -77,3 +77,33 @@ fn unknown_names_get_the_nearest() {
         "{stderr}"
     );
 }
+
+#[test]
+fn on_a_terminal_a_status_line_shows_time_speed_and_ticks() {
+    // `script` runs the command on a pseudo-terminal of its own and copies what it shows.
+    let command = format!(
+        "{} run empty_world --set platform/realtime=true --set behaviour/seconds=0.8",
+        env!("CARGO_BIN_EXE_yarok")
+    );
+    let output = std::process::Command::new("script")
+        .args(["-qec", &command, "/dev/null"])
+        .output()
+        .expect("script (util-linux) runs");
+    let shown = String::from_utf8_lossy(&output.stdout);
+    assert!(output.status.success(), "{shown}");
+    let status = shown
+        .split('\r')
+        .find(|line| line.contains("ticks/s"))
+        .unwrap_or_else(|| panic!("no status line in {shown:?}"));
+    // Paced to the wall clock: about real time, 500 ticks a second.
+    let factor: f64 = status
+        .split('×')
+        .nth(1)
+        .and_then(|rest| rest.split(' ').next())
+        .and_then(|f| f.parse().ok())
+        .unwrap_or_else(|| panic!("no real-time factor in {status:?}"));
+    assert!((0.5..1.5).contains(&factor), "{status:?}");
+    // Without a terminal, no status line.
+    let (_, _, stderr) = yarok(&["run", "empty_world", "--set", "behaviour/seconds=0.1"]);
+    assert!(!stderr.contains("ticks/s"), "{stderr}");
+}
