@@ -1,6 +1,8 @@
 //! Tactile data collection with rigs in parallel: `--rigs N` platforms (one per thread, default
-//! 2) each run a [`TactileRigWorld`] — a printer pressing a 4 mm sphere into a GelTip (or, with
-//! `--set sensor="digit"`, a DIGIT) — over their share of a grid of 5 × 5 points and 3 depths.
+//! 2, through `run_parallel`, sharing one compiled model) each run a [`TactileRigWorld`] — a
+//! printer pressing a 4 mm sphere into a GelTip (or, with `--set sensor="digit"`, a DIGIT) —
+//! over their shard of a grid of 5 × 5 points and 3 depths (the `collect` demo behaviour; the
+//! same as `yarok run tactile_rig_world --behaviour collect --shard I/N` on N machines).
 //! Every sample is written to `--out` (default `out/tactile_rig`): the tactile image
 //! (`0000.png`), the depth its camera saw (`0000_depth.npy`, metres, float32) and a row of
 //! `index.csv`. The files are the same, byte for byte, whatever the number of rigs.
@@ -23,59 +25,27 @@
 //! ```
 
 use std::error::Error;
-use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
-use yarok::components::tactile::npy::NpyArray;
-use yarok::components::worlds::{Press, Sample, TactileRigWorld};
+use yarok::components::demos::{self, INDEX_HEADER};
+use yarok::components::worlds::TactileRigWorld;
+use yarok::core::runtime::run_parallel;
 
-/// The presses: 5 × 5 points 2 mm apart around the sensor's axis, each 0.5, 1 and 1.5 mm deep.
-fn grid() -> Vec<Press> {
-    let steps = [-0.004, -0.002, 0.0, 0.002, 0.004];
-    let mut presses = Vec::new();
-    for depth in [0.0005, 0.001, 0.0015] {
-        for y in steps {
-            for x in steps {
-                presses.push(Press { at: [x, y], depth });
-            }
-        }
-    }
-    presses
-}
-
-/// What one rig collected: its sensor's kind, and its samples with their indices in the grid.
-#[derive(Default)]
-struct Collected {
-    sensor: String,
-    samples: Vec<(usize, Sample)>,
-}
-
-/// One rig's samples of `presses` (with their indices in the grid), set up by `args`.
-fn run_rig(
-    args: &[String],
-    parallel_model: bool,
-    presses: Vec<(usize, Press)>,
-) -> Result<Collected, String> {
-    let out = std::rc::Rc::new(std::cell::RefCell::new(Collected::default()));
-    let collected = std::rc::Rc::clone(&out);
-    yarok::platform()
-        .world::<TactileRigWorld>()
-        .set(&format!("parallel={parallel_model}"))
+/// Rig `rig` of `rigs`: its shard of the grid, written to `out`.
+fn run_rig(args: &[String], out: &str, rig: usize, rigs: usize) -> Result<(), String> {
+    let collect = demos::find("tactile_rig_world")
+        .and_then(|demo| demo.behaviour(Some("collect")))
+        .ok_or("no collect demo")?;
+    collect
+        .install(yarok::platform().world::<TactileRigWorld>())
+        // One rig has the cores to itself: its sensor model may use them all.
+        .set(&format!("parallel={}", rigs == 1))
+        .and_then(|builder| builder.set(&format!("platform/shard=\"{rig}/{rigs}\"")))
+        .and_then(|builder| builder.set(&format!("behaviour/out={out:?}")))
         .and_then(|builder| builder.args(args.iter().cloned()))
-        .map_err(|e| e.to_string())?
-        .behaviour(move |pl| async move {
-            let rig: TactileRigWorld = pl.get("/")?;
-            collected.borrow_mut().sensor = rig.sensor_kind().to_owned();
-            for (index, press) in presses {
-                let sample = rig.press(press).await?;
-                collected.borrow_mut().samples.push((index, sample));
-            }
-            Ok(())
-        })
-        .run()
-        .map_err(|e| e.to_string())?;
-    Ok(out.take())
+        .and_then(|builder| builder.run())
+        .map_err(|e| e.to_string())
 }
 
 /// Takes `--name VALUE` out of `args`.
@@ -91,36 +61,28 @@ fn take_option(args: &mut Vec<String>, name: &str) -> Result<Option<String>, Str
     Ok(Some(value))
 }
 
-/// Writes each sample's files and the index.
-fn write(out: &Path, sensor: &str, samples: &[(usize, Sample)]) -> Result<(), Box<dyn Error>> {
-    std::fs::create_dir_all(out)?;
-    let mut index = String::from(
-        "index,sensor,x_mm,y_mm,depth_mm,head_x_mm,head_y_mm,head_z_mm,\
-         in_contact,max_indentation_mm,area_mm2,image,depth\n",
-    );
-    for (number, sample) in samples {
-        let (image, depth) = (format!("{number:04}.png"), format!("{number:04}_depth.npy"));
-        sample.image.save(out.join(&image))?;
-        let (width, height) = sample.depth.dimensions();
-        NpyArray {
-            shape: vec![height as usize, width as usize],
-            data: sample.depth.as_raw().clone(),
-        }
-        .write(out.join(&depth))?;
-        let [x, y] = sample.press.at.map(|m| m * 1e3);
-        let [hx, hy, hz] = sample.head;
-        let contact = &sample.contact;
-        writeln!(
-            index,
-            "{number},{sensor},{x},{y},{},{hx},{hy},{hz},{},{},{},{image},{depth}",
-            sample.press.depth * 1e3,
-            contact.in_contact,
-            contact.max_indentation * 1e3,
-            contact.area * 1e6,
-        )?;
+/// Joins the shards' index files into `index.csv`, rows in the grid's order; the rows.
+fn merge_indexes(out: &Path, rigs: usize) -> Result<Vec<String>, Box<dyn Error>> {
+    let mut rows = Vec::new();
+    for rig in 0..rigs {
+        let part = out.join(format!("index_{rig}_of_{rigs}.csv"));
+        rows.extend(
+            std::fs::read_to_string(&part)?
+                .lines()
+                .skip(1)
+                .map(str::to_owned),
+        );
+        std::fs::remove_file(part)?;
+    }
+    let number = |row: &String| row.split(',').next().and_then(|n| n.parse::<usize>().ok());
+    rows.sort_by_key(number);
+    let mut index = format!("{INDEX_HEADER}\n");
+    for row in &rows {
+        index.push_str(row);
+        index.push('\n');
     }
     std::fs::write(out.join("index.csv"), index)?;
-    Ok(())
+    Ok(rows)
 }
 
 fn main() -> Result<(), Box<dyn Error>> {
@@ -130,44 +92,32 @@ fn main() -> Result<(), Box<dyn Error>> {
         return Err("--rigs must be at least 1".into());
     }
     let out = take_option(&mut args, "--out")?.unwrap_or_else(|| "out/tactile_rig".into());
-    let presses = grid();
     let started = Instant::now();
-    let results = std::thread::scope(|scope| {
-        let rigs: Vec<_> = (0..rigs)
-            .map(|rig| {
-                let share: Vec<(usize, Press)> = presses
-                    .iter()
-                    .copied()
-                    .enumerate()
-                    .filter(|(index, _)| index % rigs == rig)
-                    .collect();
-                let args = &args;
-                // One rig has the cores to itself: its sensor model may use them all.
-                scope.spawn(move || run_rig(args, rigs == 1, share))
-            })
-            .collect();
-        rigs.into_iter()
-            .map(|rig| rig.join().map_err(|_| "a rig panicked".to_string())?)
-            .collect::<Result<Vec<_>, _>>()
-    })?;
+    let jobs: Vec<_> = (0..rigs)
+        .map(|rig| {
+            let (args, out) = (&args, &out);
+            move || run_rig(args, out, rig, rigs)
+        })
+        .collect();
+    run_parallel(jobs, rigs)
+        .into_iter()
+        .collect::<Result<Vec<()>, _>>()?;
     let elapsed = started.elapsed().as_secs_f64();
-    let sensor = results
-        .first()
-        .map(|rig| rig.sensor.clone())
-        .unwrap_or_default();
-    let mut samples: Vec<(usize, Sample)> =
-        results.into_iter().flat_map(|rig| rig.samples).collect();
-    samples.sort_by_key(|(index, _)| *index);
-    write(Path::new(&out), &sensor, &samples)?;
-    let felt = samples.iter().filter(|(_, s)| s.contact.in_contact).count();
+    let rows = if rigs == 1 {
+        let index = std::fs::read_to_string(Path::new(&out).join("index.csv"))?;
+        index.lines().skip(1).map(str::to_owned).collect()
+    } else {
+        merge_indexes(Path::new(&out), rigs)?
+    };
+    let felt = rows.iter().filter(|row| row.contains(",true,")).count();
     println!(
-        "{} {sensor} samples from {rigs} rig(s) in {elapsed:.2} s ({:.1} samples/s); {felt} felt \
-         the press; written to {out}/index.csv",
-        samples.len(),
-        samples.len() as f64 / elapsed
+        "{} samples from {rigs} rig(s) in {elapsed:.2} s ({:.1} samples/s); {felt} felt the \
+         press; written to {out}/index.csv",
+        rows.len(),
+        rows.len() as f64 / elapsed
     );
-    if felt != samples.len() {
-        return Err(format!("{} presses were not felt", samples.len() - felt).into());
+    if felt != rows.len() {
+        return Err(format!("{} presses were not felt", rows.len() - felt).into());
     }
     Ok(())
 }

@@ -201,6 +201,10 @@ pub struct PlatformSettings {
     pub tick_hz: f64,
     /// The seed every component's random numbers derive from (see [`PlatformSettings::seed_for`]).
     pub seed: u64,
+    /// Where compiled models are kept between runs.
+    pub model_cache: ModelCache,
+    /// Which share of its work this run does (`"I/N"`), for runs split over machines.
+    pub shard: Shard,
 }
 
 impl Default for PlatformSettings {
@@ -209,6 +213,122 @@ impl Default for PlatformSettings {
             realtime: false,
             tick_hz: 100.0,
             seed: 0,
+            model_cache: ModelCache::Enabled(true),
+            shard: Shard::WHOLE,
+        }
+    }
+}
+
+/// Which share of a run's work — its parameter grid, its episodes — this run does
+/// (`[platform] shard = "I/N"`, `yarok run … --shard I/N`): item `k` of the work belongs to
+/// shard `k mod N` (0-based, as Slurm array and Kubernetes indexed-job indices count), so the N
+/// shards of a run do, between them, exactly what the whole run does. Behaviours read it with
+/// [`Pl::shard`](crate::runtime::Pl::shard).
+///
+/// # Examples
+///
+/// ```
+/// use yarok_core::config::Shard;
+///
+/// let shard: Shard = "1/3".parse()?;
+/// let mine: Vec<(usize, char)> = shard.select("abcdefg".chars());
+/// assert_eq!(mine, [(1, 'b'), (4, 'e')]);
+/// # Ok::<(), String>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize)]
+#[serde(try_from = "String")]
+pub struct Shard {
+    /// This shard's number, from 0.
+    pub index: usize,
+    /// How many shards the run is split into.
+    pub count: usize,
+}
+
+impl Shard {
+    /// The whole run: `0/1`.
+    pub const WHOLE: Shard = Shard { index: 0, count: 1 };
+
+    /// Whether item `item` of the work is this shard's.
+    pub fn owns(&self, item: usize) -> bool {
+        item % self.count == self.index
+    }
+
+    /// This shard's items of `items`, each with its number in the whole run.
+    pub fn select<T>(&self, items: impl IntoIterator<Item = T>) -> Vec<(usize, T)> {
+        items
+            .into_iter()
+            .enumerate()
+            .filter(|(item, _)| self.owns(*item))
+            .collect()
+    }
+
+    /// Whether this is the whole run.
+    pub fn is_whole(&self) -> bool {
+        self.count == 1
+    }
+}
+
+impl std::fmt::Display for Shard {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}/{}", self.index, self.count)
+    }
+}
+
+impl std::str::FromStr for Shard {
+    type Err = String;
+
+    fn from_str(text: &str) -> Result<Self, String> {
+        let malformed = || format!("{text:?}: expected I/N with 0 ≤ I < N, as \"2/8\"");
+        let (index, count) = text.split_once('/').ok_or_else(malformed)?;
+        let shard = Shard {
+            index: index.trim().parse().map_err(|_| malformed())?,
+            count: count.trim().parse().map_err(|_| malformed())?,
+        };
+        if shard.index >= shard.count {
+            return Err(malformed());
+        }
+        Ok(shard)
+    }
+}
+
+impl TryFrom<String> for Shard {
+    type Error = String;
+
+    fn try_from(text: String) -> Result<Self, String> {
+        text.parse()
+    }
+}
+
+/// Where compiled models are kept between runs (`[platform] model_cache`): `true` (the default)
+/// in the user's cache folder — `$YAROK_CACHE_DIR/models`, else `$XDG_CACHE_HOME/yarok/models`,
+/// else `~/.cache/yarok/models` — `false` nowhere, or a folder's path.
+#[derive(Debug, Clone, PartialEq, serde::Deserialize)]
+#[serde(untagged)]
+pub enum ModelCache {
+    /// In the user's cache folder, or nowhere.
+    Enabled(bool),
+    /// In this folder.
+    Folder(std::path::PathBuf),
+}
+
+impl ModelCache {
+    /// The folder, if models are kept.
+    pub fn folder(&self) -> Option<std::path::PathBuf> {
+        match self {
+            ModelCache::Enabled(false) => None,
+            ModelCache::Folder(folder) => Some(folder.clone()),
+            ModelCache::Enabled(true) => {
+                let var = |name: &str| std::env::var_os(name).filter(|v| !v.is_empty());
+                let yarok = var("YAROK_CACHE_DIR")
+                    .map(std::path::PathBuf::from)
+                    .or_else(|| {
+                        var("XDG_CACHE_HOME").map(|c| std::path::Path::new(&c).join("yarok"))
+                    })
+                    .or_else(|| {
+                        var("HOME").map(|h| std::path::Path::new(&h).join(".cache/yarok"))
+                    })?;
+                Some(yarok.join("models"))
+            }
         }
     }
 }

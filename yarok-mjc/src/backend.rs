@@ -10,7 +10,7 @@ use yarok_core::component::{Backend, Environment};
 use yarok_core::compose::Composition;
 use yarok_core::config::Settings;
 
-use crate::{Data, Model, ModelError};
+use crate::{Data, Model, ModelError, ModelSource};
 
 /// The `sim` environment: MuJoCo. Components' `Interface<Sim>` implementations get typed
 /// handles through [`SimBind`](crate::SimBind).
@@ -26,6 +26,7 @@ impl Environment for Sim {
 /// handles on the platform's thread.
 pub struct SimBackend {
     model: Arc<Model>,
+    source: ModelSource,
     data: Rc<RefCell<Data>>,
     /// Simulation time after the last step, so that reading it needs no borrow of the data.
     time: Cell<f64>,
@@ -52,26 +53,42 @@ impl SimBackend {
     ///
     /// [`ModelError`] when MuJoCo rejects the model (naming the component, template and line).
     pub fn new(composition: &Composition) -> Result<Self, ModelError> {
-        let model = Arc::new(Model::from_composition(composition)?);
+        Self::with_model(
+            Arc::new(Model::from_composition(composition)?),
+            ModelSource::Compiled,
+        )
+    }
+
+    fn with_model(model: Arc<Model>, source: ModelSource) -> Result<Self, ModelError> {
         let mut data = Data::new(&model)?;
         data.forward();
         Ok(Self {
             time: Cell::new(data.time()),
             model,
+            source,
             data: Rc::new(RefCell::new(data)),
             #[cfg(feature = "render")]
             renderers: RefCell::new(Vec::new()),
         })
     }
 
-    /// [`SimBackend::new`], as a platform's backend factory:
-    /// `builder.backend::<Sim>(SimBackend::from_settings)`.
+    /// A platform's backend factory (`builder.backend::<Sim>(SimBackend::from_settings)`):
+    /// the composition's model shared with the process's other worlds compiled from the same,
+    /// or loaded from the cache folder `[platform] model_cache` names, or compiled (see
+    /// [`Model::cached`]); its own data.
     ///
     /// # Errors
     ///
-    /// As [`SimBackend::new`].
-    pub fn from_settings(composition: &Composition, _: &Settings) -> Result<Self, BoxError> {
-        Ok(Self::new(composition)?)
+    /// As [`SimBackend::new`]; a bad `[platform]` setting.
+    pub fn from_settings(composition: &Composition, settings: &Settings) -> Result<Self, BoxError> {
+        let folder = settings.platform_settings()?.model_cache.folder();
+        let (model, source) = Model::cached(composition, folder.as_deref())?;
+        Ok(Self::with_model(model, source)?)
+    }
+
+    /// Where the model came from: shared with another world, the cache folder, or compiled.
+    pub fn model_source(&self) -> ModelSource {
+        self.source
     }
 
     /// The compiled model.

@@ -60,6 +60,7 @@ mod handles;
 mod library;
 mod locate;
 mod model;
+mod model_cache;
 mod pose;
 #[cfg(feature = "render")]
 mod render;
@@ -94,6 +95,7 @@ pub use model::{
     ActuatorId, BodyId, CameraId, GeomId, JointId, KeyframeId, Model, ObjectKind, SensorId, SiteId,
     TendonId,
 };
+pub use model_cache::ModelSource;
 #[cfg(feature = "viewer")]
 pub use render::{
     Button, Corner, Gallery, Key, Overlay, Picture, View, Visual, Window, WindowEvent,

@@ -108,6 +108,25 @@ impl Model {
         load(mj, MAIN_FILE, Some(&vfs), "<string>")
     }
 
+    /// A model from MuJoCo's binary format ([`Model::to_binary`]), written by this MuJoCo
+    /// version.
+    ///
+    /// # Errors
+    ///
+    /// [`ModelError::Compile`] when MuJoCo does not accept the bytes.
+    pub fn from_binary(bytes: &[u8]) -> Result<Self, ModelError> {
+        let mj = mujoco()?;
+        let size = sys::mjtSize::try_from(bytes.len()).unwrap_or(sys::mjtSize::MAX);
+        // SAFETY: the buffer holds `size` bytes and outlives the call, which copies from it.
+        let raw = unsafe { mj.mj_loadModelBuffer(bytes.as_ptr().cast(), size) };
+        NonNull::new(raw)
+            .map(|raw| Model { raw, mj })
+            .ok_or_else(|| ModelError::Compile {
+                origin: "a binary model".into(),
+                message: "MuJoCo could not read it (another version's, or damaged)".into(),
+            })
+    }
+
     /// Compiles an MJCF (or URDF) file; the files it names are read relative to its folder.
     ///
     /// # Errors

@@ -24,7 +24,7 @@ const PLATFORM_OPTIONS: [&str; 3] = ["--env", "--set", "--config"];
 struct Args {
     world: Option<String>,
     behaviour: Option<String>,
-    /// The settings `--record`, `--video`, `--viewer` and `--inspect` stand for, as `--set`
+    /// The settings `--record`, `--video`, `--viewer`, `--inspect` and `--shard` stand for, as `--set`
     /// arguments: before the user's, which may refine them.
     plugins: Vec<String>,
     /// For the platform: `--env`, `--set` and `--config` with their values.
@@ -46,6 +46,7 @@ fn parse(args: &[String]) -> Result<Args, String> {
             "--behaviour" => parsed.behaviour = Some(value()?),
             "--record" => parsed.set(&format!("plugins/mcap/path={:?}", value()?)),
             "--video" => parsed.set(&format!("plugins/video/path={:?}", value()?)),
+            "--shard" => parsed.set(&format!("platform/shard={:?}", value()?)),
             "--viewer" => parsed.set(&windows("viewer", "paused=false")?),
             "--inspect" => parsed.set(&windows("inspector", "rate=5.0")?),
             option if PLATFORM_OPTIONS.contains(&option) => {

@@ -36,7 +36,7 @@ pub use geltip_world::pull;
 pub use idle::idle;
 pub use pick_and_place::stack;
 pub use printer_world::survey;
-pub use tactile_rig::press;
+pub use tactile_rig::{INDEX_HEADER, collect, grid, press};
 
 use crate::worlds::{
     DigitWorld, EmptyWorld, GelTipWorld, PickAndPlaceWorld, PrinterWorld, TactileRigWorld,
@@ -129,11 +129,23 @@ pub fn demos() -> Vec<Demo> {
             run: |pl| Box::pin(pull(pl)),
             defaults: OUT,
         }]),
-        Demo::of::<TactileRigWorld>(&[DemoBehaviour {
-            name: "press",
-            run: |pl| Box::pin(press(pl)),
-            defaults: OUT,
-        }]),
+        Demo::of::<TactileRigWorld>(&[
+            DemoBehaviour {
+                name: "press",
+                run: |pl| Box::pin(press(pl)),
+                defaults: OUT,
+            },
+            DemoBehaviour {
+                name: "collect",
+                run: |pl| Box::pin(collect(pl)),
+                defaults: &[
+                    ("out", "\"out/tactile_rig\""),
+                    ("points", "5"),
+                    ("spacing_mm", "2.0"),
+                    ("depths_mm", "[0.5, 1.0, 1.5]"),
+                ],
+            },
+        ]),
     ]
 }
 

@@ -1,9 +1,12 @@
-//! The TactileRigWorld demo: the indenter pressed ever deeper into the sensor.
+//! The TactileRigWorld demos: the indenter pressed ever deeper into the sensor, and a grid of
+//! presses collected as a dataset.
 
+use yarok_core::BoxError;
 use yarok_core::runtime::{BehaviourResult, Pl};
 
 use super::out_folder;
-use crate::worlds::{Press, TactileRigWorld};
+use crate::tactile::npy::NpyArray;
+use crate::worlds::{Press, Sample, TactileRigWorld};
 
 /// In a [`TactileRigWorld`]: presses the indenter into the sensor's centre 0.5, 1 and 1.5 mm
 /// deep and saves each tactile image (`OUT/press_N.png`, OUT the behaviour's setting `out`,
@@ -36,4 +39,99 @@ pub async fn press(pl: Pl) -> BehaviourResult {
         deepest = felt;
     }
     Ok(())
+}
+
+/// [`collect`]'s behaviour settings: where, and the grid it presses.
+#[derive(serde::Deserialize)]
+struct CollectSettings {
+    out: std::path::PathBuf,
+    points: usize,
+    spacing_mm: f64,
+    depths_mm: Vec<f64>,
+}
+
+/// The header of a collection's index.
+pub const INDEX_HEADER: &str = "index,sensor,x_mm,y_mm,depth_mm,head_x_mm,head_y_mm,head_z_mm,\
+                                in_contact,max_indentation_mm,area_mm2,image,depth";
+
+/// The presses of a collection: `points` × `points` positions `spacing` metres apart around
+/// the sensor's axis, at each depth in turn.
+pub fn grid(points: usize, spacing: f64, depths: &[f64]) -> Vec<Press> {
+    let offset = |i: usize| (i as f64 - (points as f64 - 1.0) / 2.0) * spacing;
+    let mut presses = Vec::with_capacity(points * points * depths.len());
+    for depth in depths {
+        for y in 0..points {
+            for x in 0..points {
+                presses.push(Press {
+                    at: [offset(x), offset(y)],
+                    depth: *depth,
+                });
+            }
+        }
+    }
+    presses
+}
+
+/// In a [`TactileRigWorld`]: presses a grid — the behaviour's `points` × `points` positions
+/// (default 5) `spacing_mm` apart (2), at each of `depths_mm` ([0.5, 1, 1.5]) — and writes
+/// every sample to `out`: the tactile image (`0007.png`), the depth its camera saw
+/// (`0007_depth.npy`, metres, float32) and a row of the index (`index.csv`, columns
+/// [`INDEX_HEADER`]). In a sharded run (`[platform] shard = "I/N"`) it presses only its share
+/// of the grid (press `k` is shard `k mod N`'s) and writes `index_I_of_N.csv`: the N shards'
+/// files are, between them, the whole run's, byte for byte (each press starts from a
+/// placement of its own, whatever came before).
+pub async fn collect(pl: Pl) -> BehaviourResult {
+    let rig: TactileRigWorld = pl.get("/")?;
+    let settings: CollectSettings = pl.config().deserialize()?;
+    let CollectSettings {
+        out,
+        points,
+        spacing_mm,
+        depths_mm,
+    } = settings;
+    std::fs::create_dir_all(&out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
+    let depths: Vec<f64> = depths_mm.iter().map(|d| d * 1e-3).collect();
+    let shard = pl.shard();
+    let mut index = String::from(INDEX_HEADER);
+    index.push('\n');
+    for (number, press) in shard.select(grid(points, spacing_mm * 1e-3, &depths)) {
+        let sample = rig.press(press).await?;
+        index.push_str(&write_sample(&out, rig.sensor_kind(), number, &sample)?);
+        index.push('\n');
+    }
+    let name = if shard.is_whole() {
+        "index.csv".to_owned()
+    } else {
+        format!("index_{}_of_{}.csv", shard.index, shard.count)
+    };
+    std::fs::write(out.join(&name), index)?;
+    pl.log(format!("shard {shard}: {} → {}", name, out.display()));
+    Ok(())
+}
+
+/// Writes sample `number`'s image and depth into `out`; its index row.
+fn write_sample(
+    out: &std::path::Path,
+    sensor: &str,
+    number: usize,
+    sample: &Sample,
+) -> Result<String, BoxError> {
+    let (image, depth) = (format!("{number:04}.png"), format!("{number:04}_depth.npy"));
+    sample.image.save(out.join(&image))?;
+    let (width, height) = sample.depth.dimensions();
+    NpyArray {
+        shape: vec![height as usize, width as usize],
+        data: sample.depth.as_raw().clone(),
+    }
+    .write(out.join(&depth))?;
+    let [x, y] = sample.press.at.map(|m| m * 1e3);
+    let [hx, hy, hz] = sample.head;
+    let contact = &sample.contact;
+    Ok(format!(
+        "{number},{sensor},{x},{y},{},{hx},{hy},{hz},{},{},{},{image},{depth}",
+        sample.press.depth * 1e3,
+        contact.in_contact,
+        contact.max_indentation * 1e3,
+        contact.area * 1e6,
+    ))
 }

@@ -37,12 +37,14 @@
 mod builder;
 mod executor;
 mod interrupt;
+mod parallel;
 mod pl;
 mod platform;
 mod plugin;
 mod thread;
 
 pub use builder::PlatformBuilder;
+pub use parallel::run_parallel;
 pub use pl::{LogLine, Pl};
 pub use platform::Platform;
 pub use plugin::{Plugin, World};

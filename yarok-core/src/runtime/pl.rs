@@ -7,6 +7,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::component::{HandleError, Handles};
+use crate::config::Shard;
 use crate::time::Clock;
 use crate::value::Config;
 
@@ -27,6 +28,7 @@ struct Shared {
     handles: Rc<RefCell<Handles>>,
     behaviour: Config,
     stop: Arc<AtomicBool>,
+    shard: Shard,
     /// Lines logged since the behaviours' last turn began, kept when plugins may read them.
     log: RefCell<Vec<LogLine>>,
     keeps_log: bool,
@@ -66,6 +68,7 @@ impl Pl {
         behaviour: Config,
         stop: Arc<AtomicBool>,
         keeps_log: bool,
+        shard: Shard,
     ) -> Self {
         Self {
             clock,
@@ -76,6 +79,7 @@ impl Pl {
                 stop,
                 log: RefCell::new(Vec::new()),
                 keeps_log,
+                shard,
             }),
         }
     }
@@ -83,6 +87,13 @@ impl Pl {
     /// The running environment's name.
     pub fn environment(&self) -> &str {
         &self.inner.environment
+    }
+
+    /// Which share of its work this run does (`[platform] shard`; the whole by default): a
+    /// behaviour with a grid of parameters or a list of episodes does the items
+    /// [`Shard::select`] gives it.
+    pub fn shard(&self) -> Shard {
+        self.inner.shard
     }
 
     /// The behaviour's settings (`[behaviour]`), defaults applied.

@@ -119,6 +119,7 @@ impl Platform {
             prepared.behaviour,
             prepared.stop,
             !prepared.plugins.is_empty(),
+            prepared.platform.shard,
         );
         Self {
             environment: prepared.environment,

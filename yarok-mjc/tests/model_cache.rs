@@ -1,0 +1,113 @@
+//! Compiled models shared in a process and kept on disk: a cache hit loads a model identical to
+//! a fresh compile (byte for byte in MuJoCo's binary format); a corrupt, truncated or foreign
+//! entry is rebuilt, never loaded; worlds alive at once share one model.
+
+use std::sync::Arc;
+
+use yarok_core::component::{Component, Declaration};
+use yarok_core::compose::{Composition, compose};
+use yarok_mjc::{Model, ModelSource};
+
+/// A model of its own per test: other tests of this process must not share it.
+macro_rules! world {
+    ($name:ident, $size:literal) => {
+        struct $name;
+        impl Component for $name {
+            fn declaration() -> Declaration {
+                Declaration::new(stringify!($name)).template(concat!(
+                    r#"<mujoco><worldbody><geom type="plane" size="1 1 0.1"/>
+                         <body pos="0 0 1"><freejoint/><geom size=""#,
+                    $size,
+                    r#""/></body></worldbody></mujoco>"#
+                ))
+            }
+        }
+    };
+}
+
+world!(CachedWorld, "0.11");
+world!(CorruptedWorld, "0.12");
+world!(SharedWorld, "0.13");
+
+/// A way to damage a cache file's bytes.
+type Damage = fn(&mut Vec<u8>);
+
+fn cached(composition: &Composition, folder: &std::path::Path) -> (Arc<Model>, ModelSource) {
+    Model::cached(composition, Some(folder)).unwrap()
+}
+
+/// The one cache file in `folder`.
+fn entry(folder: &std::path::Path) -> std::path::PathBuf {
+    let files: Vec<_> = std::fs::read_dir(folder)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    assert_eq!(files.len(), 1, "{files:?}");
+    files[0].clone()
+}
+
+#[test]
+fn a_cache_hit_is_the_model_a_fresh_compile_gives() {
+    let folder = tempfile::tempdir().unwrap();
+    let composition = compose::<CachedWorld>().unwrap();
+    let (compiled, source) = cached(&composition, folder.path());
+    assert_eq!(source, ModelSource::Compiled);
+    let fresh = compiled.to_binary();
+    drop(compiled);
+    let (loaded, source) = cached(&composition, folder.path());
+    assert_eq!(source, ModelSource::Disk);
+    assert!(loaded.to_binary() == fresh, "the loaded model differs");
+    assert!(Model::from_composition(&composition).unwrap().to_binary() == fresh);
+}
+
+#[test]
+fn a_damaged_entry_is_rebuilt_never_loaded() {
+    let folder = tempfile::tempdir().unwrap();
+    let composition = compose::<CorruptedWorld>().unwrap();
+    drop(cached(&composition, folder.path()));
+    let file = entry(folder.path());
+    let good = std::fs::read(&file).unwrap();
+    let flip_in_payload = |bytes: &mut Vec<u8>| {
+        let middle = bytes.len() / 2;
+        bytes[middle] ^= 0x40;
+    };
+    let damages: [(&str, Damage); 4] = [
+        ("a flipped bit in the model", flip_in_payload),
+        ("a truncated file", |b| b.truncate(b.len() - 100)),
+        ("another format", |b| b[0] = b'X'),
+        ("an empty file", Vec::clear),
+    ];
+    for (damage, apply) in damages {
+        let mut bytes = good.clone();
+        apply(&mut bytes);
+        std::fs::write(&file, &bytes).unwrap();
+        let (model, source) = cached(&composition, folder.path());
+        assert_eq!(source, ModelSource::Compiled, "{damage}: rebuilt");
+        assert!(model.to_binary() == good[good.len() - model.to_binary().len()..]);
+        drop(model);
+        assert_eq!(
+            std::fs::read(&file).unwrap(),
+            good,
+            "{damage}: the entry is whole again"
+        );
+        let (_, source) = cached(&composition, folder.path());
+        assert_eq!(source, ModelSource::Disk, "{damage}: loaded once rebuilt");
+    }
+}
+
+#[test]
+fn worlds_alive_at_once_share_one_model() {
+    let composition = compose::<SharedWorld>().unwrap();
+    let (first, source) = Model::cached(&composition, None).unwrap();
+    assert_eq!(source, ModelSource::Compiled);
+    let (second, source) = Model::cached(&composition, None).unwrap();
+    assert_eq!(source, ModelSource::Shared);
+    assert!(Arc::ptr_eq(&first, &second));
+    drop((first, second));
+    let (_, source) = Model::cached(&composition, None).unwrap();
+    assert_eq!(
+        source,
+        ModelSource::Compiled,
+        "compiled again once no world used it"
+    );
+}
