@@ -7,41 +7,19 @@
 
 use std::time::Duration;
 
+use yarok::Component;
 use yarok::components::robots::ur::{MotionError, Ur5, Ur5e, pose_from_vector, pose_to_vector};
-use yarok::{Component, Declaration};
 
 #[path = "support/simulated_ur.rs"]
 mod simulated_ur;
 #[path = "../yarok-hw/tests/support/ur_controller/mod.rs"]
 mod ur_controller;
 
-use simulated_ur::SimulatedArm;
+use simulated_ur::{SimulatedArm, Ur5Alone, Ur5eAlone};
 use ur_controller::{FakeController, Profile};
 
 /// Where the arms start.
 const START: [f64; 6] = [0.0, -1.3, 1.2, -1.5, -1.57, 0.0];
-
-/// A UR5e alone.
-struct ArmOnly;
-
-impl Component for ArmOnly {
-    fn declaration() -> Declaration {
-        Declaration::new("arm_only")
-            .uses::<Ur5e>()
-            .template(r#"<mujoco><worldbody><ur5e name="arm"/></worldbody></mujoco>"#)
-    }
-}
-
-/// A UR5 alone.
-struct Ur5Only;
-
-impl Component for Ur5Only {
-    fn declaration() -> Declaration {
-        Declaration::new("ur5_only")
-            .uses::<Ur5>()
-            .template(r#"<mujoco><worldbody><ur5 name="arm"/></worldbody></mujoco>"#)
-    }
-}
 
 /// A fake e-Series controller with a simulated UR5e.
 fn fake_ur5e() -> FakeController {
@@ -63,7 +41,7 @@ fn real<W: Component>(fake: &FakeController) -> yarok::core::runtime::PlatformBu
 #[test]
 fn joint_and_linear_moves_arrive() {
     let fake = fake_ur5e();
-    real::<ArmOnly>(&fake)
+    real::<Ur5eAlone>(&fake)
         .behaviour(|pl| async move {
             let arm: Ur5e = pl.get("/arm")?;
             assert!(arm.is_at(&START), "{:?}", arm.q());
@@ -103,7 +81,7 @@ fn joint_and_linear_moves_arrive() {
 #[test]
 fn a_ur5_configured_on_a_ur5e_is_refused_naming_both() {
     let fake = fake_ur5e();
-    let error = real::<Ur5Only>(&fake)
+    let error = real::<Ur5Alone>(&fake)
         .behaviour(|_| async { Ok(()) })
         .run()
         .unwrap_err()
@@ -128,7 +106,7 @@ fn a_protective_stop_fails_the_motion_and_unlocking_recovers() {
             // Long enough ago that the dashboard lets it be unlocked.
             fake.protective_stop(Duration::from_secs(6));
         });
-        real::<ArmOnly>(&fake)
+        real::<Ur5eAlone>(&fake)
             .behaviour(|pl| async move {
                 let arm: Ur5e = pl.get("/arm")?;
                 let far = [1.5, -1.3, 1.2, -1.5, -1.57, 0.0];
@@ -160,7 +138,7 @@ fn dropped_connections_are_reconnected_while_the_behaviour_waits() {
             std::thread::sleep(Duration::from_millis(100));
             fake.drop_streams();
         });
-        real::<ArmOnly>(&fake)
+        real::<Ur5eAlone>(&fake)
             .behaviour(|pl| async move {
                 let arm: Ur5e = pl.get("/arm")?;
                 let q = [0.8, -1.3, 1.2, -1.5, -1.57, 0.0];
@@ -183,7 +161,7 @@ fn dropped_connections_are_reconnected_while_the_behaviour_waits() {
 fn a_cb3_ur5_moves_and_takes_its_payload() {
     let fake = FakeController::with_arm(Profile::Cb3, SimulatedArm::ur5(START));
     yarok::platform()
-        .world::<Ur5Only>()
+        .world::<Ur5Alone>()
         .args([
             "--env".to_owned(),
             "real".to_owned(),
@@ -212,7 +190,7 @@ fn a_cb3_ur5_moves_and_takes_its_payload() {
 #[test]
 fn motions_take_the_simulated_arms_time_and_speed() {
     let fake = fake_ur5e();
-    real::<ArmOnly>(&fake)
+    real::<Ur5eAlone>(&fake)
         .behaviour(|pl| async move {
             let arm: Ur5e = pl.get("/arm")?;
             let mut q = START;
@@ -244,7 +222,7 @@ fn motions_take_the_simulated_arms_time_and_speed() {
 #[test]
 fn dropping_a_motion_stops_the_arm() {
     let fake = fake_ur5e();
-    real::<ArmOnly>(&fake)
+    real::<Ur5eAlone>(&fake)
         .behaviour(|pl| async move {
             let arm: Ur5e = pl.get("/arm")?;
             let far = [1.5, -1.3, 1.2, -1.5, -1.57, 0.0];

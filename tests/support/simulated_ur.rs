@@ -16,7 +16,7 @@ use yarok::{Component, Declaration};
 use crate::ur_controller::motion::{ArmCommand, ArmMotion, ArmState};
 
 /// A UR5e alone, at `/arm`.
-struct Ur5eAlone;
+pub(crate) struct Ur5eAlone;
 
 impl Component for Ur5eAlone {
     fn declaration() -> Declaration {
@@ -27,7 +27,7 @@ impl Component for Ur5eAlone {
 }
 
 /// A UR5 alone, at `/arm`.
-struct Ur5Alone;
+pub(crate) struct Ur5Alone;
 
 impl Component for Ur5Alone {
     fn declaration() -> Declaration {
