@@ -54,8 +54,9 @@ for example in threaded local_set pendulum_clock pick_and_place printer_square; 
   env -u LD_LIBRARY_PATH "$examples/$example"
 done
 echo "== yarok run: every bundled world with its demo behaviour, in release, as the README runs them"
-# One release build for both (an example's dev-dependencies unify features: built apart, twice).
-cargo build --release --locked --bin yarok --example pick_and_place
+# One release build for all (an example's dev-dependencies unify features: built apart, twice).
+cargo build --release --locked --bin yarok --example pick_and_place --example digit_world \
+  --example geltip_world --example tactile_rig
 yarok="${CARGO_TARGET_DIR:-target}/release/yarok"
 "$yarok" run --list | while read -r world behaviour; do
   echo "-- yarok run $world ($behaviour)"
@@ -68,5 +69,12 @@ for image in digit_world/digit_left.png geltip_world/geltip_left.png tactile_rig
   printer_world/printer_camera_3.png; do
   test -s "$out/$image" || { echo "error: yarok run wrote no $image" >&2; exit 1; }
 done
+echo "== the manipulation and tactile examples in release, as the README runs them"
 cargo run --release --locked --example pick_and_place
+cargo run --release --locked --example digit_world -- --set "behaviour/out=\"$out/examples\""
+test -s "$out/examples/digit_left.png" || { echo "error: digit_world wrote no tactile image" >&2; exit 1; }
+cargo run --release --locked --example geltip_world -- --set "behaviour/out=\"$out/examples\""
+test -s "$out/examples/geltip_left.png" || { echo "error: geltip_world wrote no tactile image" >&2; exit 1; }
+cargo run --release --locked --example tactile_rig -- --rigs 2 --out "$out/tactile_rig"
+test -s "$out/tactile_rig/index.csv" || { echo "error: tactile_rig wrote no index" >&2; exit 1; }
 echo "== all checks passed"
