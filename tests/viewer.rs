@@ -1,7 +1,8 @@
 //! The viewer and the inspector (feature `viewer`) under Xvfb, driven from outside by a
 //! third-party X client (python-xlib, a separate process) as a user would: the viewer's window
 //! shows the scene (the table's and the arm's colours), the space bar pauses it (platform time
-//! stops) and resumes it, and closing the window ends the run cleanly; the inspector's window
+//! stops) and resumes it, a drag orbits the camera and Tab switches to the model's camera, and
+//! closing the window ends the run cleanly; the inspector's window
 //! shows the DIGITs' images; without an X server the viewer fails saying so, or runs on when
 //! asked to.
 #![cfg(feature = "viewer")]
@@ -125,6 +126,24 @@ fn the_viewer_shows_the_scene_pauses_on_a_key_and_ends_the_run_when_closed() {
     std::thread::sleep(Duration::from_secs(1));
     let (later, _) = title_time(&x.window("yarok - t", &["title"]));
     assert_eq!(later, paused_at, "platform time stands still while paused");
+    // Paused, the scene changes only as the camera does: a left drag orbits it, Tab shows the
+    // model's first camera (the world's overview).
+    let shoot = |name: &str| {
+        std::thread::sleep(Duration::from_millis(300));
+        let path = folder.path().join(name);
+        x.window("yarok - t", &["screenshot", path.to_str().unwrap()]);
+        image::open(&path).unwrap().to_rgb8().into_raw()
+    };
+    let still = shoot("still.png");
+    assert!(shoot("again.png") == still, "a paused scene stays still");
+    x.window("yarok - t", &["drag", "1", "400", "300", "550", "300"]);
+    let orbited = shoot("orbited.png");
+    assert!(orbited != still, "the drag orbits the camera");
+    x.window("yarok - t", &["key", "Tab"]);
+    assert!(shoot("overview.png") != orbited, "Tab shows another camera");
+    let (still_at, _) = title_time(&x.window("yarok - t", &["title"]));
+    assert_eq!(still_at, paused_at, "still paused");
+
     x.window("yarok - t", &["key", "space"]);
     std::thread::sleep(Duration::from_millis(500));
     let (resumed, paused) = title_time(&x.window("yarok - t", &["title"]));

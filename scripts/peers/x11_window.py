@@ -7,6 +7,9 @@ Usage: x11_window.py DISPLAY TITLE_PREFIX COMMAND [ARG]
   title             print its title
   screenshot FILE   save what it shows as PNG and print `size WIDTH HEIGHT`
   key KEYSYM        press and release a key (an X keysym name: space, Right, h)
+  drag BUTTON X0 Y0 X1 Y1
+                    press a mouse button (1 left, 3 right) at window pixel (X0, Y0), move to
+                    (X1, Y1) in steps, release
   close             ask it to close
 """
 
@@ -65,6 +68,22 @@ def main():
         code = conn.keysym_to_keycode(XK.string_to_keysym(arg))
         xtest.fake_input(conn, X.KeyPress, code)
         xtest.fake_input(conn, X.KeyRelease, code)
+        conn.sync()
+    elif command == "drag":
+        button, x0, y0, x1, y1 = (int(v) for v in sys.argv[4:9])
+        origin = window.translate_coords(conn.screen().root, 0, 0)
+        left, top = -origin.x, -origin.y
+
+        def move(x, y):
+            xtest.fake_input(conn, X.MotionNotify, x=left + x, y=top + y)
+            conn.sync()
+            time.sleep(0.02)
+
+        move(x0, y0)
+        xtest.fake_input(conn, X.ButtonPress, button)
+        for step in range(1, 11):
+            move(x0 + (x1 - x0) * step // 10, y0 + (y1 - y0) * step // 10)
+        xtest.fake_input(conn, X.ButtonRelease, button)
         conn.sync()
     elif command == "close":
         protocols = conn.intern_atom("WM_PROTOCOLS")
