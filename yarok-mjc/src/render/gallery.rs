@@ -4,6 +4,7 @@ use std::marker::PhantomData;
 use std::sync::Arc;
 
 use super::RenderError;
+use super::mujoco_scene::ContextSpec;
 use super::window::{Window, WindowEvent};
 use crate::{Model, sys};
 
@@ -54,19 +55,16 @@ impl Gallery {
     pub fn open(title: &str) -> Result<Self, RenderError> {
         let window = Window::open(title, 320, 240)?;
         let model = Arc::new(Model::from_xml_str("<mujoco/>")?);
-        let mut context = Box::<sys::mjrContext>::default();
-        let mut context_model = *model.raw();
-        context_model.vis.global.offwidth = 16;
-        context_model.vis.global.offheight = 16;
-        context_model.vis.quality.offsamples = 0;
-        let mj = model.mj();
-        // SAFETY: the window's context is current on this thread; the context is owned and
-        // writable; `context_model` is a valid mjModel (a shallow copy only read) for the call.
-        unsafe {
-            mj.mjr_defaultContext(&mut *context);
-            mj.mjr_makeContext(&context_model, &mut *context, sys::mjFONTSCALE_100 as i32);
-            mj.mjr_setBuffer(sys::mjFB_WINDOW as i32, &mut *context);
-        }
+        let spec = ContextSpec {
+            offscreen: (16, 16),
+            multisampling: false,
+            textures: false,
+            font_scale: sys::mjFONTSCALE_100,
+            buffer: sys::mjFB_WINDOW,
+        };
+        // SAFETY: the window's GL context is current on this thread; 16×16 is within any
+        // implementation's limits.
+        let context = unsafe { spec.make(&model) };
         Ok(Self {
             window,
             model,

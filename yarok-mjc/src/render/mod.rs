@@ -3,6 +3,7 @@
 mod egl;
 #[cfg(feature = "viewer")]
 mod gallery;
+mod mujoco_scene;
 mod reach;
 #[cfg(feature = "viewer")]
 mod view;
@@ -27,6 +28,7 @@ use crate::error::{LibraryError, ModelError};
 use crate::model::{CameraId, Model};
 use crate::{Data, sys};
 use egl::GlContext;
+use mujoco_scene::{ContextSpec, make_scene};
 
 /// A depth image: planar distance from the camera, in metres, top row first.
 pub type DepthImage = ImageBuffer<Luma<f32>, Vec<f32>>;
@@ -175,23 +177,19 @@ impl RendererBuilder {
             });
         }
         let gl = GlContext::for_this_thread()?;
-        let mj = model.mj();
         // mjr_makeContext reads the offscreen buffer's size and multisampling, and the textures
-        // to upload, from the model: it gets a shallow copy that asks for a buffer of the image's
-        // size, no multisampling unless in quality, and no textures for depth. The copy shares
-        // the model's arrays and is only read.
-        let mut context_model = *model.raw();
-        context_model.vis.global.offwidth = i32::try_from(width).unwrap_or(i32::MAX);
-        context_model.vis.global.offheight = i32::try_from(height).unwrap_or(i32::MAX);
-        if self.preset != RenderPreset::Quality {
-            context_model.vis.quality.offsamples = 0;
-        }
-        if self.preset == RenderPreset::Depth {
-            context_model.ntex = 0;
-        }
+        // to upload, from the model: a buffer of the image's size, no multisampling unless in
+        // quality, and no textures for depth.
+        let spec = ContextSpec {
+            offscreen: (width, height),
+            multisampling: self.preset == RenderPreset::Quality,
+            textures: self.preset != RenderPreset::Depth,
+            font_scale: sys::mjFONTSCALE_100,
+            buffer: sys::mjFB_OFFSCREEN,
+        };
         // MuJoCo treats a framebuffer it cannot complete as a fatal error (the process aborts),
         // so the buffer is checked against the implementation's limits first.
-        let samples = to_u32(context_model.vis.quality.offsamples);
+        let samples = to_u32(spec.context_model(model).vis.quality.offsamples);
         let limits = gl.limits()?;
         if width > limits.max_size.0 || height > limits.max_size.1 || samples > limits.max_samples {
             return Err(RenderError::BeyondGl {
@@ -203,27 +201,12 @@ impl RendererBuilder {
                 max_samples: limits.max_samples,
             });
         }
-        let mut scene = Box::<sys::mjvScene>::default();
-        let mut context = Box::<sys::mjrContext>::default();
-        let mut option = sys::mjvOption::default();
-        let mut perturb = sys::mjvPerturb::default();
         let max_geoms = i32::try_from(self.max_geoms).unwrap_or(i32::MAX);
-        // SAFETY: the GL context is current on this thread; every struct is owned and writable;
-        // `context_model` is a valid mjModel for the duration of the call.
-        unsafe {
-            mj.mjv_defaultOption(&mut option);
-            mj.mjv_defaultPerturb(&mut perturb);
-            mj.mjv_defaultScene(&mut *scene);
-            mj.mjv_makeScene(model.raw(), &mut *scene, max_geoms);
-            mj.mjr_defaultContext(&mut *context);
-            mj.mjr_makeContext(&context_model, &mut *context, sys::mjFONTSCALE_100 as i32);
-            mj.mjr_setBuffer(sys::mjFB_OFFSCREEN as i32, &mut *context);
-        }
+        let (scene, option, perturb) =
+            make_scene(model, max_geoms, self.preset == RenderPreset::Quality);
+        // SAFETY: the GL context is current on this thread, and the buffer within its limits.
+        let mut context = unsafe { spec.make(model) };
         context.readDepthMap = sys::mjDEPTH_ZEROFAR as i32;
-        if self.preset != RenderPreset::Quality {
-            scene.flags[sys::mjRND_SHADOW as usize] = 0;
-            scene.flags[sys::mjRND_REFLECTION as usize] = 0;
-        }
         let skybox = scene.flags[sys::mjRND_SKYBOX as usize];
         let extent = model.raw().stat.extent;
         let map = model.raw().vis.map;

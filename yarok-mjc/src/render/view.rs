@@ -4,6 +4,7 @@
 use std::marker::PhantomData;
 use std::sync::Arc;
 
+use super::mujoco_scene::{ContextSpec, make_scene};
 use super::window::Window;
 use super::{RenderError, RenderPreset};
 use crate::{Data, Model, sys};
@@ -88,33 +89,21 @@ impl View {
         } else {
             RenderPreset::Quality
         });
-        let mj = model.mj();
-        let mut scene = Box::<sys::mjvScene>::default();
-        let mut context = Box::<sys::mjrContext>::default();
-        let mut option = sys::mjvOption::default();
-        let mut perturb = sys::mjvPerturb::default();
-        let mut free = sys::mjvCamera::default();
+        let (scene, option, perturb) = make_scene(model, 10_000, preset == RenderPreset::Quality);
         // A small offscreen buffer: the view draws into the window's.
-        let mut context_model = *model.raw();
-        context_model.vis.global.offwidth = 64;
-        context_model.vis.global.offheight = 64;
-        context_model.vis.quality.offsamples = 0;
-        // SAFETY: the window's GL context is current on this thread; every struct is owned and
-        // writable; `context_model` is a valid mjModel (a shallow copy only read) for the call.
-        unsafe {
-            mj.mjv_defaultOption(&mut option);
-            mj.mjv_defaultPerturb(&mut perturb);
-            mj.mjv_defaultScene(&mut *scene);
-            mj.mjv_makeScene(model.raw(), &mut *scene, 10_000);
-            mj.mjr_defaultContext(&mut *context);
-            mj.mjr_makeContext(&context_model, &mut *context, sys::mjFONTSCALE_150 as i32);
-            mj.mjr_setBuffer(sys::mjFB_WINDOW as i32, &mut *context);
-            mj.mjv_defaultFreeCamera(model.raw(), &mut free);
-        }
-        if preset != RenderPreset::Quality {
-            scene.flags[sys::mjRND_SHADOW as usize] = 0;
-            scene.flags[sys::mjRND_REFLECTION as usize] = 0;
-        }
+        let spec = ContextSpec {
+            offscreen: (64, 64),
+            multisampling: false,
+            textures: true,
+            font_scale: sys::mjFONTSCALE_150,
+            buffer: sys::mjFB_WINDOW,
+        };
+        // SAFETY: the window's GL context is current on this thread; 64×64 is within any
+        // implementation's limits.
+        let context = unsafe { spec.make(model) };
+        let mut free = sys::mjvCamera::default();
+        // SAFETY: the model is valid and the camera owned.
+        unsafe { model.mj().mjv_defaultFreeCamera(model.raw(), &mut free) };
         Ok(Self {
             window,
             model: Arc::clone(model),
