@@ -10,7 +10,8 @@
 #    ur_rtde, pyrobotiqur (both MIT) and python-urx (LGPL, with math3d, AGPL), the UR and
 #    Robotiq clients the fake controller's faithfulness is checked with (separate processes);
 #    the `mcap` reader (MIT) and Pillow (MIT-CMU), which read back yarok's recordings, and
-#    python-xlib (LGPL), which drives the viewer's windows as a user would.
+#    python-xlib (LGPL), which drives the viewer's windows as a user would, and eclipse-zenoh
+#    (EPL-2.0 OR Apache-2.0), the Zenoh client that talks to the bridge.
 set -euo pipefail
 
 source "$(dirname "$0")/debian-packages.sh"
@@ -44,4 +45,5 @@ urx urx==0.11.0 math3d==3.4.1 numpy==2.4.6
 mcap mcap==1.6.0
 PIL pillow==12.0.0
 Xlib python-xlib==0.33
+zenoh eclipse-zenoh==1.10.2
 PEERS

@@ -16,20 +16,20 @@ echo "== import circles"
 python3 .ci/check-import-circles.py
 echo "== clippy"
 cargo clippy --workspace --all-targets --locked -- -D warnings
-cargo clippy --workspace --all-targets --features yarok/camera,yarok/viewer --locked -- -D warnings
+cargo clippy --workspace --all-targets --features yarok/camera,yarok/viewer,yarok/zenoh --locked -- -D warnings
 echo "== tests"
 if cargo nextest --version >/dev/null 2>&1; then
   echo "runner: cargo nextest (one process per test, no retries)"
   cargo nextest run --workspace --locked --no-fail-fast --retries 0
-  echo "runner: cargo nextest, the camera and viewer features' tests"
-  cargo nextest run --workspace --features yarok/camera,yarok/viewer --locked --no-fail-fast \
+  echo "runner: cargo nextest, the camera, viewer and zenoh features' tests"
+  cargo nextest run --workspace --features yarok/camera,yarok/viewer,yarok/zenoh --locked --no-fail-fast \
     --retries 0 \
-    -E 'binary(camera_decode) | binary(video_device) | binary(cam_real) | binary(tactile_real) | binary(viewer)'
+    -E 'binary(camera_decode) | binary(video_device) | binary(cam_real) | binary(tactile_real) | binary(viewer) | binary(zenoh_bridge)'
 else
   echo "runner: cargo test (cargo-nextest is not installed)"
   cargo test --workspace --locked --no-fail-fast
-  cargo test --features camera,viewer --locked --no-fail-fast --test cam_real --test tactile_real \
-    --test viewer
+  cargo test --features camera,viewer,zenoh --locked --no-fail-fast --test cam_real \
+    --test tactile_real --test viewer --test zenoh_bridge
   cargo test -p yarok-hw --features camera --locked --no-fail-fast --test camera_decode \
     --test video_device
 fi
@@ -37,9 +37,9 @@ echo "== tests of process-wide state, as threads of one process (as cargo test r
 cargo test --workspace --locked --test render_offscreen
 cargo test --workspace --locked --test runtime_interrupt
 cargo test --workspace --locked --test warnings_visible
-cargo test --workspace --features yarok/camera,yarok/viewer --doc --locked
+cargo test --workspace --features yarok/camera,yarok/viewer,yarok/zenoh --doc --locked
 echo "== docs"
-RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --features yarok/camera,yarok/viewer
+RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --features yarok/camera,yarok/viewer,yarok/zenoh
 echo "== example binary, started directly"
 cargo build --examples --locked
 examples="${CARGO_TARGET_DIR:-target}/debug/examples"
@@ -60,7 +60,7 @@ cargo build --release --locked --bin yarok --example pick_and_place --example di
 yarok="${CARGO_TARGET_DIR:-target}/release/yarok"
 "$yarok" run --list | while read -r world behaviour; do
   echo "-- yarok run $world ($behaviour)"
-  case "$behaviour" in
+  case "${behaviour%%,*}" in
     idle | stack) "$yarok" run "$world" </dev/null ;;
     *) "$yarok" run "$world" --set "behaviour/out=\"$out/$world\"" </dev/null ;;
   esac

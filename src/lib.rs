@@ -11,6 +11,7 @@
 //! # Cargo features
 //!
 //! - `render` (default): offscreen camera rendering through EGL (see [`mjc::Renderer`]).
+//! - `zenoh`: the Zenoh bridge (`components::plugins::ZenohBridge`; `yarok run WORLD --bridge`).
 //! - `viewer`: the viewer and inspector windows on X11 (`components::plugins::Viewer`,
 //!   `components::plugins::Inspector`; `yarok run WORLD --viewer --inspect`).
 //!
@@ -55,7 +56,8 @@ pub const MOCK_TIMESTEP: f64 = 0.002;
 /// (MuJoCo, the default), `real` (hardware, ticking at `[platform] tick_hz`) and `mock` (no
 /// backend, 2 ms ticks); plugins `joints_csv` ([`components::plugins::JointRecorder`]), `mcap`
 /// ([`components::plugins::McapRecorder`]) and `video` ([`components::plugins::VideoRecorder`]);
-/// with the feature `viewer`, `viewer` and `inspector` (the windows).
+/// with the feature `viewer`, `viewer` and `inspector` (the windows); with `zenoh`, `zenoh`
+/// ([`components::plugins::ZenohBridge`]).
 ///
 /// # Examples
 ///
@@ -86,5 +88,7 @@ pub fn platform() -> PlatformBuilder {
     let builder = builder
         .plugin_factory("viewer", components::plugins::Viewer::new)
         .plugin_factory("inspector", components::plugins::Inspector::new);
+    #[cfg(feature = "zenoh")]
+    let builder = builder.plugin_factory("zenoh", components::plugins::ZenohBridge::new);
     builder
 }

@@ -17,7 +17,8 @@ fn lists_every_bundled_world_with_its_behaviours() {
     assert!(
         lines
             .iter()
-            .any(|l| l.split_whitespace().collect::<Vec<_>>() == ["pick_and_place_world", "stack"]),
+            .any(|l| l.split_whitespace().collect::<Vec<_>>()
+                == ["pick_and_place_world", "stack,", "idle"]),
         "{stdout}"
     );
 }

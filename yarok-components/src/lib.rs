@@ -10,6 +10,9 @@
 //! poses.
 //!
 pub use nalgebra;
+/// The Zenoh API the bridge is built on (feature `zenoh`), for clients in the same program.
+#[cfg(feature = "zenoh")]
+pub use zenoh;
 
 pub mod cameras;
 pub mod demos;

@@ -3,7 +3,8 @@
 //! ```text
 //! yarok --help
 //! yarok run WORLD [--behaviour NAME] [--viewer] [--inspect] [--record FILE.mcap]
-//!           [--video FILE.mp4] [--shard I/N] [--env ENV] [--set TARGET=VALUE]... [--config FILE]
+//!           [--video FILE.mp4] [--shard I/N] [--bridge] [--env ENV] [--set TARGET=VALUE]...
+//!           [--config FILE]
 //! yarok run --list
 //! yarok compose WORLD [--set [/PATH/]KEY=VALUE]... [--out FILE]
 //! yarok tactile digit|gelsight|geltip DEPTH OUT.png [--background PNG] [--geltip-params DIR]
@@ -15,7 +16,9 @@
 //! probes' images in another, `--inspect`: feature `viewer`), recorded in MCAP and filmed; while
 //! standard error is a terminal it shows platform time, the real-time factor and ticks per
 //! second. `--shard I/N` runs shard I (from 0) of N of the behaviour's work (see
-//! `yarok::core::config::Shard`). `--env`, `--set` and `--config` are the platform's own options.
+//! `yarok::core::config::Shard`). `--bridge` publishes the world over Zenoh and takes commands
+//! (feature `zenoh`; `yarok::components::plugins::ZenohBridge`). `--env`, `--set` and `--config`
+//! are the platform's own options.
 //!
 //! `compose` writes the composed MJCF of WORLD — a bundled component's tag (e.g.
 //! `tumble-tower`) or an MJCF template file, in which bundled components' tags may be used — to
@@ -34,7 +37,8 @@ mod tactile;
 use std::process::ExitCode;
 
 const USAGE: &str = "usage: yarok run WORLD [--behaviour NAME] [--viewer] [--inspect] [--record FILE.mcap]
-                 [--video FILE.mp4] [--shard I/N] [--env ENV] [--set TARGET=VALUE]... [--config FILE]
+                 [--video FILE.mp4] [--shard I/N] [--bridge] [--env ENV] [--set TARGET=VALUE]...
+                 [--config FILE]
        yarok run --list
        yarok compose WORLD [--set [/PATH/]KEY=VALUE]... [--out FILE]
        yarok tactile digit|gelsight|geltip DEPTH OUT.png [--background PNG] [--noise SIGMA] [--seed N]

@@ -24,7 +24,7 @@ const PLATFORM_OPTIONS: [&str; 3] = ["--env", "--set", "--config"];
 struct Args {
     world: Option<String>,
     behaviour: Option<String>,
-    /// The settings `--record`, `--video`, `--viewer`, `--inspect` and `--shard` stand for, as `--set`
+    /// The settings `--record`, `--video`, `--viewer`, `--inspect`, `--shard` and `--bridge` stand for, as `--set`
     /// arguments: before the user's, which may refine them.
     plugins: Vec<String>,
     /// For the platform: `--env`, `--set` and `--config` with their values.
@@ -47,6 +47,7 @@ fn parse(args: &[String]) -> Result<Args, String> {
             "--record" => parsed.set(&format!("plugins/mcap/path={:?}", value()?)),
             "--video" => parsed.set(&format!("plugins/video/path={:?}", value()?)),
             "--shard" => parsed.set(&format!("platform/shard={:?}", value()?)),
+            "--bridge" => parsed.set(&bridge()?),
             "--viewer" => parsed.set(&windows("viewer", "paused=false")?),
             "--inspect" => parsed.set(&windows("inspector", "rate=5.0")?),
             option if PLATFORM_OPTIONS.contains(&option) => {
@@ -71,6 +72,19 @@ impl Args {
     fn set(&mut self, assignment: &str) {
         self.plugins
             .extend(["--set".to_owned(), assignment.to_owned()]);
+    }
+}
+
+/// The setting that creates the Zenoh bridge, if this `yarok` has it.
+fn bridge() -> Result<String, String> {
+    if cfg!(feature = "zenoh") {
+        Ok("plugins/zenoh/hz=50.0".into())
+    } else {
+        Err(
+            "this yarok was built without the Zenoh bridge: build it with the `zenoh` feature \
+             (cargo run --release --features zenoh --bin yarok -- run …)"
+                .into(),
+        )
     }
 }
 

@@ -109,26 +109,38 @@ pub fn demos() -> Vec<Demo> {
     vec![
         Demo::of::<EmptyWorld>(&[IDLE]),
         Demo::of::<TowerWorld>(&[IDLE]),
-        Demo::of::<PrinterWorld>(&[DemoBehaviour {
-            name: "survey",
-            run: |pl| Box::pin(survey(pl)),
-            defaults: OUT,
-        }]),
-        Demo::of::<PickAndPlaceWorld>(&[DemoBehaviour {
-            name: "stack",
-            run: |pl| Box::pin(stack(pl)),
-            defaults: &[],
-        }]),
-        Demo::of::<DigitWorld>(&[DemoBehaviour {
-            name: "feel",
-            run: |pl| Box::pin(feel(pl)),
-            defaults: OUT,
-        }]),
-        Demo::of::<GelTipWorld>(&[DemoBehaviour {
-            name: "pull",
-            run: |pl| Box::pin(pull(pl)),
-            defaults: OUT,
-        }]),
+        Demo::of::<PrinterWorld>(&[
+            DemoBehaviour {
+                name: "survey",
+                run: |pl| Box::pin(survey(pl)),
+                defaults: OUT,
+            },
+            IDLE,
+        ]),
+        Demo::of::<PickAndPlaceWorld>(&[
+            DemoBehaviour {
+                name: "stack",
+                run: |pl| Box::pin(stack(pl)),
+                defaults: &[],
+            },
+            IDLE,
+        ]),
+        Demo::of::<DigitWorld>(&[
+            DemoBehaviour {
+                name: "feel",
+                run: |pl| Box::pin(feel(pl)),
+                defaults: OUT,
+            },
+            IDLE,
+        ]),
+        Demo::of::<GelTipWorld>(&[
+            DemoBehaviour {
+                name: "pull",
+                run: |pl| Box::pin(pull(pl)),
+                defaults: OUT,
+            },
+            IDLE,
+        ]),
         Demo::of::<TactileRigWorld>(&[
             DemoBehaviour {
                 name: "press",

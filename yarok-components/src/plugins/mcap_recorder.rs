@@ -6,15 +6,15 @@ use std::fs::File;
 use std::io::BufWriter;
 use std::path::PathBuf;
 
-use image::ImageEncoder;
-use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use yarok_core::BoxError;
 use yarok_core::component::ProbeImage;
 use yarok_core::runtime::{Plugin, World};
-use yarok_mjc::{BodyId, CameraId, JointId, Renderer, SimBackend};
+use yarok_mjc::{CameraId, Renderer, SimBackend};
 
 use super::foxglove::{self, Schema};
 use super::preset;
+use super::sim_state::SimState;
+use crate::probe_images;
 
 /// What and how often a [`McapRecorder`] records (`[plugins.mcap]`).
 #[derive(Debug, Clone, PartialEq, serde::Deserialize)]
@@ -61,15 +61,6 @@ struct Channels {
     cameras: Vec<(CameraId, u16)>,
 }
 
-/// What `sim` gives a recording: the joints' coordinates and the named bodies.
-#[derive(Debug, Default)]
-struct SimParts {
-    joints: Vec<JointId>,
-    coordinate_names: Vec<String>,
-    bodies: Vec<(BodyId, String)>,
-    renderer: Option<Renderer>,
-}
-
 /// Records a run in MCAP: topic `/joint_states` (every joint coordinate's position and
 /// velocity, named as [`JointRecorder`](super::JointRecorder) names its columns), `/tf` (every
 /// named body's pose in the world frame, `foxglove.FrameTransforms`), one image topic per probe
@@ -88,7 +79,9 @@ pub struct McapRecorder {
     settings: McapRecorderSettings,
     writer: Option<mcap::Writer<BufWriter<File>>>,
     channels: Channels,
-    sim: SimParts,
+    /// In `sim`: the joints and bodies, and the renderer of the cameras asked for.
+    sim: Option<SimState>,
+    renderer: Option<Renderer>,
     sequence: u32,
     next_image: f64,
 }
@@ -119,7 +112,8 @@ impl McapRecorder {
             settings,
             writer: None,
             channels: Channels::default(),
-            sim: SimParts::default(),
+            sim: None,
+            renderer: None,
             sequence: 0,
             next_image: 0.0,
         })
@@ -164,31 +158,12 @@ impl McapRecorder {
     /// Finds what `sim` records: joints, bodies and the cameras asked for.
     fn start_sim(&mut self, sim: &SimBackend) -> Result<(), BoxError> {
         let model = sim.model();
-        let data = sim.data();
-        for (index, joint) in model.joints().enumerate() {
-            let name = model
-                .joint_name(joint)
-                .unwrap_or_else(|| format!("joint{index}"));
-            let count = data.qpos(joint).len();
-            self.sim.coordinate_names.extend((0..count).map(|k| {
-                if count > 1 {
-                    format!("{name}[{k}]")
-                } else {
-                    name.clone()
-                }
-            }));
-            self.sim.joints.push(joint);
-        }
-        self.sim.bodies = model
-            .bodies()
-            .filter_map(|body| model.body_name(body).map(|name| (body, name)))
-            .collect();
-        drop(data);
+        self.sim = Some(SimState::of(sim));
         self.channels.joint_states = Some(self.channel(foxglove::JOINT_STATE, "/joint_states")?);
         self.channels.transforms = Some(self.channel(foxglove::FRAME_TRANSFORMS, "/tf")?);
         if !self.settings.cameras.is_empty() {
             let [width, height] = self.settings.size;
-            self.sim.renderer = Some(
+            self.renderer = Some(
                 Renderer::builder()
                     .size(width, height)
                     .preset(preset(self.settings.quality))
@@ -206,30 +181,16 @@ impl McapRecorder {
     }
 
     fn record_sim(&mut self, sim: &SimBackend, time: f64) -> Result<(), BoxError> {
-        let (Some(joint_states), Some(transforms)) =
-            (self.channels.joint_states, self.channels.transforms)
-        else {
+        let (Some(state), Some(joint_states), Some(transforms)) = (
+            &self.sim,
+            self.channels.joint_states,
+            self.channels.transforms,
+        ) else {
             return Ok(());
         };
-        let (joints, transforms_message) = {
-            let data = sim.data();
-            let mut positions = Vec::with_capacity(self.sim.coordinate_names.len());
-            let mut velocities = Vec::with_capacity(self.sim.coordinate_names.len());
-            for joint in &self.sim.joints {
-                positions.extend_from_slice(data.qpos(*joint));
-                velocities.extend_from_slice(data.qvel(*joint));
-            }
-            let joints =
-                foxglove::joint_state(time, &self.sim.coordinate_names, &positions, &velocities);
-            let bodies = self
-                .sim
-                .bodies
-                .iter()
-                .map(|(body, name)| (name.as_str(), data.body_pose(*body)));
-            (joints, foxglove::frame_transforms(time, bodies))
-        };
+        let (joints, poses) = (state.joint_state(sim, time), state.transforms(sim, time));
         self.write(joint_states, time, &joints)?;
-        self.write(transforms, time, &transforms_message)
+        self.write(transforms, time, &poses)
     }
 
     fn record_images(&mut self, world: &World<'_>, time: f64) -> Result<(), BoxError> {
@@ -241,11 +202,10 @@ impl McapRecorder {
             self.write(
                 channel,
                 time,
-                &foxglove::png_image(time, &frame, &png(&image)?),
+                &foxglove::png_image(time, &frame, &probe_images::png(&image)?),
             )?;
         }
-        if let (Some(sim), Some(renderer)) = (world.backend::<SimBackend>(), &mut self.sim.renderer)
-        {
+        if let (Some(sim), Some(renderer)) = (world.backend::<SimBackend>(), &mut self.renderer) {
             let mut images = Vec::with_capacity(self.channels.cameras.len());
             for (camera, channel) in &self.channels.cameras {
                 let rgb = renderer.render_rgb(&mut sim.data_mut(), *camera)?;
@@ -255,7 +215,7 @@ impl McapRecorder {
                     height,
                     pixels: rgb.into_raw(),
                 };
-                images.push((*channel, png(&image)?));
+                images.push((*channel, probe_images::png(&image)?));
             }
             for ((channel, png), name) in images.into_iter().zip(self.settings.cameras.clone()) {
                 self.write(channel, time, &foxglove::png_image(time, &name, &png))?;
@@ -275,32 +235,6 @@ impl McapRecorder {
         }
         Ok(())
     }
-}
-
-/// `image` as PNG: colour as 8-bit RGB, depth as 16-bit grey millimetres.
-fn png(image: &ProbeImage) -> Result<Vec<u8>, BoxError> {
-    let mut out = Vec::new();
-    let encoder = PngEncoder::new_with_quality(&mut out, CompressionType::Fast, FilterType::Sub);
-    match image {
-        ProbeImage::Rgb {
-            width,
-            height,
-            pixels,
-        } => encoder.write_image(pixels, *width, *height, image::ExtendedColorType::Rgb8)?,
-        ProbeImage::Depth {
-            width,
-            height,
-            metres,
-        } => {
-            let bytes: Vec<u8> = metres
-                .iter()
-                .flat_map(|m| ((m * 1000.0).round().clamp(0.0, 65535.0) as u16).to_be_bytes())
-                .collect();
-            encoder.write_image(&bytes, *width, *height, image::ExtendedColorType::L16)?;
-        }
-        _ => return Err("a probe image of an unknown kind".into()),
-    }
-    Ok(out)
 }
 
 impl Plugin for McapRecorder {

@@ -5,10 +5,13 @@ mod foxglove;
 mod inspector;
 mod joint_recorder;
 mod mcap_recorder;
+mod sim_state;
 mod status_line;
 mod video_recorder;
 #[cfg(feature = "viewer")]
 mod viewer;
+#[cfg(feature = "zenoh")]
+mod zenoh_bridge;
 
 #[cfg(feature = "viewer")]
 pub use inspector::{Inspector, InspectorSettings};
@@ -18,6 +21,8 @@ pub use status_line::StatusLine;
 pub use video_recorder::{VideoRecorder, VideoRecorderSettings};
 #[cfg(feature = "viewer")]
 pub use viewer::{Viewer, ViewerSettings};
+#[cfg(feature = "zenoh")]
+pub use zenoh_bridge::{ZenohBridge, ZenohBridgeSettings};
 
 /// The render preset of a recorder's cameras: MuJoCo's defaults when `quality` is asked for,
 /// else the fast one (software GL renders it several times faster).
