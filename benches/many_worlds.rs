@@ -4,8 +4,11 @@
 //! its own; and, for the largest bundled world, its model compiled against loaded from the
 //! compiled-model cache, and its whole start-up (built and bound, to its first tick) each way.
 //!
+//! With the feature `zenoh`, the Zenoh bridge's cost per tick and loopback round trip too
+//! (`benches/zenoh_bridge.rs`).
+//!
 //! ```text
-//! cargo bench --bench many_worlds
+//! cargo bench --features zenoh --bench many_worlds
 //! ```
 
 use std::rc::Rc;
@@ -19,6 +22,9 @@ use yarok::mjc::{Model, ModelSource, Sim, SimBackend};
 
 #[path = "measure.rs"]
 mod measure;
+#[cfg(feature = "zenoh")]
+#[path = "zenoh_bridge.rs"]
+mod zenoh_bridge;
 
 use measure::mean_times;
 
@@ -159,4 +165,6 @@ fn main() {
         cached.as_secs_f64() * 1e3,
         cold.as_secs_f64() / cached.as_secs_f64()
     );
+    #[cfg(feature = "zenoh")]
+    zenoh_bridge::measure();
 }
