@@ -33,6 +33,8 @@ else
   cargo test -p yarok-hw --features camera --locked --no-fail-fast --test camera_decode \
     --test video_device
 fi
+echo "== the Zenoh example: a world driven from another process through the bridge"
+cargo run --locked --features yarok/camera,yarok/viewer,yarok/zenoh --example zenoh_remote
 echo "== tests of process-wide state, as threads of one process (as cargo test runs them)"
 cargo test --workspace --locked --test render_offscreen
 cargo test --workspace --locked --test runtime_interrupt
