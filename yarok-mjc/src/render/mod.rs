@@ -28,7 +28,7 @@ use crate::error::{LibraryError, ModelError};
 use crate::model::{CameraId, Model};
 use crate::{Data, sys};
 use egl::GlContext;
-use mujoco_scene::{ContextSpec, make_scene};
+use mujoco_scene::{ContextSpec, make_scene, update_scene};
 
 /// A depth image: planar distance from the camera, in metres, top row first.
 pub type DepthImage = ImageBuffer<Luma<f32>, Vec<f32>>;
@@ -408,14 +408,13 @@ impl Renderer {
         // camera and scene are valid and belong to the same model (checked above); the pixel
         // buffers hold width·height pixels, the viewport's size, or are null when unwanted.
         unsafe {
-            mj.mjv_updateScene(
-                self.model.raw(),
-                data.raw_mut_ptr(),
+            update_scene(
+                &self.model,
+                data,
                 &self.option,
                 &self.perturb,
                 &mut view,
-                sys::mjCAT_ALL as i32,
-                &mut *self.scene,
+                &mut self.scene,
             );
         }
         if let Some(reach) = self.reach {

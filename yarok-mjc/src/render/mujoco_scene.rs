@@ -28,6 +28,34 @@ pub(super) fn make_scene(
     (scene, option, perturb)
 }
 
+/// Fills `scene` with `data`'s state seen by `camera`, every category of geom.
+///
+/// # Safety
+///
+/// `model`, `data`, `option`, `perturb`, `camera` and `scene` are valid and belong to the
+/// same model.
+pub(super) unsafe fn update_scene(
+    model: &Model,
+    data: &mut crate::Data,
+    option: &sys::mjvOption,
+    perturb: &sys::mjvPerturb,
+    camera: &mut sys::mjvCamera,
+    scene: &mut sys::mjvScene,
+) {
+    // SAFETY: as the caller guarantees.
+    unsafe {
+        model.mj().mjv_updateScene(
+            model.raw(),
+            data.raw_mut_ptr(),
+            option,
+            perturb,
+            camera,
+            sys::mjCAT_ALL as i32,
+            scene,
+        );
+    }
+}
+
 /// How a rendering context is made: its offscreen buffer, and what it uploads.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct ContextSpec {

@@ -4,7 +4,7 @@
 use std::marker::PhantomData;
 use std::sync::Arc;
 
-use super::mujoco_scene::{ContextSpec, make_scene};
+use super::mujoco_scene::{ContextSpec, make_scene, update_scene};
 use super::window::Window;
 use super::{RenderError, RenderPreset};
 use crate::{Data, Model, sys};
@@ -158,14 +158,13 @@ impl View {
         // and scene belong to the same model (checked above); the texts are NUL-terminated and
         // outlive the calls.
         unsafe {
-            mj.mjv_updateScene(
-                self.model.raw(),
-                data.raw_mut_ptr(),
+            update_scene(
+                &self.model,
+                data,
                 &self.option,
                 &self.perturb,
                 &mut self.camera,
-                sys::mjCAT_ALL as i32,
-                &mut *self.scene,
+                &mut self.scene,
             );
             mj.mjr_setBuffer(sys::mjFB_WINDOW as i32, &mut *self.context);
             mj.mjr_render(viewport, &mut *self.scene, &*self.context);
