@@ -22,7 +22,10 @@ struct Xvfb {
 
 impl Xvfb {
     fn start() -> Self {
-        let first = 100 + std::process::id() % 800;
+        // Tests of one process (threads under `cargo test`) start from numbers of their own.
+        static STARTED: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
+        let own = STARTED.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let first = 100 + (std::process::id() % 800) + 1000 * own;
         let number = (first..first + 100)
             .find(|n| !Path::new(&format!("/tmp/.X11-unix/X{n}")).exists())
             .expect("a free display number");
