@@ -68,11 +68,18 @@ fn the_shards_of_a_collection_are_the_whole_collection() {
     let collect = |name: &str, shard: Option<&str>| {
         let out = folder.path().join(name);
         let out_setting = format!("behaviour/out={:?}", out.display().to_string());
+        let recording = out.join("rig.mcap").display().to_string();
         let mut args = vec![
             "run",
             "tactile_rig_world",
             "--behaviour",
             "collect",
+            "--record",
+            &recording,
+            "--set",
+            "plugins/mcap/every=2",
+            "--set",
+            "plugins/mcap/image_hz=100",
             "--set",
             "sensor=\"digit\"",
             "--set",
@@ -106,14 +113,27 @@ fn the_shards_of_a_collection_are_the_whole_collection() {
     }
     sharded.sort_by_key(|row| row.split(',').next().unwrap().parse::<usize>().unwrap());
     assert_eq!(sharded, rows, "the shards' rows are the whole run's");
+    let mut episodes = 0;
     for entry in std::fs::read_dir(&whole).unwrap() {
         let name = entry.unwrap().file_name();
-        if name == "index.csv" {
+        if name == "index.csv" || name == "rig.mcap" {
             continue;
         }
         let a = std::fs::read(whole.join(&name)).unwrap();
         let b = std::fs::read(shards[0].join(&name)).unwrap();
         assert!(a == b, "{name:?} differs");
+        if name.to_string_lossy().starts_with("rig_episode_") {
+            episodes += 1;
+            let text = String::from_utf8_lossy(&a);
+            for topic in ["/joint_states", "/tf", "sensor/image", "\"position\""] {
+                assert!(text.contains(topic), "{name:?} records {topic}");
+            }
+        }
+    }
+    assert_eq!(episodes, rows.len(), "one recording per press");
+    for i in 0..3 {
+        let run = shards[0].join(format!("rig_{i}_of_3.mcap"));
+        assert!(run.exists(), "shard {i}'s own recording, named apart");
     }
     let (code, _, stderr) = yarok(&["run", "empty_world", "--shard", "3/3"]);
     assert_eq!(code, 2);

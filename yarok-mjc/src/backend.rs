@@ -10,7 +10,7 @@ use yarok_core::component::{Backend, Environment};
 use yarok_core::compose::Composition;
 use yarok_core::config::Settings;
 
-use crate::{Data, Model, ModelError, ModelSource};
+use crate::{Data, Model, ModelError, ModelSource, SavedState};
 
 /// The `sim` environment: MuJoCo. Components' `Interface<Sim>` implementations get typed
 /// handles through [`SimBind`](crate::SimBind).
@@ -30,6 +30,8 @@ pub struct SimBackend {
     data: Rc<RefCell<Data>>,
     /// Simulation time after the last step, so that reading it needs no borrow of the data.
     time: Cell<f64>,
+    /// The state after binding, which an episode's beginning puts back.
+    start: RefCell<Option<SavedState>>,
     #[cfg(feature = "render")]
     renderers: RefCell<Vec<(RendererKey, crate::handles::SharedRenderer)>>,
 }
@@ -64,6 +66,7 @@ impl SimBackend {
         data.forward();
         Ok(Self {
             time: Cell::new(data.time()),
+            start: RefCell::new(None),
             model,
             source,
             data: Rc::new(RefCell::new(data)),
@@ -157,5 +160,21 @@ impl Backend for SimBackend {
 
     fn paced(&self) -> bool {
         false
+    }
+
+    fn remember_start(&self) {
+        *self.start.borrow_mut() = Some(self.data.borrow().save_state());
+    }
+
+    fn restart(&self) -> Result<(), BoxError> {
+        let start = self.start.borrow();
+        let start = start
+            .as_ref()
+            .ok_or("the world has not started: there is no start state yet")?;
+        let mut data = self.data.try_borrow_mut().map_err(
+            |_| "the simulation data is borrowed: a plugin keeps a `data()` borrow past its step",
+        )?;
+        data.restore_state(start);
+        Ok(())
     }
 }

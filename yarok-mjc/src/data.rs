@@ -9,6 +9,24 @@ use crate::model::{ActuatorId, BodyId, JointId, KeyframeId, Model, SensorId, Sit
 use crate::pose::Pose;
 use crate::sys;
 
+/// What [`Data::save_state`] saves: MuJoCo's integration state without the time.
+const SAVED_STATE: sys::mjtState = sys::mjSTATE_INTEGRATION & !sys::mjSTATE_TIME;
+
+/// A simulation state [`Data::save_state`] saved, for [`Data::restore_state`].
+#[derive(Clone)]
+pub struct SavedState {
+    model: Arc<Model>,
+    values: Vec<f64>,
+}
+
+impl fmt::Debug for SavedState {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("SavedState")
+            .field("numbers", &self.values.len())
+            .finish()
+    }
+}
+
 /// The state of one simulation of a [`Model`] (`mjData`): time, positions, velocities,
 /// controls, sensor readings and everything computed from them.
 ///
@@ -108,6 +126,80 @@ impl Data {
                 .mj()
                 .mj_resetDataKeyframe(self.model.raw(), self.raw.as_ptr(), index)
         }
+    }
+
+    /// Saves everything that determines how the simulation goes on from here — positions,
+    /// velocities, activations, the solver's warm start, controls, applied forces, mocap poses,
+    /// active equalities, plugin and user data (MuJoCo's `mjSTATE_INTEGRATION`) — but not the
+    /// time; [`Data::restore_state`] brings it back.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use yarok_mjc::{Data, Model};
+    ///
+    /// let model = Arc::new(Model::from_xml_str(
+    ///     r#"<mujoco><worldbody><body name="ball" pos="0 0 1"><freejoint name="free"/>
+    ///        <geom size="0.1"/></body></worldbody></mujoco>"#,
+    /// )?);
+    /// let mut data = Data::new(&model)?;
+    /// let start = data.save_state();
+    /// for _ in 0..100 {
+    ///     data.step();
+    /// }
+    /// data.restore_state(&start);
+    /// assert_eq!(data.qpos(model.joint("free")?)[2], 1.0, "back where it started");
+    /// assert!(data.time() > 0.0, "time goes on");
+    /// # Ok::<(), yarok_mjc::ModelError>(())
+    /// ```
+    pub fn save_state(&self) -> SavedState {
+        // SAFETY: the model is valid; the signature is one of MuJoCo's state signatures.
+        let size = unsafe {
+            self.model
+                .mj()
+                .mj_stateSize(self.model.raw(), SAVED_STATE as i32)
+        };
+        let mut values = vec![0.0; usize::try_from(size).unwrap_or(0)];
+        // SAFETY: model and data belong together; `values` holds mj_stateSize(SAVED_STATE)
+        // numbers, what mj_getState writes for that signature.
+        unsafe {
+            self.model.mj().mj_getState(
+                self.model.raw(),
+                self.raw.as_ptr(),
+                values.as_mut_ptr(),
+                SAVED_STATE as i32,
+            );
+        }
+        SavedState {
+            model: Arc::clone(&self.model),
+            values,
+        }
+    }
+
+    /// Puts back a state [`Data::save_state`] saved (keeping the current time), and computes
+    /// what derives from it, as [`Data::forward`] does.
+    ///
+    /// # Panics
+    ///
+    /// When `state` was saved from the data of another model.
+    #[track_caller]
+    pub fn restore_state(&mut self, state: &SavedState) {
+        assert!(
+            Arc::ptr_eq(&state.model, &self.model),
+            "a state restored into the data of a model it was not saved from"
+        );
+        // SAFETY: model and data belong together; `state.values` was filled by mj_getState
+        // with the same signature for the same model, so it holds what mj_setState reads.
+        unsafe {
+            self.model.mj().mj_setState(
+                self.model.raw(),
+                self.raw.as_ptr(),
+                state.values.as_ptr(),
+                SAVED_STATE as i32,
+            );
+        }
+        self.forward();
     }
 
     /// Simulation time in seconds.

@@ -80,7 +80,7 @@ mod vfs;
 pub mod sys;
 
 pub use backend::{Sim, SimBackend};
-pub use data::Data;
+pub use data::{Data, SavedState};
 pub use error::{LibraryError, ModelError};
 #[cfg(feature = "render")]
 pub use handles::Camera;

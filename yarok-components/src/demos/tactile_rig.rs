@@ -76,10 +76,11 @@ pub fn grid(points: usize, spacing: f64, depths: &[f64]) -> Vec<Press> {
 /// (default 5) `spacing_mm` apart (2), at each of `depths_mm` ([0.5, 1, 1.5]) — and writes
 /// every sample to `out`: the tactile image (`0007.png`), the depth its camera saw
 /// (`0007_depth.npy`, metres, float32) and a row of the index (`index.csv`, columns
-/// [`INDEX_HEADER`]). In a sharded run (`[platform] shard = "I/N"`) it presses only its share
-/// of the grid (press `k` is shard `k mod N`'s) and writes `index_I_of_N.csv`: the N shards'
-/// files are, between them, the whole run's, byte for byte (each press starts from a
-/// placement of its own, whatever came before).
+/// [`INDEX_HEADER`]). Each press is an episode ([`Pl::begin_episode`]): it starts from the
+/// world's start state, whatever came before, and a recorder writes it apart. In a sharded run
+/// (`[platform] shard = "I/N"`) it presses only its share of the grid (press `k` is shard
+/// `k mod N`'s) and writes `index_I_of_N.csv`: the N shards' files and episode recordings are,
+/// between them, the whole run's, byte for byte.
 pub async fn collect(pl: Pl) -> BehaviourResult {
     let rig: TactileRigWorld = pl.get("/")?;
     let settings: CollectSettings = pl.config().deserialize()?;
@@ -95,10 +96,12 @@ pub async fn collect(pl: Pl) -> BehaviourResult {
     let mut index = String::from(INDEX_HEADER);
     index.push('\n');
     for (number, press) in shard.select(grid(points, spacing_mm * 1e-3, &depths)) {
+        pl.begin_episode(number as u64)?;
         let sample = rig.press(press).await?;
         index.push_str(&write_sample(&out, rig.sensor_kind(), number, &sample)?);
         index.push('\n');
     }
+    pl.end_episode();
     let name = if shard.is_whole() {
         "index.csv".to_owned()
     } else {

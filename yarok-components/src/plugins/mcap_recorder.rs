@@ -4,11 +4,11 @@
 use std::collections::BTreeMap;
 use std::fs::File;
 use std::io::BufWriter;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use yarok_core::BoxError;
 use yarok_core::component::ProbeImage;
-use yarok_core::runtime::{Plugin, World};
+use yarok_core::runtime::{Episode, LogLine, Plugin, World};
 use yarok_mjc::{CameraId, Renderer, SimBackend};
 
 use super::foxglove::{self, Schema};
@@ -20,7 +20,7 @@ use crate::probe_images;
 #[derive(Debug, Clone, PartialEq, serde::Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct McapRecorderSettings {
-    /// The MCAP file (created or truncated at start).
+    /// The MCAP file (created, with its folder, or truncated at start).
     pub path: PathBuf,
     /// Joint states and body poses every this many ticks (`sim` only).
     pub every: u64,
@@ -57,8 +57,123 @@ struct Channels {
     log: u16,
     /// One per probe, in the world's probe order.
     probes: Vec<u16>,
-    /// One per recorded camera.
-    cameras: Vec<(CameraId, u16)>,
+    /// One per recorded camera, in the settings' order.
+    cameras: Vec<u16>,
+}
+
+/// One MCAP file: the run's, or an episode's, whose times count from the episode's start.
+struct Recording {
+    path: PathBuf,
+    writer: mcap::Writer<BufWriter<File>>,
+    channels: Channels,
+    episode: Option<Episode>,
+    sequence: u32,
+    next_image: f64,
+}
+
+impl Recording {
+    /// Creates `path` with a channel for every probe, and in `sim` for the joints, the bodies
+    /// and `cameras`.
+    fn create(
+        path: PathBuf,
+        world: &World<'_>,
+        cameras: &[(String, CameraId)],
+        episode: Option<Episode>,
+    ) -> Result<Self, BoxError> {
+        let cannot = |e: std::io::Error| format!("cannot create {}: {e}", path.display());
+        if let Some(folder) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
+            std::fs::create_dir_all(folder).map_err(cannot)?;
+        }
+        let file = File::create(&path).map_err(cannot)?;
+        let options = mcap::WriteOptions::new()
+            .compression(None)
+            .library(concat!("yarok ", env!("CARGO_PKG_VERSION")));
+        let writer = options
+            .create(BufWriter::new(file))
+            .map_err(|e| failed(&path, e))?;
+        let mut recording = Self {
+            path,
+            writer,
+            channels: Channels::default(),
+            episode,
+            sequence: 0,
+            next_image: 0.0,
+        };
+        recording.channels.log = recording.channel(foxglove::LOG, "/log")?;
+        for probe in world.probes() {
+            let topic = format!("{}/{}", probe.component(), probe.name());
+            let channel = recording.channel(foxglove::COMPRESSED_IMAGE, &topic)?;
+            recording.channels.probes.push(channel);
+        }
+        if world.backend::<SimBackend>().is_some() {
+            recording.channels.joint_states =
+                Some(recording.channel(foxglove::JOINT_STATE, "/joint_states")?);
+            recording.channels.transforms =
+                Some(recording.channel(foxglove::FRAME_TRANSFORMS, "/tf")?);
+        }
+        for (name, _) in cameras {
+            let channel =
+                recording.channel(foxglove::COMPRESSED_IMAGE, &format!("/cameras/{name}"))?;
+            recording.channels.cameras.push(channel);
+        }
+        Ok(recording)
+    }
+
+    fn channel(&mut self, schema: Schema, topic: &str) -> Result<u16, BoxError> {
+        let writer = &mut self.writer;
+        let added = writer
+            .add_schema(schema.name, "jsonschema", schema.json_schema.as_bytes())
+            .and_then(|id| writer.add_channel(id, topic, "json", &BTreeMap::new()));
+        added.map_err(|e| failed(&self.path, e))
+    }
+
+    fn write(
+        &mut self,
+        channel: u16,
+        time: f64,
+        message: &serde_json::Value,
+    ) -> Result<(), BoxError> {
+        let data = serde_json::to_vec(message)?;
+        self.sequence += 1;
+        let header = mcap::records::MessageHeader {
+            channel_id: channel,
+            sequence: self.sequence,
+            log_time: foxglove::nanoseconds(time),
+            publish_time: foxglove::nanoseconds(time),
+        };
+        let written = self.writer.write_to_known_channel(&header, &data);
+        written.map_err(|e| failed(&self.path, e))
+    }
+
+    /// The time a recording of platform tick `tick` (at platform time `time`) reads.
+    fn time(&self, tick: u64, time: f64, timestep: f64) -> f64 {
+        self.episode
+            .map_or(time, |episode| episode.time_at(tick, timestep))
+    }
+
+    /// Ticks since the recording began.
+    fn ticks(&self, tick: u64) -> u64 {
+        self.episode
+            .map_or(tick, |episode| tick.saturating_sub(episode.start_tick))
+    }
+
+    fn write_log(&mut self, lines: &[LogLine], timestep: f64) -> Result<(), BoxError> {
+        for line in lines {
+            let time = self.time(line.tick, line.time, timestep);
+            self.write(self.channels.log, time, &foxglove::log(time, &line.text))?;
+        }
+        Ok(())
+    }
+
+    fn finish(mut self) -> Result<(), BoxError> {
+        self.writer.finish().map_err(|e| failed(&self.path, e))?;
+        let mut file = self.writer.into_inner();
+        std::io::Write::flush(&mut file).map_err(|e| failed(&self.path, e))
+    }
+}
+
+fn failed(path: &Path, error: impl std::fmt::Display) -> BoxError {
+    format!("cannot write {}: {error}", path.display()).into()
 }
 
 /// Records a run in MCAP: topic `/joint_states` (every joint coordinate's position and
@@ -66,7 +181,13 @@ struct Channels {
 /// named body's pose in the world frame, `foxglove.FrameTransforms`), one image topic per probe
 /// (`/arm/gripper/left/image`: PNG, depth as 16-bit millimetres) and per camera asked for
 /// (`/cameras/overview`), and `/log` (the behaviours' [`Pl::log`](yarok_core::runtime::Pl::log)
-/// lines, `foxglove.Log`). Messages are JSON; log times are platform time.
+/// lines, `foxglove.Log`). Messages are JSON; times are platform time.
+///
+/// Each episode a behaviour begins ([`Pl::begin_episode`](yarok_core::runtime::Pl::begin_episode))
+/// is recorded in a file of its own beside `path` — `run_episode_0007.mcap` for episode 7 of
+/// `run.mcap` — whose times count from the episode's start, so that an episode's file is the
+/// same, byte for byte, whichever episodes ran before it. What happens outside episodes goes to
+/// `path`, which a sharded run (`[platform] shard = "1/3"`) names `run_1_of_3.mcap`.
 ///
 /// Registered by `yarok::platform()` as `mcap`:
 ///
@@ -77,20 +198,20 @@ struct Channels {
 /// ```
 pub struct McapRecorder {
     settings: McapRecorderSettings,
-    writer: Option<mcap::Writer<BufWriter<File>>>,
-    channels: Channels,
+    /// The run's file, and the current episode's.
+    run: Option<Recording>,
+    episode: Option<Recording>,
     /// In `sim`: the joints and bodies, and the renderer of the cameras asked for.
     sim: Option<SimState>,
     renderer: Option<Renderer>,
-    sequence: u32,
-    next_image: f64,
+    cameras: Vec<(String, CameraId)>,
 }
 
 impl std::fmt::Debug for McapRecorder {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("McapRecorder")
             .field("settings", &self.settings)
-            .field("messages", &self.sequence)
+            .field("episode", &self.episode.as_ref().and_then(|r| r.episode))
             .finish()
     }
 }
@@ -110,57 +231,28 @@ impl McapRecorder {
         }
         Ok(Self {
             settings,
-            writer: None,
-            channels: Channels::default(),
+            run: None,
+            episode: None,
             sim: None,
             renderer: None,
-            sequence: 0,
-            next_image: 0.0,
+            cameras: Vec::new(),
         })
     }
 
-    fn failed(&self, error: impl std::fmt::Display) -> BoxError {
-        format!("cannot write {}: {error}", self.settings.path.display()).into()
-    }
-
-    fn writer(&mut self) -> Result<&mut mcap::Writer<BufWriter<File>>, BoxError> {
-        self.writer
-            .as_mut()
-            .ok_or_else(|| "the recording has not started".into())
-    }
-
-    fn channel(&mut self, schema: Schema, topic: &str) -> Result<u16, BoxError> {
-        let writer = self.writer()?;
-        let added = writer
-            .add_schema(schema.name, "jsonschema", schema.json_schema.as_bytes())
-            .and_then(|id| writer.add_channel(id, topic, "json", &BTreeMap::new()));
-        added.map_err(|e| self.failed(e))
-    }
-
-    fn write(
-        &mut self,
-        channel: u16,
-        time: f64,
-        message: &serde_json::Value,
-    ) -> Result<(), BoxError> {
-        let data = serde_json::to_vec(message)?;
-        self.sequence += 1;
-        let header = mcap::records::MessageHeader {
-            channel_id: channel,
-            sequence: self.sequence,
-            log_time: foxglove::nanoseconds(time),
-            publish_time: foxglove::nanoseconds(time),
-        };
-        let written = self.writer()?.write_to_known_channel(&header, &data);
-        written.map_err(|e| self.failed(e))
+    /// `path` with `suffix` added to its file name, before the extension.
+    fn beside(&self, suffix: &str) -> PathBuf {
+        let path = &self.settings.path;
+        let stem = path.file_stem().unwrap_or_default().to_string_lossy();
+        let extension = path
+            .extension()
+            .map_or("mcap".into(), |e| e.to_string_lossy());
+        path.with_file_name(format!("{stem}{suffix}.{extension}"))
     }
 
     /// Finds what `sim` records: joints, bodies and the cameras asked for.
     fn start_sim(&mut self, sim: &SimBackend) -> Result<(), BoxError> {
         let model = sim.model();
         self.sim = Some(SimState::of(sim));
-        self.channels.joint_states = Some(self.channel(foxglove::JOINT_STATE, "/joint_states")?);
-        self.channels.transforms = Some(self.channel(foxglove::FRAME_TRANSFORMS, "/tf")?);
         if !self.settings.cameras.is_empty() {
             let [width, height] = self.settings.size;
             self.renderer = Some(
@@ -170,44 +262,75 @@ impl McapRecorder {
                     .build(model)?,
             );
         }
-        for name in self.settings.cameras.clone() {
+        for name in &self.settings.cameras {
             let camera = model
-                .camera(&name)
+                .camera(name)
                 .map_err(|e| format!("camera {name:?} to record: {e}"))?;
-            let channel = self.channel(foxglove::COMPRESSED_IMAGE, &format!("/cameras/{name}"))?;
-            self.channels.cameras.push((camera, channel));
+            self.cameras.push((name.clone(), camera));
         }
         Ok(())
     }
 
+    /// The file being recorded into: the episode's, or the run's.
+    fn recording(&mut self) -> Result<&mut Recording, BoxError> {
+        self.episode
+            .as_mut()
+            .or(self.run.as_mut())
+            .ok_or_else(|| "the recording has not started".into())
+    }
+
+    /// Writes the lines logged since the last step into the files they belong to, opening and
+    /// closing episodes' files as they began and ended among them.
+    fn follow_episodes(&mut self, world: &World<'_>) -> Result<(), BoxError> {
+        let timestep = world.pl().timestep();
+        let lines = world.log();
+        let mut written = 0;
+        for event in world.episode_events().iter() {
+            let before = event.after_log_lines.min(lines.len());
+            self.recording()?
+                .write_log(&lines[written..before], timestep)?;
+            written = before;
+            if let Some(ended) = self.episode.take() {
+                ended.finish()?;
+            }
+            if event.began {
+                let number = event.episode.number;
+                let path = self.beside(&format!("_episode_{number:04}"));
+                let recording = Recording::create(path, world, &self.cameras, Some(event.episode))?;
+                self.episode = Some(recording);
+            }
+        }
+        self.recording()?.write_log(&lines[written..], timestep)
+    }
+
     fn record_sim(&mut self, sim: &SimBackend, time: f64) -> Result<(), BoxError> {
-        let (Some(state), Some(joint_states), Some(transforms)) = (
-            &self.sim,
-            self.channels.joint_states,
-            self.channels.transforms,
-        ) else {
+        let Some(state) = &self.sim else {
             return Ok(());
         };
         let (joints, poses) = (state.joint_state(sim, time), state.transforms(sim, time));
-        self.write(joint_states, time, &joints)?;
-        self.write(transforms, time, &poses)
+        let recording = self.recording()?;
+        let (Some(joint_states), Some(transforms)) = (
+            recording.channels.joint_states,
+            recording.channels.transforms,
+        ) else {
+            return Ok(());
+        };
+        recording.write(joint_states, time, &joints)?;
+        recording.write(transforms, time, &poses)
     }
 
     fn record_images(&mut self, world: &World<'_>, time: f64) -> Result<(), BoxError> {
-        for (probe, channel) in world.probes().iter().zip(self.channels.probes.clone()) {
+        let mut images = Vec::new();
+        for probe in world.probes() {
             let image = probe
                 .read()
                 .map_err(|e| format!("probe {}/{}: {e}", probe.component(), probe.name()))?;
             let frame = format!("{}/{}", probe.component(), probe.name());
-            self.write(
-                channel,
-                time,
-                &foxglove::png_image(time, &frame, &probe_images::png(&image)?),
-            )?;
+            images.push((frame, probe_images::png(&image)?));
         }
+        let mut cameras = Vec::with_capacity(self.cameras.len());
         if let (Some(sim), Some(renderer)) = (world.backend::<SimBackend>(), &mut self.renderer) {
-            let mut images = Vec::with_capacity(self.channels.cameras.len());
-            for (camera, channel) in &self.channels.cameras {
+            for (name, camera) in &self.cameras {
                 let rgb = renderer.render_rgb(&mut sim.data_mut(), *camera)?;
                 let (width, height) = rgb.dimensions();
                 let image = ProbeImage::Rgb {
@@ -215,23 +338,19 @@ impl McapRecorder {
                     height,
                     pixels: rgb.into_raw(),
                 };
-                images.push((*channel, probe_images::png(&image)?));
-            }
-            for ((channel, png), name) in images.into_iter().zip(self.settings.cameras.clone()) {
-                self.write(channel, time, &foxglove::png_image(time, &name, &png))?;
+                cameras.push((name.clone(), probe_images::png(&image)?));
             }
         }
-        Ok(())
-    }
-
-    fn record_log(&mut self, world: &World<'_>) -> Result<(), BoxError> {
-        let lines: Vec<_> = world.log().to_vec();
-        for line in lines {
-            self.write(
-                self.channels.log,
-                line.time,
-                &foxglove::log(line.time, &line.text),
-            )?;
+        let recording = self.recording()?;
+        let channels: Vec<u16> = recording
+            .channels
+            .probes
+            .iter()
+            .chain(&recording.channels.cameras)
+            .copied()
+            .collect();
+        for (channel, (frame, png)) in channels.into_iter().zip(images.into_iter().chain(cameras)) {
+            recording.write(channel, time, &foxglove::png_image(time, &frame, &png))?;
         }
         Ok(())
     }
@@ -243,58 +362,63 @@ impl Plugin for McapRecorder {
     }
 
     fn start(&mut self, world: &World<'_>) -> Result<(), BoxError> {
-        let path = &self.settings.path;
-        let file =
-            File::create(path).map_err(|e| format!("cannot create {}: {e}", path.display()))?;
-        let options = mcap::WriteOptions::new()
-            .compression(None)
-            .library(concat!("yarok ", env!("CARGO_PKG_VERSION")));
-        let writer = options
-            .create(BufWriter::new(file))
-            .map_err(|e| self.failed(e))?;
-        self.writer = Some(writer);
-        self.channels.log = self.channel(foxglove::LOG, "/log")?;
-        for probe in world.probes() {
-            let topic = format!("{}/{}", probe.component(), probe.name());
-            let channel = self.channel(foxglove::COMPRESSED_IMAGE, &topic)?;
-            self.channels.probes.push(channel);
-        }
         match world.backend::<SimBackend>() {
-            Some(sim) => self.start_sim(sim),
-            None if self.settings.cameras.is_empty() => Ok(()),
-            None => Err(format!(
-                "records the model's cameras in `sim`, not in `{}`",
-                world.pl().environment()
-            )
-            .into()),
+            Some(sim) => self.start_sim(sim)?,
+            None if self.settings.cameras.is_empty() => {}
+            None => {
+                return Err(format!(
+                    "records the model's cameras in `sim`, not in `{}`",
+                    world.pl().environment()
+                )
+                .into());
+            }
         }
+        let shard = world.pl().shard();
+        let path = if shard.is_whole() {
+            self.settings.path.clone()
+        } else {
+            self.beside(&format!("_{}_of_{}", shard.index, shard.count))
+        };
+        self.run = Some(Recording::create(path, world, &self.cameras, None)?);
+        Ok(())
     }
 
     fn step(&mut self, world: &World<'_>) -> Result<(), BoxError> {
+        self.follow_episodes(world)?;
         // The platform steps plugins before it counts the tick and advances its clock.
         let tick = world.pl().ticks() + 1;
         let sim = world.backend::<SimBackend>();
-        let time = sim.map_or(world.pl().time(), |sim| sim.data().time());
+        let now = sim.map_or(world.pl().time(), |sim| sim.data().time());
+        let (every, image_period) = (self.settings.every, 1.0 / self.settings.image_hz);
+        let recording = self.recording()?;
+        let time = recording.time(tick, now, world.pl().timestep());
+        let record_state = recording.ticks(tick).is_multiple_of(every);
+        let record_images = time + 1e-9 >= recording.next_image;
+        if record_images {
+            recording.next_image += image_period;
+        }
         if let Some(sim) = sim
-            && tick.is_multiple_of(self.settings.every)
+            && record_state
         {
             self.record_sim(sim, time)?;
         }
-        if time + 1e-9 >= self.next_image {
-            self.next_image += 1.0 / self.settings.image_hz;
+        if record_images {
             self.record_images(world, time)?;
         }
-        self.record_log(world)
+        Ok(())
     }
 
     fn end(&mut self, world: &World<'_>) -> Result<(), BoxError> {
-        if self.writer.is_none() {
+        if self.run.is_none() {
             return Ok(());
         }
-        self.record_log(world)?;
-        let mut writer = self.writer.take().ok_or("the recording has not started")?;
-        writer.finish().map_err(|e| self.failed(e))?;
-        let mut file = writer.into_inner();
-        std::io::Write::flush(&mut file).map_err(|e| self.failed(e))
+        self.follow_episodes(world)?;
+        if let Some(episode) = self.episode.take() {
+            episode.finish()?;
+        }
+        self.run
+            .take()
+            .ok_or("the recording has not started")?
+            .finish()
     }
 }

@@ -294,6 +294,9 @@ impl TactileSensor {
         bind.probe("depth", move || {
             Ok(probe_images::depth(shown.read_depth()?))
         });
+        // The world went back to its start: a frame of it now, and the frames' schedule anew.
+        let restarting = Rc::clone(&inner);
+        bind.on_restart(move || restarting.frame(restarting.clock.time(), true));
         let ticking = Rc::clone(&inner);
         bind.on_tick(move || {
             // After a step the clock still reads the time before it.

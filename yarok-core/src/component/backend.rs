@@ -29,6 +29,22 @@ pub trait Backend: Any {
     /// Whether ticks should be paced to wall-clock time (always on hardware; optional in sim).
     fn paced(&self) -> bool;
 
+    /// Remembers the world's state as the one [`Backend::restart`] puts back: called once,
+    /// after every component has bound and before plugins and behaviours start.
+    fn remember_start(&self) {}
+
+    /// Puts the world back into the state [`Backend::remember_start`] remembered, keeping
+    /// platform time; called when an episode begins
+    /// ([`Pl::begin_episode`](crate::runtime::Pl::begin_episode)). By default nothing: on
+    /// hardware nothing can be put back, and the behaviour moves the devices where it needs them.
+    ///
+    /// # Errors
+    ///
+    /// Whatever keeps the world from going back; the episode does not begin.
+    fn restart(&self) -> Result<(), BoxError> {
+        Ok(())
+    }
+
     /// Called once at shutdown, after the components' stop actions.
     fn stop(&self) {}
 }

@@ -285,6 +285,18 @@ impl<E: Environment> Bind<E> {
         ));
     }
 
+    /// Registers what puts the component's own state back (a target, a schedule, a count) when
+    /// an episode begins and the world goes back to its start state
+    /// ([`Pl::begin_episode`](crate::runtime::Pl::begin_episode)): the backend's state is put
+    /// back first, then every component's restart action runs, in binding order.
+    pub fn on_restart(&mut self, action: impl FnMut() + 'static) {
+        self.context
+            .lifecycle
+            .borrow_mut()
+            .restarts
+            .push(Box::new(action));
+    }
+
     /// Registers an action that leaves the component safe at shutdown (stop motion, close the
     /// port), abandoned after [`DEFAULT_STOP_SECONDS`]; see [`Bind::on_stop_within`].
     pub fn on_stop(&mut self, action: impl Future<Output = Result<(), BoxError>> + 'static) {

@@ -1,4 +1,5 @@
-//! What interfaces register while they bind: per-tick steps, tasks, stop actions and probes.
+//! What interfaces register while they bind: per-tick steps, tasks, restart and stop actions,
+//! and probes.
 
 use std::future::Future;
 use std::pin::Pin;
@@ -8,6 +9,9 @@ use crate::BoxError;
 
 /// A per-tick step an interface registered.
 pub(crate) type TickStep = Box<dyn FnMut() -> Result<(), BoxError>>;
+
+/// What puts a component's own state back when the world restarts (an episode begins).
+pub(crate) type RestartAction = Box<dyn FnMut()>;
 
 /// Work that runs as a future on the platform's thread.
 pub(crate) type LocalFuture = Pin<Box<dyn Future<Output = Result<(), BoxError>>>>;
@@ -24,6 +28,7 @@ pub(crate) struct StopAction {
 pub(crate) struct Lifecycle {
     pub(crate) ticks: Vec<(String, tracing::Span, TickStep)>,
     pub(crate) tasks: Vec<(String, LocalFuture)>,
+    pub(crate) restarts: Vec<RestartAction>,
     pub(crate) stops: Vec<StopAction>,
     pub(crate) probes: Vec<Probe>,
 }

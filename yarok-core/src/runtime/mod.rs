@@ -35,6 +35,7 @@
 //! ```
 
 mod builder;
+mod episode;
 mod executor;
 mod interrupt;
 mod parallel;
@@ -44,6 +45,7 @@ mod plugin;
 mod thread;
 
 pub use builder::PlatformBuilder;
+pub use episode::{Episode, EpisodeError, EpisodeEvent};
 pub use parallel::run_parallel;
 pub use pl::{LogLine, Pl};
 pub use platform::Platform;

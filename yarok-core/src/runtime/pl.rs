@@ -1,12 +1,13 @@
 //! [`Pl`]: the handle behaviours get — platform time, waits, components.
 
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::ops::Deref;
 use std::rc::Rc;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use crate::component::{HandleError, Handles};
+use super::episode::{Episode, EpisodeError, EpisodeEvent};
+use crate::component::{Backend, HandleError, Handles, Lifecycle};
 use crate::config::Shard;
 use crate::time::Clock;
 use crate::value::Config;
@@ -32,6 +33,26 @@ struct Shared {
     /// Lines logged since the behaviours' last turn began, kept when plugins may read them.
     log: RefCell<Vec<LogLine>>,
     keeps_log: bool,
+    /// What an episode's beginning puts back: the backend's state, components' own.
+    backend: Rc<dyn Backend>,
+    lifecycle: Rc<RefCell<Lifecycle>>,
+    episode: Cell<Option<Episode>>,
+    /// Episodes begun or ended since the behaviours' last turn began, kept as `log` is.
+    episode_events: RefCell<Vec<EpisodeEvent>>,
+}
+
+/// What the platform hands its [`Pl`].
+pub(crate) struct PlParts {
+    pub(crate) environment: String,
+    pub(crate) handles: Rc<RefCell<Handles>>,
+    pub(crate) behaviour: Config,
+    pub(crate) stop: Arc<AtomicBool>,
+    /// Whether plugins read the log and episode events (else they are not kept).
+    pub(crate) keeps_log: bool,
+    pub(crate) shard: Shard,
+    /// The backend and the components' registrations, which an episode's beginning puts back.
+    pub(crate) backend: Rc<dyn Backend>,
+    pub(crate) lifecycle: Rc<RefCell<Lifecycle>>,
 }
 
 /// A line a behaviour logged with [`Pl::log`], and when.
@@ -39,6 +60,8 @@ struct Shared {
 pub struct LogLine {
     /// Platform time (seconds) when it was logged.
     pub time: f64,
+    /// The platform's tick count when it was logged.
+    pub tick: u64,
     /// The line.
     pub text: String,
 }
@@ -61,25 +84,21 @@ impl Deref for Pl {
 }
 
 impl Pl {
-    pub(crate) fn new(
-        clock: Clock,
-        environment: String,
-        handles: Rc<RefCell<Handles>>,
-        behaviour: Config,
-        stop: Arc<AtomicBool>,
-        keeps_log: bool,
-        shard: Shard,
-    ) -> Self {
+    pub(crate) fn new(clock: Clock, parts: PlParts) -> Self {
         Self {
             clock,
             inner: Rc::new(Shared {
-                environment,
-                handles,
-                behaviour,
-                stop,
+                environment: parts.environment,
+                handles: parts.handles,
+                behaviour: parts.behaviour,
+                stop: parts.stop,
                 log: RefCell::new(Vec::new()),
-                keeps_log,
-                shard,
+                keeps_log: parts.keeps_log,
+                shard: parts.shard,
+                backend: parts.backend,
+                lifecycle: parts.lifecycle,
+                episode: Cell::new(None),
+                episode_events: RefCell::new(Vec::new()),
             }),
         }
     }
@@ -128,6 +147,7 @@ impl Pl {
         if self.inner.keeps_log {
             self.inner.log.borrow_mut().push(LogLine {
                 time: self.time(),
+                tick: self.ticks(),
                 text,
             });
         }
@@ -138,9 +158,84 @@ impl Pl {
         std::cell::Ref::map(self.inner.log.borrow(), Vec::as_slice)
     }
 
-    /// Forgets the lines logged so far: every plugin has seen them.
+    /// Forgets the lines logged and the episodes begun or ended so far: every plugin has seen
+    /// them.
     pub(crate) fn clear_log(&self) {
         self.inner.log.borrow_mut().clear();
+        self.inner.episode_events.borrow_mut().clear();
+    }
+
+    /// Begins episode `number` (ending the current one): the world goes back to the state it
+    /// started in — in `sim` every body, joint, control and the solver's warm start, and every
+    /// component's own state through its [restart action](crate::component::Bind::on_restart)
+    /// — while platform time goes on. On hardware, where nothing can be put back, the episode
+    /// only begins: the behaviour moves the devices where it needs them.
+    ///
+    /// Recorders write each episode apart, timed from its beginning, so an episode's recording
+    /// is the same whichever episodes ran before it: the episodes of a sharded run
+    /// ([`Pl::shard`]) are, between the shards, the whole run's, byte for byte.
+    ///
+    /// # Errors
+    ///
+    /// [`EpisodeError`] when the backend cannot put the world back; no episode is current then.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// # async fn behaviour(pl: yarok_core::runtime::Pl) -> yarok_core::runtime::BehaviourResult {
+    /// for (number, depth) in pl.shard().select([0.5, 1.0, 1.5]) {
+    ///     pl.begin_episode(number as u64)?;
+    ///     pl.log(format!("pressing {depth} mm deep"));
+    ///     pl.wait_seconds(0.1).await?;
+    /// }
+    /// pl.end_episode();
+    /// # Ok(())
+    /// # }
+    /// ```
+    pub fn begin_episode(&self, number: u64) -> Result<Episode, EpisodeError> {
+        self.end_episode();
+        self.inner
+            .backend
+            .restart()
+            .map_err(|source| EpisodeError { number, source })?;
+        for restart in &mut self.inner.lifecycle.borrow_mut().restarts {
+            restart();
+        }
+        let episode = Episode {
+            number,
+            start_tick: self.ticks(),
+        };
+        self.inner.episode.set(Some(episode));
+        self.record_episode(episode, true);
+        Ok(episode)
+    }
+
+    /// Ends the current episode, if any (the next [`Pl::begin_episode`] and the run's end
+    /// end it too).
+    pub fn end_episode(&self) {
+        if let Some(episode) = self.inner.episode.take() {
+            self.record_episode(episode, false);
+        }
+    }
+
+    /// The current episode.
+    pub fn episode(&self) -> Option<Episode> {
+        self.inner.episode.get()
+    }
+
+    fn record_episode(&self, episode: Episode, began: bool) {
+        if self.inner.keeps_log {
+            self.inner.episode_events.borrow_mut().push(EpisodeEvent {
+                began,
+                episode,
+                after_log_lines: self.inner.log.borrow().len(),
+            });
+        }
+    }
+
+    /// The episodes begun or ended since the behaviours' last turn began.
+    pub(crate) fn episode_events(&self) -> std::cell::Ref<'_, [EpisodeEvent]> {
+        std::cell::Ref::map(self.inner.episode_events.borrow(), Vec::as_slice)
     }
 
     /// Asks the platform to stop after the current tick; `run` then returns `Ok`.

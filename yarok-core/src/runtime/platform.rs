@@ -12,6 +12,7 @@ use tokio::task::LocalSet;
 
 use super::executor::{Executor, Owner};
 use super::interrupt::Interrupt;
+use super::pl::PlParts;
 use super::{BehaviourResult, Pl, PlatformBuilder, Plugin, RuntimeError, World};
 use crate::component::{Backend, BindContext, Handles, Lifecycle, Probe, StopAction, TickStep};
 use crate::compose::Composition;
@@ -112,14 +113,19 @@ impl Platform {
         let executor = Executor::new(clock.clone());
         let stop = Arc::clone(&prepared.stop);
         let paced = prepared.platform.realtime || prepared.backend.paced();
+        let lifecycle = Rc::new(RefCell::new(Lifecycle::default()));
         let pl = Pl::new(
             clock.clone(),
-            prepared.environment.to_owned(),
-            Rc::clone(&handles),
-            prepared.behaviour,
-            prepared.stop,
-            !prepared.plugins.is_empty(),
-            prepared.platform.shard,
+            PlParts {
+                environment: prepared.environment.to_owned(),
+                handles: Rc::clone(&handles),
+                behaviour: prepared.behaviour,
+                stop: prepared.stop,
+                keeps_log: !prepared.plugins.is_empty(),
+                shard: prepared.platform.shard,
+                backend: Rc::clone(&prepared.backend),
+                lifecycle: Rc::clone(&lifecycle),
+            },
         );
         Self {
             environment: prepared.environment,
@@ -132,7 +138,7 @@ impl Platform {
             plugins: prepared.plugins,
             behaviours: prepared.behaviours,
             handles,
-            lifecycle: Rc::default(),
+            lifecycle,
             ticks: Vec::new(),
             probes: Vec::new(),
             executor,
@@ -322,6 +328,7 @@ impl Platform {
         };
         self.ticks = ticks;
         self.probes = probes;
+        self.backend.remember_start();
         for (component, task) in tasks {
             self.executor.spawn(Owner::Component(component), task);
         }

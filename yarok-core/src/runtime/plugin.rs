@@ -54,6 +54,12 @@ impl<'a> World<'a> {
         self.pl.logged()
     }
 
+    /// The episodes behaviours began or ended ([`Pl::begin_episode`]) since the plugins' last
+    /// step, in order, each placed among [`World::log`]'s lines.
+    pub fn episode_events(&self) -> std::cell::Ref<'a, [super::EpisodeEvent]> {
+        self.pl.episode_events()
+    }
+
     /// Every component's probes (images of what it senses), in binding order.
     pub fn probes(&self) -> &'a [Probe] {
         self.probes

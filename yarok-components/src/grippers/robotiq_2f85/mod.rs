@@ -90,6 +90,16 @@ struct State {
     stalled: u32,
 }
 
+impl State {
+    /// Open, at full speed and half force, as at power-on.
+    const START: Self = Self {
+        request: [0.0, 255.0, 128.0],
+        command: 0.0,
+        ticks: 2,
+        stalled: 0,
+    };
+}
+
 impl std::fmt::Debug for Robotiq2f85 {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Robotiq2f85")
@@ -353,18 +363,18 @@ impl Component for Robotiq2f85 {
 
 impl Robotiq2f85 {
     fn with_drive<E: yarok_core::component::Environment>(bind: &mut Bind<E>, drive: Drive) -> Self {
+        let simulated = matches!(drive, Drive::Sim(_));
         let gripper = Self {
             inner: Rc::new(Inner {
                 clock: bind.clock(),
                 drive,
-                state: RefCell::new(State {
-                    request: [0.0, 255.0, 128.0],
-                    command: 0.0,
-                    ticks: 2,
-                    stalled: 0,
-                }),
+                state: RefCell::new(State::START),
             }),
         };
+        if simulated {
+            let restarting = Rc::clone(&gripper.inner);
+            bind.on_restart(move || *restarting.state.borrow_mut() = State::START);
+        }
         let ticking = Rc::clone(&gripper.inner);
         bind.on_tick(move || {
             ticking.tick();

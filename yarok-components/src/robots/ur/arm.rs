@@ -93,8 +93,13 @@ impl Arm {
         drive: Drive,
         start: Joints,
     ) -> Self {
+        let simulated = matches!(drive, Drive::Sim(_));
         let controller = Rc::new(Controller::new(bind.clock(), kinematics, drive, start));
         controller.command();
+        if simulated {
+            let restarting = Rc::clone(&controller);
+            bind.on_restart(move || restarting.restart(start));
+        }
         let ticking = Rc::clone(&controller);
         bind.on_tick(move || {
             ticking.tick();

@@ -235,6 +235,21 @@ impl Controller {
     }
 
     /// Sets the servos to the reference (plus velocity feed-forward).
+    /// The world went back to its start (an episode began): the arm holds `start` again, and a
+    /// motion under way ends as stopped.
+    pub(super) fn restart(&self, start: Joints) {
+        {
+            let mut state = self.state.borrow_mut();
+            if let Some(motion) = state.motion.take() {
+                state.ended = Some((motion.id, Err(MotionError::Stopped)));
+            }
+            state.reference = start;
+            state.speed = [0.0; 6];
+            state.acceleration = [0.0; 6];
+        }
+        self.command();
+    }
+
     pub(super) fn command(&self) {
         if let Drive::Sim(sim) = &self.drive {
             let state = self.state.borrow();

@@ -1,0 +1,57 @@
+//! Episodes: numbered parts of a run that each start from the world's start state, so that a
+//! run's episodes — and their recordings — are the same whichever others ran before them.
+
+use crate::BoxError;
+
+/// An episode: its number (the behaviour's, e.g. the index of a press in a grid) and the tick
+/// it began on ([`Pl::begin_episode`](super::Pl::begin_episode)).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Episode {
+    /// The behaviour's number for it.
+    pub number: u64,
+    /// The platform's tick count when it began.
+    pub start_tick: u64,
+}
+
+impl Episode {
+    /// Seconds since the episode began at platform tick `tick`, counted in whole ticks, so
+    /// that the same moment of an episode reads the same time in every run, whatever platform
+    /// time the episode began at.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use yarok_core::runtime::Episode;
+    ///
+    /// let episode = Episode { number: 7, start_tick: 1_000 };
+    /// assert_eq!(episode.time_at(1_250, 0.002), 0.5);
+    /// ```
+    pub fn time_at(&self, tick: u64, timestep: f64) -> f64 {
+        tick.saturating_sub(self.start_tick) as f64 * timestep
+    }
+}
+
+/// An episode beginning or ending, as plugins see it ([`World::episode_events`]).
+///
+/// [`World::episode_events`]: super::World::episode_events
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct EpisodeEvent {
+    /// Whether the episode began (or ended).
+    pub began: bool,
+    /// The episode.
+    pub episode: Episode,
+    /// How many of the lines logged in the same turn ([`World::log`](super::World::log))
+    /// were logged before it: the lines up to there belong to what came before.
+    pub after_log_lines: usize,
+}
+
+/// Why an episode could not begin.
+#[derive(Debug, thiserror::Error)]
+#[error("episode {number} cannot begin: the world cannot go back to its start state: {source}")]
+pub struct EpisodeError {
+    /// The episode's number.
+    pub number: u64,
+    /// What the backend said.
+    #[source]
+    pub source: BoxError,
+}
