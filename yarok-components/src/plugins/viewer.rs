@@ -18,7 +18,7 @@ const BEHIND_FRAME_RATE: f64 = 4.0;
 const PAUSED_NAP: Duration = Duration::from_millis(10);
 
 const HELP: &str = "Space\nRight\nBackspace\n+ / -\nTab\nC / F / T\nH or F1\nLeft drag\nRight drag\nWheel, middle drag\nClose the window";
-const HELP_WHAT: &str = "pause, resume\nstep (paused)\nreset the model\nfaster, slower\nnext camera\ncontacts, forces, frames\nthis help\norbit\npan\nzoom\nend the run";
+const HELP_WHAT: &str = "pause, resume\nstep (paused)\nback to the start\nfaster, slower\nnext camera\ncontacts, forces, frames\nthis help\norbit\npan\nzoom\nend the run";
 
 /// How a [`Viewer`] looks (`[plugins.viewer]`).
 #[derive(Debug, Clone, PartialEq, serde::Deserialize)]
@@ -51,8 +51,8 @@ impl Default for ViewerSettings {
 
 /// A window with the live scene of a `sim` run. Passive: it draws the current state at most
 /// 60 times a second and paces the simulation to the wall clock (times `speed`), never slower;
-/// the mouse orbits, pans and zooms the free camera; keys pause, resume, step and reset the
-/// simulation, change its speed, switch between the free camera and the model's cameras and
+/// the mouse orbits, pans and zooms the free camera; keys pause, resume, step and put the world
+/// back to its start state ([`World::restart`]), change its speed, switch between the free camera and the model's cameras and
 /// show contacts, forces and frames (`H` lists them). Closing the window ends the run. The
 /// window's title says the platform time and whether it is paused.
 ///
@@ -122,10 +122,10 @@ impl Viewer {
         })
     }
 
-    /// Handles the window's events; whether the model was reset.
-    fn handle_events(&mut self, sim: &SimBackend) -> bool {
+    /// Handles the window's events; whether the world went back to its start.
+    fn handle_events(&mut self, world: &World<'_>) -> Result<bool, BoxError> {
         let Some(view) = &mut self.view else {
-            return false;
+            return Ok(false);
         };
         let mut reset = false;
         for event in view.events() {
@@ -177,12 +177,10 @@ impl Viewer {
             }
         }
         if reset {
-            let mut data = sim.data_mut();
-            data.reset();
-            data.forward();
+            world.restart()?;
             self.anchor = None;
         }
-        reset
+        Ok(reset)
     }
 
     /// Draws the scene if a frame is due: `FRAME_RATE` times a second at most, and less often
@@ -230,9 +228,9 @@ impl Viewer {
     /// and handling events meanwhile; while paused, until resumed or stepped. A simulation
     /// behind the wall clock is not slowed further by drawing: it is drawn then only
     /// `BEHIND_FRAME_RATE` times a second.
-    fn pace(&mut self, sim: &SimBackend, time: f64) -> Result<(), BoxError> {
+    fn pace(&mut self, world: &World<'_>, sim: &SimBackend, time: f64) -> Result<(), BoxError> {
         loop {
-            if self.handle_events(sim) {
+            if self.handle_events(world)? {
                 return Ok(());
             }
             if self.closed {
@@ -297,7 +295,7 @@ impl Plugin for Viewer {
     fn step(&mut self, world: &World<'_>) -> Result<(), BoxError> {
         let sim = Self::sim(world)?;
         let time = sim.data().time();
-        self.pace(sim, time)?;
+        self.pace(world, sim, time)?;
         if self.closed {
             world.pl().stop();
         }

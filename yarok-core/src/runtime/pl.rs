@@ -194,13 +194,8 @@ impl Pl {
     /// ```
     pub fn begin_episode(&self, number: u64) -> Result<Episode, EpisodeError> {
         self.end_episode();
-        self.inner
-            .backend
-            .restart()
+        self.restart_world()
             .map_err(|source| EpisodeError { number, source })?;
-        for restart in &mut self.inner.lifecycle.borrow_mut().restarts {
-            restart();
-        }
         let episode = Episode {
             number,
             start_tick: self.ticks(),
@@ -208,6 +203,16 @@ impl Pl {
         self.inner.episode.set(Some(episode));
         self.record_episode(episode, true);
         Ok(episode)
+    }
+
+    /// Puts the world back into its start state: the backend's, then every component's restart
+    /// action in binding order.
+    pub(crate) fn restart_world(&self) -> Result<(), crate::BoxError> {
+        self.inner.backend.restart()?;
+        for restart in &mut self.inner.lifecycle.borrow_mut().restarts {
+            restart();
+        }
+        Ok(())
     }
 
     /// Ends the current episode, if any (the next [`Pl::begin_episode`] and the run's end

@@ -54,6 +54,16 @@ impl<'a> World<'a> {
         self.pl.logged()
     }
 
+    /// Puts the world back into its start state as an episode's beginning does
+    /// ([`Pl::begin_episode`]), without beginning one: a viewer's reset. Platform time goes on.
+    ///
+    /// # Errors
+    ///
+    /// What keeps the backend from going back (a plugin still borrowing the simulation data).
+    pub fn restart(&self) -> Result<(), crate::BoxError> {
+        self.pl.restart_world()
+    }
+
     /// The episodes behaviours began or ended ([`Pl::begin_episode`]) since the plugins' last
     /// step, in order, each placed among [`World::log`]'s lines.
     pub fn episode_events(&self) -> std::cell::Ref<'a, [super::EpisodeEvent]> {
