@@ -63,10 +63,17 @@ pub(crate) fn neighbours(row: usize, height: usize) -> [usize; 3] {
 }
 
 /// Runs `work` over `rows` of an image whose rows, `row_len` elements each, are exactly `out`:
-/// in one call, or, when `parallel` (and the `parallel` feature is on), in one band of rows per
-/// thread of rayon's pool, each band with its own scratch from `scratch` (grown as needed). Every
+/// in one call, or, when `parallel` (and the `parallel` feature is on), in `BANDS_PER_THREAD`
+/// bands of rows per thread of rayon's pool, each band with its own scratch from `scratch`
+/// (grown as needed). Every
 /// row is computed from the same inputs whichever band it falls in, so the output does not depend
 /// on the split.
+/// Bands per thread of a parallel [`in_bands_with`]: a thread that finishes its band early (the
+/// other was slowed down by the rest of the machine) takes another. Measured on the DIGIT model
+/// on 2 cores, 4 beat 1 by about 5 % a frame in three paired runs.
+#[cfg(feature = "parallel")]
+const BANDS_PER_THREAD: usize = 4;
+
 pub(crate) fn in_bands_with<T: Send, S: Default + Send>(
     rows: Range<usize>,
     row_len: usize,
@@ -80,7 +87,7 @@ pub(crate) fn in_bands_with<T: Send, S: Default + Send>(
     }
     #[cfg(feature = "parallel")]
     if parallel && rows.len() > 1 && row_len > 0 {
-        let bands = rayon::current_num_threads().min(rows.len());
+        let bands = (BANDS_PER_THREAD * rayon::current_num_threads()).min(rows.len());
         let band_rows = rows.len().div_ceil(bands);
         if scratch.len() < bands {
             scratch.resize_with(bands, S::default);
@@ -93,7 +100,7 @@ pub(crate) fn in_bands_with<T: Send, S: Default + Send>(
         let mut bands = out.chunks_mut(band_rows * row_len).zip(scratch.iter_mut());
         let (first_out, first_scratch) = bands.next().expect("at least one band");
         let work = &work;
-        // The calling thread takes the first band itself: only as many threads as bands run.
+        // The calling thread takes the first band itself.
         rayon::in_place_scope(|scope| {
             for (band, (out, scratch)) in bands.enumerate() {
                 scope.spawn(move |_| work(band_range(band + 1), scratch, out));
