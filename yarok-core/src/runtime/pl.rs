@@ -171,8 +171,9 @@ impl Pl {
     /// — while platform time goes on. On hardware, where nothing can be put back, the episode
     /// only begins: the behaviour moves the devices where it needs them.
     ///
-    /// Recorders write each episode apart, timed from its beginning, so an episode's recording
-    /// is the same whichever episodes ran before it: the episodes of a sharded run
+    /// Plugins see episodes begin and end ([`World::episode_events`](super::World::episode_events));
+    /// yarok's MCAP recorder writes each apart, timed from its beginning, so an episode's
+    /// recording is the same whichever episodes ran before it: the episodes of a sharded run
     /// ([`Pl::shard`]) are, between the shards, the whole run's, byte for byte.
     ///
     /// # Errors
