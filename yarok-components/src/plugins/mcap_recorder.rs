@@ -395,7 +395,8 @@ impl Plugin for McapRecorder {
         let record_state = recording.ticks(tick).is_multiple_of(every);
         let record_images = time + 1e-9 >= recording.next_image;
         if record_images {
-            recording.next_image += image_period;
+            // Back in the run's file after an episode, the schedule resumes from now.
+            recording.next_image = (recording.next_image + image_period).max(time);
         }
         if let Some(sim) = sim
             && record_state
