@@ -9,7 +9,7 @@ use yarok_core::component::{
     Backend, Bind, BindError, Component, Declaration, Environment, Interface, Interfaces, Mock,
     MockBackend,
 };
-use yarok_core::runtime::{Platform, Plugin, World};
+use yarok_core::runtime::{Happening, Platform, Plugin, World};
 
 /// Counts ticks since the start, or since the last episode began.
 #[derive(Clone)]
@@ -85,20 +85,12 @@ impl Plugin for Seen {
     }
 
     fn step(&mut self, world: &World<'_>) -> Result<(), BoxError> {
-        let lines = world.log();
-        let mut seen = self.0.borrow_mut();
-        let mut written = 0;
-        for event in world.episode_events().iter() {
-            for line in &lines[written..event.after_log_lines] {
-                seen.push(format!("{} @{}", line.text, line.tick));
-            }
-            written = event.after_log_lines;
-            let what = if event.began { "began" } else { "ended" };
-            let episode = event.episode;
-            seen.push(format!("{} {what} @{}", episode.number, episode.start_tick));
-        }
-        for line in &lines[written..] {
-            seen.push(format!("{} @{}", line.text, line.tick));
+        for happening in world.happenings().iter() {
+            self.0.borrow_mut().push(match happening {
+                Happening::Logged(line) => format!("{} @{}", line.text, line.tick),
+                Happening::EpisodeBegan(e) => format!("{} began @{}", e.number, e.start_tick),
+                Happening::EpisodeEnded(e) => format!("{} ended @{}", e.number, e.start_tick),
+            });
         }
         Ok(())
     }

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use yarok_core::BoxError;
 use yarok_core::component::ProbeImage;
-use yarok_core::runtime::{Episode, LogLine, Plugin, World};
+use yarok_core::runtime::{Episode, Happening, LogLine, Plugin, World};
 use yarok_mjc::{CameraId, Renderer, SimBackend};
 
 use super::foxglove::{self, Schema};
@@ -157,12 +157,9 @@ impl Recording {
             .map_or(tick, |episode| tick.saturating_sub(episode.start_tick))
     }
 
-    fn write_log(&mut self, lines: &[LogLine], timestep: f64) -> Result<(), BoxError> {
-        for line in lines {
-            let time = self.time(line.tick, line.time, timestep);
-            self.write(self.channels.log, time, &foxglove::log(time, &line.text))?;
-        }
-        Ok(())
+    fn write_log(&mut self, line: &LogLine, timestep: f64) -> Result<(), BoxError> {
+        let time = self.time(line.tick, line.time, timestep);
+        self.write(self.channels.log, time, &foxglove::log(time, &line.text))
     }
 
     fn finish(mut self) -> Result<(), BoxError> {
@@ -283,24 +280,22 @@ impl McapRecorder {
     /// closing episodes' files as they began and ended among them.
     fn follow_episodes(&mut self, world: &World<'_>) -> Result<(), BoxError> {
         let timestep = world.pl().timestep();
-        let lines = world.log();
-        let mut written = 0;
-        for event in world.episode_events().iter() {
-            let before = event.after_log_lines.min(lines.len());
-            self.recording()?
-                .write_log(&lines[written..before], timestep)?;
-            written = before;
-            if let Some(ended) = self.episode.take() {
-                ended.finish()?;
-            }
-            if event.began {
-                let number = event.episode.number;
-                let path = self.beside(&format!("_episode_{number:04}"));
-                let recording = Recording::create(path, world, &self.cameras, Some(event.episode))?;
-                self.episode = Some(recording);
+        for happening in world.happenings().iter() {
+            match happening {
+                Happening::Logged(line) => self.recording()?.write_log(line, timestep)?,
+                Happening::EpisodeBegan(episode) => {
+                    let path = self.beside(&format!("_episode_{:04}", episode.number));
+                    let recording = Recording::create(path, world, &self.cameras, Some(*episode))?;
+                    self.episode = Some(recording);
+                }
+                Happening::EpisodeEnded(_) => {
+                    if let Some(ended) = self.episode.take() {
+                        ended.finish()?;
+                    }
+                }
             }
         }
-        self.recording()?.write_log(&lines[written..], timestep)
+        Ok(())
     }
 
     fn record_sim(&mut self, sim: &SimBackend, time: f64) -> Result<(), BoxError> {

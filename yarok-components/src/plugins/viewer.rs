@@ -52,8 +52,8 @@ impl Default for ViewerSettings {
 /// A window with the live scene of a `sim` run. Passive: it draws the current state at most
 /// 60 times a second and paces the simulation to the wall clock (times `speed`), never slower;
 /// the mouse orbits, pans and zooms the free camera; keys pause, resume, step and put the world
-/// back to its start state ([`World::restart`]), change its speed, switch between the free camera and the model's cameras and
-/// show contacts, forces and frames (`H` lists them). Closing the window ends the run. The
+/// back to its start state ([`World::restart`]), change its speed, switch between the free
+/// camera and the model's cameras and show contacts, forces and frames (`H` lists them). Closing the window ends the run. The
 /// window's title says the platform time and whether it is paused.
 ///
 /// Registered by `yarok::platform()` (feature `viewer`) as `viewer`; `yarok run WORLD

@@ -1,6 +1,7 @@
 //! Episodes: numbered parts of a run that each start from the world's start state, so that a
 //! run's episodes — and their recordings — are the same whichever others ran before them.
 
+use super::LogLine;
 use crate::BoxError;
 
 /// An episode: its number (the behaviour's, e.g. the index of a press in a grid) and the tick
@@ -31,18 +32,17 @@ impl Episode {
     }
 }
 
-/// An episode beginning or ending, as plugins see it ([`World::episode_events`]).
-///
-/// [`World::episode_events`]: super::World::episode_events
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct EpisodeEvent {
-    /// Whether the episode began (or ended).
-    pub began: bool,
-    /// The episode.
-    pub episode: Episode,
-    /// How many of the lines logged in the same turn ([`World::log`](super::World::log))
-    /// were logged before it: the lines up to there belong to what came before.
-    pub after_log_lines: usize,
+/// What a behaviour did that plugins see, in the order it happened
+/// ([`World::happenings`](super::World::happenings)): a line it logged, an episode it began or
+/// ended.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Happening {
+    /// A line logged with [`Pl::log`](super::Pl::log).
+    Logged(LogLine),
+    /// An episode began ([`Pl::begin_episode`](super::Pl::begin_episode)).
+    EpisodeBegan(Episode),
+    /// An episode ended ([`Pl::end_episode`](super::Pl::end_episode), or the next one began).
+    EpisodeEnded(Episode),
 }
 
 /// Why an episode could not begin.

@@ -45,7 +45,7 @@ mod plugin;
 mod thread;
 
 pub use builder::PlatformBuilder;
-pub use episode::{Episode, EpisodeError, EpisodeEvent};
+pub use episode::{Episode, EpisodeError, Happening};
 pub use parallel::run_parallel;
 pub use pl::{LogLine, Pl};
 pub use platform::Platform;

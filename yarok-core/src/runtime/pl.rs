@@ -6,7 +6,7 @@ use std::rc::Rc;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use super::episode::{Episode, EpisodeError, EpisodeEvent};
+use super::episode::{Episode, EpisodeError, Happening};
 use crate::component::{Backend, HandleError, Handles, Lifecycle};
 use crate::config::Shard;
 use crate::time::Clock;
@@ -30,15 +30,13 @@ struct Shared {
     behaviour: Config,
     stop: Arc<AtomicBool>,
     shard: Shard,
-    /// Lines logged since the behaviours' last turn began, kept when plugins may read them.
-    log: RefCell<Vec<LogLine>>,
-    keeps_log: bool,
+    /// What behaviours did since their last turn began, kept when plugins may read it.
+    happenings: RefCell<Vec<Happening>>,
+    keeps_happenings: bool,
     /// What an episode's beginning puts back: the backend's state, components' own.
     backend: Rc<dyn Backend>,
     lifecycle: Rc<RefCell<Lifecycle>>,
     episode: Cell<Option<Episode>>,
-    /// Episodes begun or ended since the behaviours' last turn began, kept as `log` is.
-    episode_events: RefCell<Vec<EpisodeEvent>>,
 }
 
 /// What the platform hands its [`Pl`].
@@ -47,8 +45,8 @@ pub(crate) struct PlParts {
     pub(crate) handles: Rc<RefCell<Handles>>,
     pub(crate) behaviour: Config,
     pub(crate) stop: Arc<AtomicBool>,
-    /// Whether plugins read the log and episode events (else they are not kept).
-    pub(crate) keeps_log: bool,
+    /// Whether plugins read what behaviours log and do (else it is not kept).
+    pub(crate) keeps_happenings: bool,
     pub(crate) shard: Shard,
     /// The backend and the components' registrations, which an episode's beginning puts back.
     pub(crate) backend: Rc<dyn Backend>,
@@ -92,13 +90,12 @@ impl Pl {
                 handles: parts.handles,
                 behaviour: parts.behaviour,
                 stop: parts.stop,
-                log: RefCell::new(Vec::new()),
-                keeps_log: parts.keeps_log,
+                happenings: RefCell::new(Vec::new()),
+                keeps_happenings: parts.keeps_happenings,
                 shard: parts.shard,
                 backend: parts.backend,
                 lifecycle: parts.lifecycle,
                 episode: Cell::new(None),
-                episode_events: RefCell::new(Vec::new()),
             }),
         }
     }
@@ -132,7 +129,8 @@ impl Pl {
     }
 
     /// Prints `line` on standard output and keeps it, with the platform time, for plugins
-    /// ([`World::log`](super::World::log)): a recorder stores it beside the run's data.
+    /// ([`World::happenings`](super::World::happenings)): a recorder stores it beside the run's
+    /// data.
     ///
     /// # Examples
     ///
@@ -144,25 +142,29 @@ impl Pl {
     pub fn log(&self, line: impl Into<String>) {
         let text = line.into();
         println!("{text}");
-        if self.inner.keeps_log {
-            self.inner.log.borrow_mut().push(LogLine {
-                time: self.time(),
-                tick: self.ticks(),
-                text,
-            });
+        let line = LogLine {
+            time: self.time(),
+            tick: self.ticks(),
+            text,
+        };
+        self.keep(Happening::Logged(line));
+    }
+
+    /// What behaviours did since their last turn began.
+    pub(crate) fn happenings(&self) -> std::cell::Ref<'_, [Happening]> {
+        std::cell::Ref::map(self.inner.happenings.borrow(), Vec::as_slice)
+    }
+
+    /// Forgets what behaviours did so far: every plugin has seen it.
+    pub(crate) fn clear_happenings(&self) {
+        self.inner.happenings.borrow_mut().clear();
+    }
+
+    /// Keeps `happening` for plugins, when there are any.
+    fn keep(&self, happening: Happening) {
+        if self.inner.keeps_happenings {
+            self.inner.happenings.borrow_mut().push(happening);
         }
-    }
-
-    /// The lines logged since the behaviours' last turn began.
-    pub(crate) fn logged(&self) -> std::cell::Ref<'_, [LogLine]> {
-        std::cell::Ref::map(self.inner.log.borrow(), Vec::as_slice)
-    }
-
-    /// Forgets the lines logged and the episodes begun or ended so far: every plugin has seen
-    /// them.
-    pub(crate) fn clear_log(&self) {
-        self.inner.log.borrow_mut().clear();
-        self.inner.episode_events.borrow_mut().clear();
     }
 
     /// Begins episode `number` (ending the current one): the world goes back to the state it
@@ -171,7 +173,7 @@ impl Pl {
     /// — while platform time goes on. On hardware, where nothing can be put back, the episode
     /// only begins: the behaviour moves the devices where it needs them.
     ///
-    /// Plugins see episodes begin and end ([`World::episode_events`](super::World::episode_events));
+    /// Plugins see episodes begin and end ([`World::happenings`](super::World::happenings));
     /// yarok's MCAP recorder writes each apart, timed from its beginning, so an episode's
     /// recording is the same whichever episodes ran before it: the episodes of a sharded run
     /// ([`Pl::shard`]) are, between the shards, the whole run's, byte for byte.
@@ -202,7 +204,7 @@ impl Pl {
             start_tick: self.ticks(),
         };
         self.inner.episode.set(Some(episode));
-        self.record_episode(episode, true);
+        self.keep(Happening::EpisodeBegan(episode));
         Ok(episode)
     }
 
@@ -220,28 +222,13 @@ impl Pl {
     /// end it too).
     pub fn end_episode(&self) {
         if let Some(episode) = self.inner.episode.take() {
-            self.record_episode(episode, false);
+            self.keep(Happening::EpisodeEnded(episode));
         }
     }
 
     /// The current episode.
     pub fn episode(&self) -> Option<Episode> {
         self.inner.episode.get()
-    }
-
-    fn record_episode(&self, episode: Episode, began: bool) {
-        if self.inner.keeps_log {
-            self.inner.episode_events.borrow_mut().push(EpisodeEvent {
-                began,
-                episode,
-                after_log_lines: self.inner.log.borrow().len(),
-            });
-        }
-    }
-
-    /// The episodes begun or ended since the behaviours' last turn began.
-    pub(crate) fn episode_events(&self) -> std::cell::Ref<'_, [EpisodeEvent]> {
-        std::cell::Ref::map(self.inner.episode_events.borrow(), Vec::as_slice)
     }
 
     /// Asks the platform to stop after the current tick; `run` then returns `Ok`.

@@ -121,7 +121,7 @@ impl Platform {
                 handles: Rc::clone(&handles),
                 behaviour: prepared.behaviour,
                 stop: prepared.stop,
-                keeps_log: !prepared.plugins.is_empty(),
+                keeps_happenings: !prepared.plugins.is_empty(),
                 shard: prepared.platform.shard,
                 backend: Rc::clone(&prepared.backend),
                 lifecycle: Rc::clone(&lifecycle),
@@ -413,7 +413,7 @@ impl Platform {
         }
         if !self.plugins.is_empty() {
             self.step_plugins()?;
-            self.pl.clear_log();
+            self.pl.clear_happenings();
         }
         self.clock.advance(self.backend.time());
         if !self.executor.tick() {

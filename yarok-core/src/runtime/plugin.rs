@@ -48,10 +48,11 @@ impl<'a> World<'a> {
         self.settings
     }
 
-    /// The lines behaviours logged ([`Pl::log`]) since the plugins' last step (at the first
-    /// step, since the behaviours started; at the end, since the last step).
-    pub fn log(&self) -> std::cell::Ref<'a, [super::LogLine]> {
-        self.pl.logged()
+    /// What behaviours did since the plugins' last step (at the first step, since the
+    /// behaviours started; at the end, since the last step), in order: the lines they logged
+    /// ([`Pl::log`]) and the episodes they began and ended ([`Pl::begin_episode`]).
+    pub fn happenings(&self) -> std::cell::Ref<'a, [super::Happening]> {
+        self.pl.happenings()
     }
 
     /// Puts the world back into its start state as an episode's beginning does
@@ -62,12 +63,6 @@ impl<'a> World<'a> {
     /// What keeps the backend from going back (a plugin still borrowing the simulation data).
     pub fn restart(&self) -> Result<(), crate::BoxError> {
         self.pl.restart_world()
-    }
-
-    /// The episodes behaviours began or ended ([`Pl::begin_episode`]) since the plugins' last
-    /// step, in order, each placed among [`World::log`]'s lines.
-    pub fn episode_events(&self) -> std::cell::Ref<'a, [super::EpisodeEvent]> {
-        self.pl.episode_events()
     }
 
     /// Every component's probes (images of what it senses), in binding order.

@@ -234,7 +234,6 @@ impl Controller {
         }
     }
 
-    /// Sets the servos to the reference (plus velocity feed-forward).
     /// The world went back to its start (an episode began): the arm holds `start` again, and a
     /// motion under way ends as stopped.
     pub(super) fn restart(&self, start: Joints) {
@@ -250,6 +249,7 @@ impl Controller {
         self.command();
     }
 
+    /// Sets the servos to the reference (plus velocity feed-forward).
     pub(super) fn command(&self) {
         if let Drive::Sim(sim) = &self.drive {
             let state = self.state.borrow();
