@@ -535,3 +535,75 @@ fn config_files_are_read_from_the_command_line() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A component whose probe cannot make its image.
+#[derive(Clone)]
+struct BlindCamera;
+
+impl Component for BlindCamera {
+    fn declaration() -> Declaration {
+        Declaration::new("blind_camera").template("<mujoco/>")
+    }
+
+    fn interfaces(interfaces: &mut Interfaces<Self>) {
+        interfaces.add::<Mock>();
+    }
+}
+
+impl Interface<Mock> for BlindCamera {
+    async fn bind(bind: &mut Bind<Mock>) -> Result<Self, BindError> {
+        bind.probe("rgb", || Err("the lens cap is on".into()));
+        Ok(BlindCamera)
+    }
+}
+
+/// Reads every probe at start and keeps what each read said.
+struct ProbeReader(Rc<RefCell<Vec<String>>>);
+
+impl Plugin for ProbeReader {
+    fn name(&self) -> String {
+        "probe reader".to_owned()
+    }
+
+    fn start(&mut self, world: &World<'_>) -> Result<(), BoxError> {
+        for probe in world.probes() {
+            let said = probe
+                .read()
+                .map_or_else(|e| e.to_string(), |_| "an image".into());
+            self.0.borrow_mut().push(said);
+        }
+        Ok(())
+    }
+
+    fn step(&mut self, _: &World<'_>) -> Result<(), BoxError> {
+        Ok(())
+    }
+}
+
+/// A world with a [`BlindCamera`] named `cam`.
+struct Darkroom;
+
+impl Component for Darkroom {
+    fn declaration() -> Declaration {
+        Declaration::new("darkroom")
+            .uses::<BlindCamera>()
+            .template(r#"<mujoco><worldbody><blind_camera name="cam"/></worldbody></mujoco>"#)
+    }
+}
+
+#[test]
+fn a_probe_that_cannot_read_says_which_probe_it_is() {
+    let said = Rc::new(RefCell::new(Vec::new()));
+    Platform::builder()
+        .world::<Darkroom>()
+        .environment("mock")
+        .backend::<Mock>(|_, _| Ok(MockBackend::new(0.01, false)))
+        .plugin(ProbeReader(Rc::clone(&said)))
+        .behaviour(|pl| async move {
+            pl.tick().await?;
+            Ok(())
+        })
+        .run()
+        .unwrap();
+    assert_eq!(*said.borrow(), ["probe /cam/rgb: the lens cap is on"]);
+}

@@ -119,9 +119,7 @@ impl Plugin for Inspector {
         self.last = Some(Instant::now());
         self.images.clear();
         for probe in world.probes() {
-            let image = probe
-                .read()
-                .map_err(|e| format!("probe {} {}: {e}", probe.component(), probe.name()))?;
+            let image = probe.read()?;
             self.images.push(rgb(image)?);
         }
         let pictures: Vec<Picture<'_>> = self

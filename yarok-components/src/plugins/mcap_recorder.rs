@@ -317,9 +317,7 @@ impl McapRecorder {
     fn record_images(&mut self, world: &World<'_>, time: f64) -> Result<(), BoxError> {
         let mut images = Vec::new();
         for probe in world.probes() {
-            let image = probe
-                .read()
-                .map_err(|e| format!("probe {}/{}: {e}", probe.component(), probe.name()))?;
+            let image = probe.read()?;
             let frame = format!("{}/{}", probe.component(), probe.name());
             images.push((frame, probe_images::png(&image)?));
         }

@@ -169,9 +169,7 @@ impl ZenohBridge {
 
     fn publish_images(&self, world: &World<'_>) -> Result<(), BoxError> {
         for probe in world.probes() {
-            let image = probe
-                .read()
-                .map_err(|e| format!("probe {} {}: {e}", probe.component(), probe.name()))?;
+            let image = probe.read()?;
             self.put(
                 self.key(probe.component(), probe.name()),
                 probe_images::png(&image)?,

@@ -82,8 +82,9 @@ impl Probe {
     ///
     /// # Errors
     ///
-    /// The component's, when it cannot make the image.
+    /// The component's, when it cannot make the image, naming the probe
+    /// (`probe /arm/gripper/left/image: …`).
     pub fn read(&self) -> Result<ProbeImage, BoxError> {
-        (self.read)()
+        (self.read)().map_err(|e| format!("probe {}/{}: {e}", self.component, self.name).into())
     }
 }
