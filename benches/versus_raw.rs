@@ -55,6 +55,7 @@ fn platform_seconds<W: Component>(ticks: u64, waits: usize) -> f64 {
 }
 
 /// What [`compare`] measured.
+#[derive(Clone, Copy)]
 pub(crate) struct Comparison {
     pub(crate) rounds: usize,
     pub(crate) ticks: u64,

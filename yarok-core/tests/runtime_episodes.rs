@@ -59,7 +59,7 @@ impl Environment for Frozen {
 
 struct FrozenBackend(MockBackend);
 impl Backend for FrozenBackend {
-    fn step(&self) -> Result<(), BoxError> {
+    fn step(&self) -> Result<f64, BoxError> {
         self.0.step()
     }
     fn time(&self) -> f64 {

@@ -67,8 +67,8 @@ impl HardwareBackend {
 }
 
 impl Backend for HardwareBackend {
-    fn step(&self) -> Result<(), BoxError> {
-        Ok(())
+    fn step(&self) -> Result<f64, BoxError> {
+        Ok(self.time())
     }
 
     fn time(&self) -> f64 {

@@ -140,14 +140,15 @@ impl SimBackend {
 }
 
 impl Backend for SimBackend {
-    fn step(&self) -> Result<(), BoxError> {
+    fn step(&self) -> Result<f64, BoxError> {
         let mut data = self.data.try_borrow_mut().map_err(|_| {
             "the simulation data is still borrowed when the platform steps: a plugin keeps a \
              `data()` borrow past its step"
         })?;
         data.step();
-        self.time.set(data.time());
-        Ok(())
+        let time = data.time();
+        self.time.set(time);
+        Ok(time)
     }
 
     fn time(&self) -> f64 {

@@ -13,12 +13,13 @@ use crate::BoxError;
 /// [`World::backend`](crate::runtime::World::backend). Backends are shared (`&self`), so state
 /// that changes lives in cells.
 pub trait Backend: Any {
-    /// Advances one tick: one simulation step, or one round of device I/O.
+    /// Advances one tick: one simulation step, or one round of device I/O. Returns the platform
+    /// time after it, what [`Backend::time`] now says.
     ///
     /// # Errors
     ///
     /// Whatever stops the world from advancing; the platform shuts down with it.
-    fn step(&self) -> Result<(), BoxError>;
+    fn step(&self) -> Result<f64, BoxError>;
 
     /// Platform time in seconds: simulation time, or time since start on hardware.
     fn time(&self) -> f64;
@@ -70,9 +71,9 @@ impl MockBackend {
 }
 
 impl Backend for MockBackend {
-    fn step(&self) -> Result<(), BoxError> {
+    fn step(&self) -> Result<f64, BoxError> {
         self.time.set(self.time.get() + self.timestep);
-        Ok(())
+        Ok(self.time.get())
     }
 
     fn time(&self) -> f64 {

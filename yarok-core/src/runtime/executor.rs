@@ -120,6 +120,7 @@ impl Executor {
     /// After a tick: polls the tasks that waited for it (in the order they were spawned), then
     /// the others woken (see [`Executor::poll`]); `false` when a behaviour or a component's task
     /// failed ([`Executor::failure`] has its error).
+    #[inline(always)]
     pub(crate) fn tick(&mut self) -> bool {
         let mut next = 0;
         while let Some((index, result)) = self.poll_ticked(next) {

@@ -403,11 +403,13 @@ impl Platform {
 
     /// Steps the backend, the components, the plugins and the clock, then runs what the tick
     /// woke; whether the run goes on.
+    #[inline(always)]
     fn tick(&mut self) -> Result<bool, RuntimeError> {
         // The hot path is kept small: after a step, little of it is still in the CPU's caches.
-        if let Err(source) = self.backend.step() {
-            return Err(self.step_failed(source));
-        }
+        let time = match self.backend.step() {
+            Ok(time) => time,
+            Err(source) => return Err(self.step_failed(source)),
+        };
         if !self.ticks.is_empty() {
             self.tick_interfaces()?;
         }
@@ -415,7 +417,7 @@ impl Platform {
             self.step_plugins()?;
             self.pl.clear_happenings();
         }
-        self.clock.advance(self.backend.time());
+        self.clock.advance(time);
         if !self.executor.tick() {
             self.executor.failure()?;
         }
