@@ -20,7 +20,7 @@ use yarok::mjc::Data;
 mod measure;
 mod versus_raw;
 use measure::mean_times;
-use versus_raw::{Comparison, compare};
+use versus_raw::compare;
 
 /// The arm's joints as `PickAndPlaceWorld` starts them (its `/arm` config), read once.
 fn start() -> Joints {
@@ -99,17 +99,16 @@ fn main() {
         "UR5e inverse kinematics      {:>8.2} µs per solve (target ≤ 2)",
         ik.as_secs_f64() * 1e6
     );
-    let Comparison {
-        rounds,
-        ticks,
-        raw,
-        platform,
-        median_ratio,
-    } = compare::<PickAndPlaceWorld>(1, arm_at_start);
+    let measured = compare::<PickAndPlaceWorld>(1, arm_at_start);
     println!(
-        "PickAndPlaceWorld            {raw:>8.0} raw steps/s, platform {platform:.0} ({:.1} %, median {:.1} %; {rounds} rounds × {ticks} steps; target ≥ 95 %)",
-        100.0 * platform / raw,
-        100.0 * median_ratio
+        "PickAndPlaceWorld            {:>8.0} raw steps/s, platform {:.0} ({:.1} %, {:.2} µs a tick, median {:.1} %; {} rounds × {} steps; target ≥ 95 %)",
+        measured.raw,
+        measured.platform,
+        100.0 * measured.ratio(),
+        measured.overhead_us(),
+        100.0 * measured.median_ratio,
+        measured.rounds,
+        measured.ticks,
     );
     println!(
         "start-up to the first tick   {:>8.1} ms (compose, compile, bind, one step)",

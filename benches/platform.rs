@@ -39,10 +39,10 @@ fn main() {
     print_row("floor only (executor cost shows)", &floor);
     let one_wait = compare::<Floor>(1, |_| {});
     print_row("floor only, 1 pending wait", &one_wait);
-    let per_wait = (overhead_us(&floor) - overhead_us(&one_wait)) / (WAITS - 1) as f64;
+    let per_wait = (floor.overhead_us() - one_wait.overhead_us()) / (WAITS - 1) as f64;
     println!(
         "\nfloor overhead split: {:.3} µs a tick + {:.4} µs a pending wait",
-        overhead_us(&one_wait) - per_wait,
+        one_wait.overhead_us() - per_wait,
         per_wait,
     );
     println!(
@@ -51,23 +51,15 @@ fn main() {
     );
 }
 
-/// µs a tick the platform adds to raw stepping (fastest rounds).
-fn overhead_us(measured: &Comparison) -> f64 {
-    (1.0 / measured.platform - 1.0 / measured.raw) * 1e6
-}
-
 fn print_row(name: &str, measured: &Comparison) {
-    let Comparison {
-        rounds,
-        ticks,
-        raw,
-        platform,
-        median_ratio,
-    } = *measured;
     println!(
-        "{name:<34} {raw:>12.0} {platform:>12.0} {:>6.1}% {:>11.3} µs {:>12.1}%   ({rounds} rounds × {ticks} steps)",
-        100.0 * platform / raw,
-        overhead_us(measured),
-        100.0 * median_ratio,
+        "{name:<34} {:>12.0} {:>12.0} {:>6.1}% {:>11.3} µs {:>12.1}%   ({} rounds × {} steps)",
+        measured.raw,
+        measured.platform,
+        100.0 * measured.ratio(),
+        measured.overhead_us(),
+        100.0 * measured.median_ratio,
+        measured.rounds,
+        measured.ticks,
     );
 }

@@ -55,7 +55,6 @@ fn platform_seconds<W: Component>(ticks: u64, waits: usize) -> f64 {
 }
 
 /// What [`compare`] measured.
-#[derive(Clone, Copy)]
 pub(crate) struct Comparison {
     pub(crate) rounds: usize,
     pub(crate) ticks: u64,
@@ -64,6 +63,18 @@ pub(crate) struct Comparison {
     pub(crate) platform: f64,
     /// The median of the rounds' platform/raw speed ratios.
     pub(crate) median_ratio: f64,
+}
+
+impl Comparison {
+    /// The fastest platform round's speed over the fastest raw round's.
+    pub(crate) fn ratio(&self) -> f64 {
+        self.platform / self.raw
+    }
+
+    /// µs a tick the platform adds to raw stepping (fastest rounds).
+    pub(crate) fn overhead_us(&self) -> f64 {
+        (1.0 / self.platform - 1.0 / self.raw) * 1e6
+    }
 }
 
 /// Raw stepping (from the state `prepare` sets up: what the world's components do when they
