@@ -8,8 +8,8 @@
 //! `DigitWorld` with both DIGITs at 60 Hz as a real-time factor; and the samples a second of
 //! one and of two `TactileRigWorld`s on threads of their own, with llvmpipe's rasteriser
 //! threads and without (`LP_NUM_THREADS=0`, measured in a child process), in alternating rounds
-//! with each side's fastest reported. Targets (on a 2-core
-//! machine): a DIGIT frame ≤ 3 ms; DigitWorld ≥ 2× real time; 2 rigs ≥ 1.7× one.
+//! with each side's fastest reported. Targets (on a 2-core machine): a DIGIT frame ≤ 3 ms;
+//! DigitWorld ≥ 2× real time; 2 rigs ≥ 1.7× one.
 //!
 //! ```text
 //! cargo bench --bench sensors

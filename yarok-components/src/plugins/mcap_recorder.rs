@@ -101,8 +101,7 @@ impl Recording {
         };
         recording.channels.log = recording.channel(foxglove::LOG, "/log")?;
         for probe in world.probes() {
-            let topic = format!("{}/{}", probe.component(), probe.name());
-            let channel = recording.channel(foxglove::COMPRESSED_IMAGE, &topic)?;
+            let channel = recording.channel(foxglove::COMPRESSED_IMAGE, &probe.path())?;
             recording.channels.probes.push(channel);
         }
         if world.backend::<SimBackend>().is_some() {
@@ -318,8 +317,7 @@ impl McapRecorder {
         let mut images = Vec::new();
         for probe in world.probes() {
             let image = probe.read()?;
-            let frame = format!("{}/{}", probe.component(), probe.name());
-            images.push((frame, probe_images::png(&image)?));
+            images.push((probe.path(), probe_images::png(&image)?));
         }
         let mut cameras = Vec::with_capacity(self.cameras.len());
         if let (Some(sim), Some(renderer)) = (world.backend::<SimBackend>(), &mut self.renderer) {

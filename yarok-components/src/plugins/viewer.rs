@@ -53,8 +53,9 @@ impl Default for ViewerSettings {
 /// 60 times a second and paces the simulation to the wall clock (times `speed`), never slower;
 /// the mouse orbits, pans and zooms the free camera; keys pause, resume, step and put the world
 /// back to its start state ([`World::restart`]), change its speed, switch between the free
-/// camera and the model's cameras and show contacts, forces and frames (`H` lists them). Closing the window ends the run. The
-/// window's title says the platform time and whether it is paused.
+/// camera and the model's cameras and show contacts, forces and frames (`H` lists them).
+/// Closing the window ends the run. The window's title says the platform time and whether it is
+/// paused.
 ///
 /// Registered by `yarok::platform()` (feature `viewer`) as `viewer`; `yarok run WORLD
 /// --viewer` adds it.

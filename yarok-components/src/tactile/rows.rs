@@ -62,18 +62,17 @@ pub(crate) fn neighbours(row: usize, height: usize) -> [usize; 3] {
     ]
 }
 
-/// Runs `work` over `rows` of an image whose rows, `row_len` elements each, are exactly `out`:
-/// in one call, or, when `parallel` (and the `parallel` feature is on), in `BANDS_PER_THREAD`
-/// bands of rows per thread of rayon's pool, each band with its own scratch from `scratch`
-/// (grown as needed). Every
-/// row is computed from the same inputs whichever band it falls in, so the output does not depend
-/// on the split.
 /// Bands per thread of a parallel [`in_bands_with`]: a thread that finishes its band early (the
 /// other was slowed down by the rest of the machine) takes another. Measured on the DIGIT model
 /// on 2 cores, 4 beat 1 by about 5 % a frame in three paired runs.
 #[cfg(feature = "parallel")]
 const BANDS_PER_THREAD: usize = 4;
 
+/// Runs `work` over `rows` of an image whose rows, `row_len` elements each, are exactly `out`:
+/// in one call, or, when `parallel` (and the `parallel` feature is on), in `BANDS_PER_THREAD`
+/// bands of rows per thread of rayon's pool, each band with its own scratch from `scratch`
+/// (grown as needed). Every row is computed from the same inputs whichever band it falls in, so
+/// the output does not depend on the split.
 pub(crate) fn in_bands_with<T: Send, S: Default + Send>(
     rows: Range<usize>,
     row_len: usize,

@@ -78,6 +78,11 @@ impl Probe {
         &self.name
     }
 
+    /// The probe's path: its component's path, then its name (`/arm/gripper/left/image`).
+    pub fn path(&self) -> String {
+        format!("{}/{}", self.component, self.name)
+    }
+
     /// The image now (a camera renders it).
     ///
     /// # Errors
@@ -85,6 +90,6 @@ impl Probe {
     /// The component's, when it cannot make the image, naming the probe
     /// (`probe /arm/gripper/left/image: …`).
     pub fn read(&self) -> Result<ProbeImage, BoxError> {
-        (self.read)().map_err(|e| format!("probe {}/{}: {e}", self.component, self.name).into())
+        (self.read)().map_err(|e| format!("probe {}: {e}", self.path()).into())
     }
 }
