@@ -81,16 +81,19 @@ impl Comparison {
 /// bind) and the platform (with `waits` behaviours each holding a pending wait) in alternating
 /// rounds.
 pub(crate) fn compare<W: Component>(waits: usize, prepare: fn(&mut Data)) -> Comparison {
+    compare_with::<W>(prepare, |ticks| platform_seconds::<W>(ticks, waits))
+}
+
+/// Raw stepping, as [`compare`], against `other`: seconds for a number of ticks.
+pub(crate) fn compare_with<W: Component>(
+    prepare: fn(&mut Data),
+    other: impl Fn(u64) -> f64,
+) -> Comparison {
     let probe = 500.0 / raw_seconds::<W>(500, prepare);
     let ticks = (probe * ROUND_SECONDS).max(100.0) as u64;
     let rounds = ((MEASURE_SECONDS * probe / (2 * ticks) as f64) as usize).clamp(11, 151);
     let times: Vec<(f64, f64)> = (0..rounds)
-        .map(|_| {
-            (
-                raw_seconds::<W>(ticks, prepare),
-                platform_seconds::<W>(ticks, waits),
-            )
-        })
+        .map(|_| (raw_seconds::<W>(ticks, prepare), other(ticks)))
         .collect();
     let fastest =
         |side: fn(&(f64, f64)) -> f64| times.iter().map(side).fold(f64::INFINITY, f64::min);
