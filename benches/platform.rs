@@ -10,6 +10,12 @@
 //! ```text
 //! cargo bench --bench platform
 //! ```
+//!
+//! Wall time on the floor-only model moves by several per cent with where the linker places the
+//! code (the same source gives different figures in builds that differ elsewhere);
+//! `scripts/tick-instructions.sh` counts the instructions of each side instead, which every run
+//! of a build repeats exactly. It runs this bench with `--once raw|platform|bare TICKS WAITS`:
+//! one side, once, on the floor-only model.
 
 use std::cell::Cell;
 use std::future::Future;
@@ -19,12 +25,10 @@ use std::task::{Context, Poll, Waker};
 use std::time::Instant;
 
 use yarok::components::worlds::TowerWorld;
-use yarok::core::compose::compose;
-use yarok::mjc::{Data, Model};
 use yarok::{Component, Declaration};
 
 mod versus_raw;
-use versus_raw::{Comparison, compare, compare_with};
+use versus_raw::{Comparison, compare, compare_with, fresh_data, platform_seconds, raw_seconds};
 
 /// Just a floor: stepping is so cheap that the executor's own cost shows.
 struct Floor;
@@ -37,6 +41,11 @@ impl Component for Floor {
 const WAITS: usize = 10;
 
 fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    if let Some(at) = args.iter().position(|arg| arg == "--once") {
+        run_once(&args[at + 1..]);
+        return;
+    }
     println!("{WAITS} behaviours each hold a pending wait, checked every tick\n");
     println!(
         "{:<34} {:>12} {:>12} {:>7} {:>14} {:>13}",
@@ -66,6 +75,23 @@ fn main() {
         "steps/s: each side's fastest round; targets: platform ≥ 95 % of raw with contacts, \
          ≥ 85 % on the floor only (with {WAITS} waits)"
     );
+}
+
+/// `raw|platform|bare TICKS WAITS`: that side's run on the floor-only model, once.
+fn run_once(args: &[String]) {
+    let usage = "usage: --once raw|platform|bare TICKS WAITS";
+    let [side, ticks, waits] = args else {
+        panic!("{usage}");
+    };
+    let (Ok(ticks), Ok(waits)) = (ticks.parse(), waits.parse()) else {
+        panic!("{usage}");
+    };
+    match side.as_str() {
+        "raw" => raw_seconds::<Floor>(ticks, |_| {}),
+        "platform" => platform_seconds::<Floor>(ticks, waits),
+        "bare" => bare_seconds::<Floor>(ticks, waits),
+        _ => panic!("{usage}"),
+    };
 }
 
 fn print_row(name: &str, measured: &Comparison) {
@@ -120,11 +146,7 @@ impl<C: FnMut() -> bool + Unpin> Future for BareWait<'_, C> {
 /// errors, a stop flag, I/O wake-ups, plugins or turns for tokio. Timed as the platform is: by the
 /// first block, from its first poll to the tick its wait resolves on.
 fn bare_seconds<W: Component>(ticks: u64, waits: usize) -> f64 {
-    let model = std::sync::Arc::new(
-        Model::from_composition(&compose::<W>().expect("compose")).expect("compile"),
-    );
-    let mut data = Data::new(&model).expect("data");
-    data.forward();
+    let mut data = fresh_data::<W>(|_| {});
     let clock = Rc::new(BareClock::default());
     let elapsed = Rc::new(Cell::new(f64::NAN));
     let mut tasks: Vec<(BareTask, bool)> = (0..waits)

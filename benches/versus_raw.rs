@@ -17,14 +17,20 @@ const ROUND_SECONDS: f64 = 0.01;
 /// Seconds of stepping, both sides together, that each model's measurement aims for.
 const MEASURE_SECONDS: f64 = 3.0;
 
-/// Seconds for `ticks` raw steps, from the state `prepare` sets up.
-fn raw_seconds<W: Component>(ticks: u64, prepare: fn(&mut Data)) -> f64 {
+/// A new simulation of `W`, compiled on its own, in the state `prepare` sets up.
+pub(crate) fn fresh_data<W: Component>(prepare: fn(&mut Data)) -> Data {
     let model = std::sync::Arc::new(
         Model::from_composition(&compose::<W>().expect("compose")).expect("compile"),
     );
     let mut data = Data::new(&model).expect("data");
     prepare(&mut data);
     data.forward();
+    data
+}
+
+/// Seconds for `ticks` raw steps, from the state `prepare` sets up.
+pub(crate) fn raw_seconds<W: Component>(ticks: u64, prepare: fn(&mut Data)) -> f64 {
+    let mut data = fresh_data::<W>(prepare);
     let started = Instant::now();
     for _ in 0..ticks {
         data.step();
@@ -35,7 +41,7 @@ fn raw_seconds<W: Component>(ticks: u64, prepare: fn(&mut Data)) -> f64 {
 /// Seconds for `ticks` platform ticks, timed by the first behaviour from its first poll to the
 /// tick its wait resolves on: building, binding and shutting down are not counted, so that
 /// rounds can be short.
-fn platform_seconds<W: Component>(ticks: u64, waits: usize) -> f64 {
+pub(crate) fn platform_seconds<W: Component>(ticks: u64, waits: usize) -> f64 {
     let elapsed = Rc::new(Cell::new(f64::NAN));
     let mut builder = yarok::platform().world::<W>();
     for index in 0..waits {
