@@ -31,6 +31,18 @@ struct Task {
     waits_tick: bool,
 }
 
+impl Task {
+    /// Polls the future, and notes whether it now waits for the next tick.
+    #[inline(always)]
+    fn poll(&mut self, clock: &Clock) -> Poll<Result<(), crate::BoxError>> {
+        let mut context = Context::from_waker(&self.waker);
+        clock.begin_polling(&self.waker);
+        let poll = self.future.as_mut().poll(&mut context);
+        self.waits_tick = clock.end_polling();
+        poll
+    }
+}
+
 /// Whose a task is, and the flag its waker sets.
 struct TaskInfo {
     owner: Owner,
@@ -70,10 +82,16 @@ impl Wake for TaskWake {
 
 pub(crate) struct Executor {
     tasks: Vec<Task>,
-    infos: Vec<TaskInfo>,
+    ledger: Ledger,
     wake: Arc<PlatformWake>,
-    behaviours: usize,
     clock: Clock,
+}
+
+/// What the executor keeps of its tasks besides polling them: whose each is, how many
+/// behaviours are pending, and the error a task ended with.
+struct Ledger {
+    infos: Vec<TaskInfo>,
+    behaviours: usize,
     /// The error a task ended with, until [`Executor::failure`] returns it.
     failed: Option<RuntimeError>,
 }
@@ -82,21 +100,23 @@ impl Executor {
     pub(crate) fn new(clock: Clock) -> Self {
         Self {
             tasks: Vec::new(),
-            infos: Vec::new(),
+            ledger: Ledger {
+                infos: Vec::new(),
+                behaviours: 0,
+                failed: None,
+            },
             wake: Arc::new(PlatformWake {
                 any_woken: AtomicBool::new(false),
                 sleeping: AtomicBool::new(false),
                 notify: Notify::new(),
             }),
-            behaviours: 0,
             clock,
-            failed: None,
         }
     }
 
     pub(crate) fn spawn(&mut self, owner: Owner, future: LocalFuture) {
         if matches!(owner, Owner::Behaviour { .. }) {
-            self.behaviours += 1;
+            self.ledger.behaviours += 1;
         }
         let woken = Arc::new(TaskWake {
             woken: AtomicBool::new(true),
@@ -109,12 +129,12 @@ impl Executor {
             waker,
             waits_tick: false,
         });
-        self.infos.push(TaskInfo { owner, woken });
+        self.ledger.infos.push(TaskInfo { owner, woken });
     }
 
     /// Whether every behaviour has returned.
     pub(crate) fn behaviours_done(&self) -> bool {
-        self.behaviours == 0
+        self.ledger.behaviours == 0
     }
 
     /// After a tick: polls the tasks that waited for it (in the order they were spawned), then
@@ -122,34 +142,16 @@ impl Executor {
     /// failed ([`Executor::failure`] has its error).
     #[inline(always)]
     pub(crate) fn tick(&mut self) -> bool {
-        let mut next = 0;
-        while let Some((index, result)) = self.poll_ticked(next) {
-            if !self.ended(index, result) {
+        for (index, task) in self.tasks.iter_mut().enumerate() {
+            if task.waits_tick
+                && let Poll::Ready(result) = task.poll(&self.clock)
+                && !self.ledger.ended(task, index, result)
+            {
                 return false;
             }
-            next = index + 1;
         }
         // Most ticks wake nothing else: a plain load before the call.
         !self.wake.any_woken.load(Ordering::Relaxed) || self.poll_woken()
-    }
-
-    /// Polls the tasks from `first` on that wait for a tick, until one returns: its index and
-    /// result.
-    #[inline(always)]
-    fn poll_ticked(&mut self, first: usize) -> Option<(usize, Result<(), crate::BoxError>)> {
-        let tasks = self.tasks.get_mut(first..)?;
-        for (index, task) in (first..).zip(tasks) {
-            if task.waits_tick {
-                let mut context = Context::from_waker(&task.waker);
-                self.clock.begin_polling(&task.waker);
-                let poll = task.future.as_mut().poll(&mut context);
-                task.waits_tick = self.clock.end_polling();
-                if let Poll::Ready(result) = poll {
-                    return Some((index, result));
-                }
-            }
-        }
-        None
     }
 
     /// Polls the tasks woken by anything but a tick until none is (or `MAX_ROUNDS`).
@@ -177,7 +179,10 @@ impl Executor {
             }
             for index in 0..self.tasks.len() {
                 // The only consumer clears the flag before polling, so no wake is lost.
-                if self.infos[index].woken.woken.swap(false, Ordering::Acquire)
+                if self.ledger.infos[index]
+                    .woken
+                    .woken
+                    .swap(false, Ordering::Acquire)
                     && !self.poll_task(index)
                 {
                     return false;
@@ -194,7 +199,7 @@ impl Executor {
     /// That error.
     #[cold]
     pub(crate) fn failure(&mut self) -> Result<(), RuntimeError> {
-        self.failed.take().map_or(Ok(()), Err)
+        self.ledger.failed.take().map_or(Ok(()), Err)
     }
 
     /// Polls one task; `false` when it failed (its error is kept for [`Executor::failure`]).
@@ -203,38 +208,10 @@ impl Executor {
         let Some(task) = self.tasks.get_mut(index) else {
             return true;
         };
-        let mut context = Context::from_waker(&task.waker);
-        self.clock.begin_polling(&task.waker);
-        let poll = task.future.as_mut().poll(&mut context);
-        task.waits_tick = self.clock.end_polling();
-        match poll {
+        match task.poll(&self.clock) {
             Poll::Pending => true,
-            Poll::Ready(result) => self.ended(index, result),
+            Poll::Ready(result) => self.ledger.ended(task, index, result),
         }
-    }
-
-    /// A task returned; `false` when with an error.
-    #[cold]
-    fn ended(&mut self, index: usize, result: Result<(), crate::BoxError>) -> bool {
-        self.tasks[index].future = Box::pin(std::future::pending());
-        let task = &mut self.infos[index];
-        if let Owner::Behaviour { .. } = task.owner {
-            self.behaviours -= 1;
-        }
-        let Err(source) = result else {
-            return true;
-        };
-        self.failed = Some(
-            match std::mem::replace(&mut task.owner, Owner::Component(String::new())) {
-                Owner::Behaviour { index, name } => RuntimeError::Behaviour {
-                    index,
-                    name,
-                    source,
-                },
-                Owner::Component(component) => RuntimeError::Interface { component, source },
-            },
-        );
-        false
     }
 
     /// Serves wake-ups (I/O reaching tasks at once) until `due`, or until the behaviours are
@@ -266,9 +243,41 @@ impl Executor {
     pub(crate) fn finish(&mut self) {
         // What the tasks return now does not change the run's result.
         self.tick();
-        self.failed = None;
+        self.ledger.failed = None;
         self.tasks.clear();
-        self.infos.clear();
-        self.behaviours = 0;
+        self.ledger.infos.clear();
+        self.ledger.behaviours = 0;
+    }
+}
+
+impl Ledger {
+    /// `task`, the one at `index`, returned `result`: it is not polled again; `false` when it
+    /// returned an error.
+    #[cold]
+    fn ended(
+        &mut self,
+        task: &mut Task,
+        index: usize,
+        result: Result<(), crate::BoxError>,
+    ) -> bool {
+        task.future = Box::pin(std::future::pending());
+        let info = &mut self.infos[index];
+        if let Owner::Behaviour { .. } = info.owner {
+            self.behaviours -= 1;
+        }
+        let Err(source) = result else {
+            return true;
+        };
+        self.failed = Some(
+            match std::mem::replace(&mut info.owner, Owner::Component(String::new())) {
+                Owner::Behaviour { index, name } => RuntimeError::Behaviour {
+                    index,
+                    name,
+                    source,
+                },
+                Owner::Component(component) => RuntimeError::Interface { component, source },
+            },
+        );
+        false
     }
 }
