@@ -4,8 +4,8 @@
 //! platform's overhead per tick in µs, with ten behaviours each holding a pending wait that is
 //! checked every tick. The floor is measured with one pending wait too, which splits its
 //! overhead into what every tick costs and what each pending wait adds, and against a bare
-//! executor: the least any executor polling ten async waits after each `mj_step` can cost on
-//! this machine, which shows how near the platform's overhead is to it.
+//! executor that does nothing but poll ten async waits after each `mj_step`: about the least any
+//! executor of such behaviours can cost on this machine.
 //!
 //! ```text
 //! cargo bench --bench platform
