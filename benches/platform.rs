@@ -14,7 +14,7 @@
 //! Wall time on the floor-only model moves by several per cent with where the linker places the
 //! code (the same source gives different figures in builds that differ elsewhere);
 //! `scripts/tick-instructions.sh` counts the instructions of each side instead, which every run
-//! of a build repeats exactly. It runs this bench with `--once raw|platform|bare TICKS WAITS`:
+//! of a build repeats to within one a tick. It runs this bench with `--once raw|platform|bare TICKS WAITS`:
 //! one side, once, on the floor-only model.
 
 use std::cell::Cell;
@@ -141,7 +141,7 @@ impl<C: FnMut() -> bool + Unpin> Future for BareWait<'_, C> {
     }
 }
 
-/// Seconds for `ticks` ticks of the least an executor can do: `mj_step`, then poll `waits` boxed
+/// Seconds for `ticks` ticks of a bare executor: `mj_step`, then poll `waits` boxed
 /// async blocks that each await a [`BareWait`], as the platform's behaviours do — without
 /// errors, a stop flag, I/O wake-ups, plugins or turns for tokio. Timed as the platform is: by the
 /// first block, from its first poll to the tick its wait resolves on.

@@ -2,7 +2,7 @@
 # Counts with valgrind the instructions a tick adds to a raw `mj_step` on the floor-only model of
 # `cargo bench --bench platform`: the platform's with one pending wait and with ten, and the bare
 # executor's. Wall time moves by several per cent with where the code lands in the binary; this
-# count is the same on every run of a build.
+# count repeats, run after run of a build, to within one instruction a tick.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/debian-packages.sh
