@@ -25,7 +25,7 @@ impl Component for PressWorld {
                 r#"<mujoco><worldbody>
                   <digit name="digit" pos="{[0, 0, 0.1]}" noise="{noise}"/>
                   <geom name="indenter" type="sphere" size="0.005" pos="{dx} {dy} {0.118 + 0.005 - press}"
-                        contype="0" conaffinity="0" rgba="0.8 0.2 0.2 1"/>
+                        rgba="0.8 0.2 0.2 1"/>
                 </worldbody></mujoco>"#,
             )
     }
@@ -205,8 +205,7 @@ impl Component for GelSightWorld {
             .template(
                 r#"<mujoco><worldbody>
                   <gelsight2014 name="sensor" pos="{[0, 0, 0.1]}" noise="false"/>
-                  <geom type="sphere" size="0.005" pos="0.005 0.003 {0.134 + 0.005 - press}"
-                        contype="0" conaffinity="0"/>
+                  <geom type="sphere" size="0.005" pos="0.005 0.003 {0.134 + 0.005 - press}"/>
                 </worldbody></mujoco>"#,
             )
     }
@@ -244,7 +243,7 @@ impl Component for Indenter {
             r#"<mujoco><worldbody>
               <body name="indenter" pos="0 0 0.15" gravcomp="1">
                 <joint name="height" type="slide" axis="0 0 1"/>
-                <geom type="sphere" size="0.005" mass="0.01" contype="0" conaffinity="0"/>
+                <geom type="sphere" size="0.005" mass="0.01"/>
               </body>
             </worldbody></mujoco>"#,
         )
@@ -261,7 +260,8 @@ impl Interface<Sim> for Indenter {
     }
 }
 
-/// A DIGIT at 100 frames/s (one every five 2 ms ticks) under the indenter.
+/// A DIGIT at 100 frames/s (one every five 2 ms ticks) under the indenter, which passes through
+/// its gel.
 struct RateWorld;
 
 impl Component for RateWorld {
@@ -274,7 +274,10 @@ impl Component for RateWorld {
                 r#"<mujoco><worldbody>
                   <digit name="digit" pos="{[0, 0, 0.1]}" fps="100" noise="false"/>
                   <indenter name="indenter"/>
-                </worldbody></mujoco>"#,
+                </worldbody>
+                <!-- Placed by hand, not pushed: it passes through the gel, which sees it. -->
+                <contact><exclude body1="indenter/indenter" body2="digit/sensor"/></contact>
+                </mujoco>"#,
             )
     }
 }
@@ -335,7 +338,7 @@ impl Component for GelTipWorld {
             .template(
                 r#"<mujoco><worldbody>
                   <geltip name="sensor" pos="{[0, 0, 0.1]}"/>
-                  <geom type="sphere" size="0.005" contype="0" conaffinity="0"
+                  <geom type="sphere" size="0.005"
                         pos="{[0.015 + 0.005 - press, 0, 0.12] if side else [0, 0, 0.145 + 0.005 - press]}"/>
                 </worldbody></mujoco>"#,
             )

@@ -7,7 +7,7 @@ use std::rc::Rc;
 
 use yarok_core::component::{Bind, BindError, NameKind};
 
-use crate::{ActuatorId, BodyId, Data, JointId, Pose, SensorId, Sim, SiteId};
+use crate::{ActuatorId, BodyId, ContactPoint, Data, GeomId, JointId, Pose, SensorId, Sim, SiteId};
 
 /// A renderer shared by the cameras that render at its size.
 #[cfg(feature = "render")]
@@ -136,6 +136,32 @@ impl Site {
     }
 }
 
+handle! {
+    /// A geom: the contacts it is in.
+    Geom(GeomId)
+}
+
+impl Geom {
+    /// The contacts this geom is in after the last step, each with the other geom second (its
+    /// normal pointing from this geom to the other).
+    pub fn contacts(&self) -> Vec<ContactPoint> {
+        self.data
+            .borrow()
+            .contacts()
+            .into_iter()
+            .filter_map(|contact| match contact.geoms {
+                [first, _] if first == self.id => Some(contact),
+                [other, second] if second == self.id => Some(ContactPoint {
+                    geoms: [second, other],
+                    normal: contact.normal.map(|n| -n),
+                    ..contact
+                }),
+                _ => None,
+            })
+            .collect()
+    }
+}
+
 /// A camera with its renderer: colour and depth images of the current state.
 #[cfg(feature = "render")]
 #[derive(Clone)]
@@ -145,6 +171,7 @@ pub struct Camera {
     id: crate::CameraId,
     visible: [bool; 6],
     reach: Option<f64>,
+    touching: Option<GeomId>,
 }
 
 #[cfg(feature = "render")]
@@ -175,11 +202,21 @@ impl Camera {
         self
     }
 
-    /// The renderer, set to this camera's visible groups and reach.
+    /// The same camera, drawing only the geoms that could touch `geom` (see
+    /// [`Renderer::set_touching`](crate::Renderer::set_touching)): a tactile sensor's camera
+    /// sees only what can press into its gel.
+    #[must_use]
+    pub fn touching(mut self, geom: &Geom) -> Self {
+        self.touching = Some(geom.id);
+        self
+    }
+
+    /// The renderer, set to this camera's visible groups, reach and touched geom.
     fn renderer(&self) -> std::cell::RefMut<'_, crate::Renderer> {
         let mut renderer = self.renderer.borrow_mut();
         renderer.set_visible_groups(self.visible);
         renderer.set_reach(self.reach);
+        renderer.set_touching(self.touching);
         renderer
     }
 
@@ -303,6 +340,13 @@ pub trait SimBind {
     /// As [`SimBind::actuator`].
     fn site(&self, local: &str) -> Result<Site, BindError>;
 
+    /// The geom the template names `local`.
+    ///
+    /// # Errors
+    ///
+    /// As [`SimBind::actuator`].
+    fn geom(&self, local: &str) -> Result<Geom, BindError>;
+
     /// The camera the template names `local`, rendering `width` × `height` pixels (cameras of
     /// one size share a renderer).
     ///
@@ -350,6 +394,7 @@ impl SimBind for Bind<Sim> {
         joint: Joint => joint -> Joint;
         body: Body => body -> Body;
         site: Site => site -> Site;
+        geom: Geom => geom -> Geom;
     }
 
     #[cfg(feature = "render")]
@@ -372,6 +417,7 @@ impl SimBind for Bind<Sim> {
             id,
             visible: [true; 6],
             reach: None,
+            touching: None,
         })
     }
 }

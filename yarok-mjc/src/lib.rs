@@ -53,6 +53,7 @@
 
 mod backend;
 mod composition;
+mod contacts;
 mod data;
 mod error;
 mod guard;
@@ -80,11 +81,12 @@ mod vfs;
 pub mod sys;
 
 pub use backend::{Sim, SimBackend};
+pub use contacts::ContactPoint;
 pub use data::{Data, SavedState};
 pub use error::{LibraryError, ModelError};
 #[cfg(feature = "render")]
 pub use handles::Camera;
-pub use handles::{Actuator, Body, Joint, Sensor, SimBind, Site};
+pub use handles::{Actuator, Body, Geom, Joint, Sensor, SimBind, Site};
 pub use library::mujoco_version;
 pub use pose::Pose;
 /// The MuJoCo version yarok is written against.

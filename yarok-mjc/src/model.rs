@@ -508,6 +508,11 @@ macro_rules! object_ids {
                 self.index
             }
 
+            /// The id of object `index` of `model` (`index` below its count of the kind).
+            #[allow(dead_code, reason = "made for every kind; some kinds need it")]
+            pub(crate) fn at(model: &Model, index: usize) -> Self {
+                Self { index, signature: model.signature() }
+            }
         }
 
         impl TypedId for $id {

@@ -23,4 +23,33 @@ impl Pose {
             .copy_from_slice(&quaternions[4 * index..4 * index + 4]);
         pose
     }
+
+    /// `point`, given in world coordinates, in this pose's frame (where a world point lies as
+    /// seen from a body or site).
+    ///
+    /// ```
+    /// use yarok_mjc::Pose;
+    ///
+    /// // A frame 1 m up, turned 90° about z: the world's +x lies along its −y.
+    /// let half = std::f64::consts::FRAC_1_SQRT_2;
+    /// let pose = Pose { pos: [0.0, 0.0, 1.0], quat: [half, 0.0, 0.0, half] };
+    /// let local = pose.to_local([1.0, 0.0, 1.0]);
+    /// assert!((local[0]).abs() < 1e-12 && (local[1] + 1.0).abs() < 1e-12 && local[2].abs() < 1e-12);
+    /// ```
+    pub fn to_local(&self, point: [f64; 3]) -> [f64; 3] {
+        let [w, x, y, z] = self.quat;
+        let v: [f64; 3] = std::array::from_fn(|axis| point[axis] - self.pos[axis]);
+        // Rotates by the conjugate quaternion (w, u), u = −(x, y, z): v + w·t + u × t, t = 2 u × v.
+        let u = [-x, -y, -z];
+        let cross = |a: [f64; 3], b: [f64; 3]| {
+            [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ]
+        };
+        let t = cross(u, v).map(|c| 2.0 * c);
+        let ut = cross(u, t);
+        std::array::from_fn(|axis| v[axis] + w * t[axis] + ut[axis])
+    }
 }

@@ -2,6 +2,7 @@
 
 use super::phong::Spec;
 use super::sensor::{SensorKind, TactileSensor, tactile_sensor_component};
+use crate::tactile::elastomer::Elastomer;
 use crate::tactile::phong::PhongParams;
 
 /// The DIGIT: 240 × 320 frames (portrait QVGA) at 60 fps, a 2 mm gel 18 mm in front of its
@@ -15,6 +16,7 @@ const DIGIT: Spec = Spec {
     housing: [0.0135, 0.01],
     gel: [0.0095, 0.008],
     model: PhongParams::digit_metric,
+    elastomer: Elastomer::DIGIT,
     fps: 60.0,
     #[cfg(feature = "camera")]
     turned: true,

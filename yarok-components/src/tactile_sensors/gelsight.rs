@@ -2,6 +2,7 @@
 
 use super::phong::Spec;
 use super::sensor::{SensorKind, TactileSensor, tactile_sensor_component};
+use crate::tactile::elastomer::Elastomer;
 use crate::tactile::phong::PhongParams;
 
 /// The GelSight 2014 fingertip: 640 × 480 frames at 30 fps, a 4 mm gel 34 mm in front of its
@@ -15,6 +16,7 @@ const GELSIGHT_2014: Spec = Spec {
     housing: [0.02, 0.015],
     gel: [0.0175, 0.0131],
     model: PhongParams::gelsight2014,
+    elastomer: Elastomer::GELSIGHT2014,
     fps: 30.0,
     #[cfg(feature = "camera")]
     turned: false,

@@ -5,6 +5,7 @@ use yarok_core::component::Declaration;
 
 use super::sensor::{Optics, SensorKind, TactileSensor, tactile_sensor_component};
 use crate::tactile::SizeError;
+use crate::tactile::elastomer::Elastomer;
 use crate::tactile::geltip::{GelTipModel, GelTipParams};
 use crate::tactile::light_fields::{LightFieldMethod, led_ring};
 
@@ -65,6 +66,18 @@ impl Kind {
 }
 
 impl SensorKind for Kind {
+    fn gel(&self) -> &'static str {
+        "membrane"
+    }
+
+    fn elastomer(&self) -> Elastomer {
+        Elastomer::GELTIP
+    }
+
+    fn fovy(&self) -> f64 {
+        FOVY
+    }
+
     fn declaration(&self) -> Declaration {
         Declaration::new("geltip")
             .default("pos", [0.0; 3])

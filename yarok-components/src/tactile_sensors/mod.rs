@@ -10,4 +10,4 @@ mod sensor;
 pub use digit::Digit;
 pub use gelsight::GelSight2014;
 pub use geltip::GelTip;
-pub use sensor::{Contact, TactileError, TactileSensor};
+pub use sensor::{Contact, GelContact, TactileError, TactileSensor};

@@ -5,6 +5,7 @@ use yarok_core::component::Declaration;
 
 use super::sensor::{Optics, SensorKind};
 use crate::tactile::SizeError;
+use crate::tactile::elastomer::Elastomer;
 use crate::tactile::phong::{PhongModel, PhongParams};
 
 /// What makes one sensor of the kind: its image, its gel and camera, its model and rate.
@@ -23,6 +24,8 @@ pub(super) struct Spec {
     /// The optical model's parameters (lights, metres per pixel, …); its depths are set from
     /// `gel_face` and `thickness`.
     pub(super) model: fn() -> PhongParams,
+    /// How deep the gel sinks under a force.
+    pub(super) elastomer: Elastomer,
     /// Frames per second by default: the real sensor's.
     pub(super) fps: f64,
     /// Whether the real sensor's camera lies across the image (see `SensorKind::turned`).
@@ -41,7 +44,7 @@ impl Spec {
     }
 
     /// The camera's vertical field of view (degrees) that spans the model's image at the gel.
-    fn fovy(&self) -> f64 {
+    fn field_of_view(&self) -> f64 {
         let half = f64::from(self.height) / 2.0 * self.params().px2m_ratio;
         2.0 * (half / self.gel_face).atan().to_degrees()
     }
@@ -59,8 +62,20 @@ impl SensorKind for Spec {
             .default("thickness", self.thickness)
             .default("housing", self.housing)
             .default("gel", self.gel)
-            .default("fovy", self.fovy())
+            .default("fovy", self.field_of_view())
             .template(include_str!("phong.xml"))
+    }
+
+    fn gel(&self) -> &'static str {
+        "gel"
+    }
+
+    fn elastomer(&self) -> Elastomer {
+        self.elastomer
+    }
+
+    fn fovy(&self) -> f64 {
+        self.field_of_view()
     }
 
     fn size(&self) -> (u32, u32) {
@@ -77,7 +92,7 @@ impl SensorKind for Spec {
             ("gel_face", vec![self.gel_face]),
             ("thickness", vec![self.thickness]),
             ("gel", self.gel.to_vec()),
-            ("fovy", vec![self.fovy()]),
+            ("fovy", vec![self.field_of_view()]),
         ]
     }
 

@@ -8,9 +8,10 @@ use std::rc::Rc;
 use image::RgbImage;
 use yarok_core::component::{Bind, BindError, Declaration, Environment};
 use yarok_core::time::Clock;
-use yarok_mjc::{Camera, DepthImage, RenderPreset, Sim, SimBind};
+use yarok_mjc::{Body, Camera, DepthImage, Geom, RenderPreset, Sim, SimBind};
 
 use crate::probe_images;
+use crate::tactile::elastomer::Elastomer;
 use crate::tactile::{SizeError, default_background};
 
 /// Indentation (metres) above which a pixel counts as touched.
@@ -26,6 +27,27 @@ pub struct Contact {
     pub max_indentation: f64,
     /// The imprint's area (square metres).
     pub area: f64,
+    /// The normal force (newtons) the gel is pressed with: the sum over MuJoCo's contacts
+    /// between the gel and what touches it; 0 where nothing pushes (a geom placed into the gel
+    /// by hand, or `mock`).
+    pub force: f64,
+}
+
+/// A contact on the gel, as MuJoCo found it after the latest step: the ground truth of what the
+/// sensor feels.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GelContact {
+    /// Where (metres) in the sensor's frame (its camera at the origin, looking along +z).
+    pub position: [f64; 3],
+    /// The normal force (newtons) pressing there.
+    pub normal_force: f64,
+}
+
+/// What the sensor senses with in `sim`: its internal camera, its gel and its body.
+pub(super) struct Sensing {
+    camera: Camera,
+    gel: Geom,
+    body: Body,
 }
 
 /// The optical side of one kind of sensor: the untouched gel as its camera sees it, and the
@@ -56,6 +78,12 @@ pub(super) trait Optics {
 /// One kind of sensor: its component's declaration, image size and optics.
 pub(super) trait SensorKind {
     fn declaration(&self) -> Declaration;
+    /// The template's name for the gel's geom: what presses on it is what the sensor feels.
+    fn gel(&self) -> &'static str;
+    /// How deep the gel sinks under a normal force.
+    fn elastomer(&self) -> Elastomer;
+    /// The internal camera's vertical field of view (degrees).
+    fn fovy(&self) -> f64;
     /// Image columns and rows.
     fn size(&self) -> (u32, u32);
     /// Whether the real sensor's camera lies across the image: its landscape frames are turned
@@ -82,6 +110,14 @@ pub(super) trait SensorKind {
 /// A camera-based tactile sensor: `read()` gives its colour image (the sensor's optical model
 /// over the depth its internal camera sees, on [`default_background`]), `read_depth()` that
 /// depth (the gel's: no farther than its untouched surface), `contact()` what it feels; its
+///
+/// The gel and the housing collide with what they touch (not with the body the sensor is
+/// mounted on). The internal camera sees only geoms that can touch the gel (MuJoCo's `contype`
+/// and `conaffinity`): no markers, sites or visual-only meshes. Where something pushes on the
+/// gel, it sinks as the sensor's [`Elastomer`] law says for the contacts' normal force: what
+/// touches is shown moved into the gel along the camera's rays until its deepest point is that
+/// deep (a geom placed into the gel by hand, pushing with no force, shows as placed).
+///
 /// probes `image` and `depth` show the latest frame. Frames are made at the sensor's rate on the platform's
 /// ticks: after a tick that was due a frame, `read()` returns that frame.
 /// [`Digit`](super::Digit), [`GelSight2014`](super::GelSight2014) and
@@ -120,7 +156,11 @@ struct RealSensor {
 }
 
 struct Inner {
-    camera: Option<Camera>,
+    /// The camera, gel and body (none in `mock`).
+    sensing: Option<Sensing>,
+    elastomer: Elastomer,
+    /// Each pixel's view direction in the sensor's frame.
+    rays: Vec<[f32; 3]>,
     clock: Clock,
     period: f64,
     state: RefCell<State>,
@@ -136,6 +176,8 @@ struct State {
     /// Platform time the next frame is due, and the latest frame's.
     due: f64,
     time: f64,
+    /// The normal force on the gel at the latest frame (newtons).
+    force: f64,
     failed: Option<String>,
 }
 
@@ -220,7 +262,30 @@ impl TactileSensor {
             in_contact: touched > 0,
             max_indentation: deepest,
             area: touched as f64 * optics.pixel_area(),
+            force: state.force,
         })
+    }
+
+    /// MuJoCo's contacts on the gel after the latest step, in the sensor's frame: where and how
+    /// hard what the sensor feels touches it (none in `mock`).
+    ///
+    /// # Errors
+    ///
+    /// [`TactileError::NoDepth`] on a real sensor.
+    pub fn gel_contacts(&self) -> Result<Vec<GelContact>, TactileError> {
+        let Some(sensing) = &self.model()?.sensing else {
+            return Ok(Vec::new());
+        };
+        let pose = sensing.body.pose();
+        Ok(sensing
+            .gel
+            .contacts()
+            .into_iter()
+            .map(|contact| GelContact {
+                position: pose.to_local(contact.position),
+                normal_force: contact.normal_force,
+            })
+            .collect())
     }
 
     /// The optical model's side, which a real sensor does not have.
@@ -233,22 +298,24 @@ impl TactileSensor {
     }
 
     /// Binds a sensor of `kind` in `sim`: its internal camera renders depth with the depth
-    /// preset, without the sensor's own geoms (group 3) and only what can reach the gel.
+    /// preset, only of geoms that can touch the gel and can reach it.
     pub(super) fn bind_sim(kind: &dyn SensorKind, bind: &mut Bind<Sim>) -> Result<Self, BindError> {
         let (width, height) = kind.size();
+        let gel = bind.geom(kind.gel())?;
         let camera = bind
             .camera_with("camera", width, height, RenderPreset::Depth)?
-            .hiding_groups(&[3])
+            .touching(&gel)
             .within(kind.reach());
-        Self::bind(kind, bind, Some(camera))
+        let body = bind.body("sensor")?;
+        Self::bind(kind, bind, Some(Sensing { camera, gel, body }))
     }
 
-    /// Binds a sensor of `kind` whose internal camera is `camera` (none in `mock`: its frame is
-    /// the untouched gel).
+    /// Binds a sensor of `kind` that senses with `sensing` (none in `mock`: its frame is the
+    /// untouched gel).
     pub(super) fn bind<E: Environment>(
         kind: &dyn SensorKind,
         bind: &mut Bind<E>,
-        camera: Option<Camera>,
+        sensing: Option<Sensing>,
     ) -> Result<Self, BindError> {
         let fps = frame_rate(bind)?;
         check_geometry(kind, bind)?;
@@ -269,7 +336,9 @@ impl TactileSensor {
             image::Luma([optics.surface()[(y * width + x) as usize]])
         });
         let inner = Rc::new(Inner {
-            camera,
+            sensing,
+            elastomer: kind.elastomer(),
+            rays: pixel_rays(width, height, kind.fovy()),
             clock: bind.clock(),
             period: 1.0 / fps,
             state: RefCell::new(State {
@@ -279,6 +348,7 @@ impl TactileSensor {
                 depth: untouched,
                 due: 0.0,
                 time: 0.0,
+                force: 0.0,
                 failed: None,
             }),
         });
@@ -381,6 +451,32 @@ fn check_geometry<E: Environment>(kind: &dyn SensorKind, bind: &Bind<E>) -> Resu
 }
 
 impl Inner {
+    /// The normal force on the gel (newtons) and the direction it pushes the gel in (a unit
+    /// vector in the sensor's frame; the force-weighted mean of the contacts' normals).
+    fn push(&self) -> (f64, [f64; 3]) {
+        let Some(sensing) = &self.sensing else {
+            return (0.0, [0.0, 0.0, -1.0]);
+        };
+        let pose = sensing.body.pose();
+        let origin = pose.to_local([0.0; 3]);
+        let (mut force, mut sum) = (0.0, [0.0; 3]);
+        for contact in sensing.gel.contacts() {
+            let pushing = contact.normal_force.max(0.0);
+            // The normal points from the gel to what touches it; the push is the other way.
+            let normal = pose.to_local(contact.normal.map(|n| -n));
+            force += pushing;
+            for axis in 0..3 {
+                sum[axis] += pushing * (normal[axis] - origin[axis]);
+            }
+        }
+        let norm = sum.iter().map(|s| s * s).sum::<f64>().sqrt();
+        if norm > 0.0 {
+            (force, sum.map(|s| s / norm))
+        } else {
+            (force, [0.0, 0.0, -1.0])
+        }
+    }
+
     /// Makes a frame if one is due at platform time `now` (or `force`d).
     fn frame(&self, now: f64, force: bool) {
         let mut state = self.state.borrow_mut();
@@ -389,12 +485,14 @@ impl Inner {
         }
         state.due = now + self.period;
         state.time = now;
-        if let Some(camera) = &self.camera
-            && let Err(error) = camera.depth_into(&mut state.depth)
+        if let Some(sensing) = &self.sensing
+            && let Err(error) = sensing.camera.depth_into(&mut state.depth)
         {
             state.failed = Some(error.to_string());
             return;
         }
+        let (force, push) = self.push();
+        state.force = force;
         let State {
             optics,
             background,
@@ -403,13 +501,69 @@ impl Inner {
             failed,
             ..
         } = &mut *state;
-        for (depth, surface) in depth.iter_mut().zip(optics.surface()) {
-            *depth = depth.min(*surface);
-        }
+        sink(
+            self.elastomer.indentation(force),
+            push,
+            &self.rays,
+            optics.surface(),
+            depth,
+        );
         if let Err(error) = optics.render(depth, background, frame) {
             *failed = Some(error.to_string());
         }
     }
+}
+
+/// Moves what `depth` shows along `push` (a unit vector in the sensor's frame, into the gel) so
+/// that it presses `indentation` metres into the gel (measured along `push`) whose untouched
+/// `surface` is given, then clamps the depth to that surface. Nothing moves when it already
+/// presses as deep (placed there by hand) or the gel feels no force. `rays` are the pixels'
+/// unit view directions.
+fn sink(indentation: f64, push: [f64; 3], rays: &[[f32; 3]], surface: &[f32], depth: &mut [f32]) {
+    // How much nearer (along the camera's axis) a point seen along `ray` comes per metre of
+    // motion along `push`, for a surface facing the push (a ray grazing it is held at 5×).
+    let approach = |ray: &[f32; 3]| {
+        let facing = -(f64::from(ray[0]) * push[0]
+            + f64::from(ray[1]) * push[1]
+            + f64::from(ray[2]) * push[2]);
+        (f64::from(ray[2]) / facing.max(0.2)) as f32
+    };
+    if indentation > 0.0 {
+        let deepest = rays
+            .iter()
+            .zip(surface.iter().zip(depth.iter()))
+            .map(|(ray, (surface, depth))| (surface - depth) / approach(ray))
+            .fold(0.0f32, f32::max);
+        let shift = (indentation as f32 - deepest).max(0.0);
+        if shift > 0.0 {
+            for (ray, depth) in rays.iter().zip(depth.iter_mut()) {
+                *depth -= shift * approach(ray);
+            }
+        }
+    }
+    for (depth, surface) in depth.iter_mut().zip(surface) {
+        *depth = depth.min(*surface);
+    }
+}
+
+/// The unit view direction of each pixel of a `width × height` image with a vertical field of
+/// `fovy` degrees, in the sensor's frame (the camera at its origin looking along +z, image
+/// right along +x and down along +y), row-major.
+fn pixel_rays(width: u32, height: u32, fovy: f64) -> Vec<[f32; 3]> {
+    let focal = f64::from(height) / 2.0 / (fovy.to_radians() / 2.0).tan();
+    let (cx, cy) = (f64::from(width) / 2.0, f64::from(height) / 2.0);
+    (0..height)
+        .flat_map(|v| (0..width).map(move |u| (u, v)))
+        .map(|(u, v)| {
+            let ray = [
+                (f64::from(u) + 0.5 - cx) / focal,
+                (f64::from(v) + 0.5 - cy) / focal,
+                1.0,
+            ];
+            let norm = ray.iter().map(|r| r * r).sum::<f64>().sqrt();
+            ray.map(|r| (r / norm) as f32)
+        })
+        .collect()
 }
 
 /// A component newtype over [`TactileSensor`] for one [`SensorKind`]: `sim` and `mock`

@@ -25,7 +25,7 @@ use std::sync::Arc;
 use image::{ImageBuffer, Luma, RgbImage};
 
 use crate::error::{LibraryError, ModelError};
-use crate::model::{CameraId, Model};
+use crate::model::{CameraId, GeomId, Model};
 use crate::{Data, sys};
 use egl::GlContext;
 use mujoco_scene::{ContextSpec, make_scene, update_scene};
@@ -222,6 +222,7 @@ impl RendererBuilder {
             height,
             skybox,
             reach: None,
+            touching: None,
             near: f64::from(map.znear) * extent,
             far: f64::from(map.zfar) * extent,
             rgb: vec![0; 3 * pixels],
@@ -271,6 +272,7 @@ pub struct Renderer {
     /// Whether colour renders draw the skybox (depth-only renders never do: it has no depth).
     skybox: u8,
     reach: Option<f64>,
+    touching: Option<GeomId>,
     near: f64,
     far: f64,
     rgb: Vec<u8>,
@@ -306,6 +308,14 @@ impl Renderer {
     /// this way.
     pub fn set_reach(&mut self, reach: Option<f64>) {
         self.reach = reach;
+    }
+
+    /// Draws only the geoms that could touch `geom`: their `contype` and `conaffinity` match
+    /// its, and they are neither on its body nor on the body it is mounted on; no sites,
+    /// decorations or visual-only geoms — or everything (`None`, the default). A tactile sensor's camera sees only what can press
+    /// into its gel this way.
+    pub fn set_touching(&mut self, geom: Option<GeomId>) {
+        self.touching = geom;
     }
 
     /// Renders the colour image of `camera`.
@@ -419,6 +429,9 @@ impl Renderer {
         }
         if let Some(reach) = self.reach {
             reach::keep_within(&mut self.scene, reach);
+        }
+        if let Some(touched) = self.touching {
+            reach::keep_touching(&mut self.scene, &self.model, touched);
         }
         // SAFETY: as above; the scene holds a subset of the geoms mjv_updateScene made. The
         // thread's other renderers share the GL context, so this one binds its own buffer first.

@@ -1,8 +1,9 @@
-//! Drawing only what is near the camera: a scene's geoms whose bounding spheres come within a
-//! reach of the eye. A tactile sensor's camera sees a few millimetres into its gel; everything
-//! else in the world would cost vertex work and draw nothing.
+//! Drawing only what a camera is for: a scene's geoms whose bounding spheres come within a reach
+//! of the eye, or only those that can touch a given geom. A tactile sensor's camera sees a few
+//! millimetres into its gel, and only what can press into it; everything else in the world would
+//! cost vertex work or draw what the gel cannot feel (markers, visual meshes).
 
-use crate::sys;
+use crate::{GeomId, Model, ObjectKind, sys};
 
 /// Keeps in `scene` only the geoms that may come within `reach` metres of its camera, keeping
 /// their order.
@@ -11,6 +12,30 @@ pub(super) fn keep_within(scene: &mut sys::mjvScene, reach: f64) {
     // one side; a mono render draws from their midpoint.
     let [left, right] = scene.camera.map(|eye| eye.pos.map(f64::from));
     let eye = std::array::from_fn(|axis| (left[axis] + right[axis]) / 2.0);
+    keep(scene, |geom| reaches(geom, eye, reach));
+}
+
+/// Keeps in `scene` only the model's geoms that could touch `touched`: their `contype` and
+/// `conaffinity` match its, and they are neither on its body nor on the body it is mounted on
+/// (its parent). No sites, decorations or visual-only geoms.
+pub(super) fn keep_touching(scene: &mut sys::mjvScene, model: &Model, touched: GeomId) {
+    let own = model.geom_body(touched);
+    let mount = model.body_parent(own);
+    let touched = model.index_of(touched);
+    let ngeom = model.count(ObjectKind::Geom);
+    keep(scene, |geom| {
+        geom.objtype == sys::mjOBJ_GEOM as i32
+            && usize::try_from(geom.objid).is_ok_and(|id| {
+                id < ngeom && model.types_match(id, touched) && {
+                    let body = model.geom_body(GeomId::at(model, id));
+                    body != own && (body != mount || mount.index() == 0)
+                }
+            })
+    });
+}
+
+/// Keeps in `scene` the geoms `wanted` accepts, in their order.
+fn keep(scene: &mut sys::mjvScene, wanted: impl Fn(&sys::mjvGeom) -> bool) {
     let count = usize::try_from(scene.ngeom).unwrap_or(0);
     if count == 0 || scene.geoms.is_null() {
         return;
@@ -20,7 +45,7 @@ pub(super) fn keep_within(scene: &mut sys::mjvScene, reach: f64) {
     let geoms = unsafe { std::slice::from_raw_parts_mut(scene.geoms, count) };
     let mut kept = 0;
     for index in 0..count {
-        if reaches(&geoms[index], eye, reach) {
+        if wanted(&geoms[index]) {
             geoms.swap(kept, index);
             kept += 1;
         }
