@@ -1,5 +1,5 @@
-//! Contacts: which geoms may touch (MuJoCo's collision filter), and the contacts the last step
-//! found, with the forces they carry.
+//! Contacts: whether two geoms' collision types match, and the contacts the last step found,
+//! with the forces they carry.
 
 use crate::data::Data;
 use crate::model::{GeomId, Model, to_usize};
@@ -35,47 +35,6 @@ impl Model {
         crate::BodyId::at(self, to_usize(body[index]))
     }
 
-    /// Whether MuJoCo's collision filter lets geoms `a` and `b` touch: their `contype` and
-    /// `conaffinity` match, they are on different bodies that are not welded together, and
-    /// neither body is the other's parent (unless that is the world; MuJoCo's default
-    /// `filterparent`). Explicit `<contact><exclude>` pairs are not consulted.
-    ///
-    /// # Panics
-    ///
-    /// When a geom was resolved in a different model.
-    #[track_caller]
-    pub fn can_collide(&self, a: GeomId, b: GeomId) -> bool {
-        let (a, b) = (self.index_of(a), self.index_of(b));
-        self.geoms_can_collide(a, b)
-    }
-
-    /// [`Model::can_collide`] by geom index (both below `ngeom`).
-    pub(crate) fn geoms_can_collide(&self, a: usize, b: usize) -> bool {
-        let m = self.raw();
-        let (ngeom, nbody) = (self.count(ObjectKind::Geom), self.count(ObjectKind::Body));
-        // SAFETY: the geom arrays hold ngeom entries, the body arrays nbody; a, b < ngeom and
-        // body ids < nbody.
-        let (geom_body, weld, parent) = unsafe {
-            (
-                self.array(m.geom_bodyid, ngeom),
-                self.array(m.body_weldid, nbody),
-                self.array(m.body_parentid, nbody),
-            )
-        };
-        if !self.types_match(a, b) {
-            return false;
-        }
-        let [body_a, body_b] = [a, b].map(|g| to_usize(weld[to_usize(geom_body[g])]));
-        if body_a == body_b {
-            return false;
-        }
-        let filter_parent = m.opt.disableflags & sys::mjDSBL_FILTERPARENT as i32 == 0;
-        let parent_of = |body: usize| to_usize(weld[to_usize(parent[body])]);
-        let related = (parent_of(body_a) == body_b && body_b != 0)
-            || (parent_of(body_b) == body_a && body_a != 0);
-        !(filter_parent && related)
-    }
-
     /// Whether geoms `a` and `b` (indices below `ngeom`) have matching `contype` and
     /// `conaffinity`: the part of MuJoCo's filter that is the geoms' own.
     pub(crate) fn types_match(&self, a: usize, b: usize) -> bool {
@@ -95,6 +54,22 @@ impl Model {
 impl Data {
     /// The contacts the last step (or [`Data::forward`]) found, with their normal forces.
     pub fn contacts(&self) -> Vec<ContactPoint> {
+        self.contacts_where(|_| true)
+    }
+
+    /// The contacts the last step found that `geom` is in, with their normal forces.
+    ///
+    /// # Panics
+    ///
+    /// When `geom` was resolved in a different model.
+    #[track_caller]
+    pub fn contacts_of(&self, geom: GeomId) -> Vec<ContactPoint> {
+        let index = i32::try_from(self.model().index_of(geom)).unwrap_or(-1);
+        self.contacts_where(|contact| contact.geom1 == index || contact.geom2 == index)
+    }
+
+    /// The contacts `wanted` accepts, their forces computed for those alone.
+    fn contacts_where(&self, wanted: impl Fn(&sys::mjContact) -> bool) -> Vec<ContactPoint> {
         let count = usize::try_from(self.ffi().ncon).unwrap_or(0);
         let contacts = if count == 0 || self.ffi().contact.is_null() {
             &[][..]
@@ -106,7 +81,7 @@ impl Data {
         contacts
             .iter()
             .enumerate()
-            .filter(|(_, contact)| contact.geom1 >= 0 && contact.geom2 >= 0)
+            .filter(|(_, contact)| contact.geom1 >= 0 && contact.geom2 >= 0 && wanted(contact))
             .map(|(index, contact)| {
                 let mut force = [0.0; 6];
                 // SAFETY: model and data are this state's; `index` < ncon; `force` holds the 6

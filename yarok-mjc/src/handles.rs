@@ -147,16 +147,15 @@ impl Geom {
     pub fn contacts(&self) -> Vec<ContactPoint> {
         self.data
             .borrow()
-            .contacts()
+            .contacts_of(self.id)
             .into_iter()
-            .filter_map(|contact| match contact.geoms {
-                [first, _] if first == self.id => Some(contact),
-                [other, second] if second == self.id => Some(ContactPoint {
+            .map(|contact| match contact.geoms {
+                [other, second] if second == self.id && other != self.id => ContactPoint {
                     geoms: [second, other],
                     normal: contact.normal.map(|n| -n),
                     ..contact
-                }),
-                _ => None,
+                },
+                _ => contact,
             })
             .collect()
     }
