@@ -10,7 +10,7 @@ use yarok::components::grippers::Robotiq2f85;
 use yarok::components::robots::ur::{Ur5e, pose_from_vector};
 use yarok::components::tactile::elastomer::Elastomer;
 use yarok::components::tactile_sensors::{Digit, GelContact, GelTip, TactileSensor};
-use yarok::components::toys::{Block, Rope};
+use yarok::components::toys::{Block, Rope, Spot};
 use yarok::components::worlds::{DigitWorld, GelTipWorld, TactileRigWorld};
 
 /// A DIGIT's image: 240 × 320, 54.35 µm a pixel at its gel's face, 18 mm from its camera.
@@ -162,9 +162,9 @@ fn in_digit_world_without_the_block_the_digits_feel_nothing() {
     grasp_in_digit_world(false);
 }
 
-/// In GelTipWorld, with the rope's end grasped, every contact between a GelTip and the rope
-/// shows in that GelTip's depth where its camera sees the contact, and the rope stays outside
-/// the membrane.
+/// In GelTipWorld, with the rope's end pinched, every contact between a GelTip and the rope
+/// shows in that GelTip's depth where its camera sees the contact, and the rope does not pass
+/// into the membrane.
 #[test]
 fn in_geltip_world_the_geltips_feel_the_rope_where_it_touches() {
     yarok::platform()
@@ -177,7 +177,8 @@ fn in_geltip_world_the_geltips_feel_the_rope_where_it_touches() {
                 pl.get("/arm/gripper/right_geltip")?,
             ];
             let rope: Rope = pl.get("/rope")?;
-            let [[x, y, _], _] = rope.ends();
+            let [[x, y, z], _] = rope.ends();
+            let table = pl.get::<Spot>("/target")?.position()[2];
             let down = |z: f64| pose_from_vector([x, y, z, PI, 0.0, 0.0]);
             gripper.open().await?;
             let untouched = sensors
@@ -190,8 +191,9 @@ fn in_geltip_world_the_geltips_feel_the_rope_where_it_touches() {
                 .find(|q| q[1] < 0.0 && q[1] > -PI && q[2] > 0.0)
                 .ok_or("out of reach")?;
             arm.move_j(above).await?;
-            arm.move_l(down(0.032)).await?;
-            gripper.close().force(150).await?;
+            // The tubes (not their domes) at the rope's end, where it rests on the peg.
+            arm.move_l(down(z - table + 0.005)).await?;
+            gripper.close().force(60).await?;
             pl.wait_seconds(0.1).await?;
             // The GelTip's camera: 320 × 240, 70° vertical field, at the sensor's origin
             // looking along +z (image right = +x, down = +y).
@@ -225,9 +227,11 @@ fn in_geltip_world_the_geltips_feel_the_rope_where_it_touches() {
                         "{side}: the contact at {:?} mm (pixel {u:.0}, {v:.0}) is not in the depth",
                         contact.position.map(|m| (m * 1e4).round() / 10.0)
                     );
+                    // MuJoCo's soft contact lets a 10 g segment pinched this hard sink about
+                    // 0.5 mm (the contact's midpoint); a rope passing through would be ~6 mm in.
                     let radius = cx.hypot(cy);
                     assert!(
-                        radius > 0.015 - 3e-4 || cz > 0.045 - 0.015,
+                        radius > 0.015 - 7.5e-4 || cz > 0.045 - 0.015,
                         "{side}: the rope is {:.2} mm into the tube",
                         (0.015 - radius) * 1e3
                     );

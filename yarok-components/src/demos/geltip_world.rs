@@ -10,11 +10,16 @@ use crate::robots::ur::{Ur5e, pose_from_vector};
 use crate::tactile_sensors::GelTip;
 use crate::toys::{Rope, Spot};
 
-/// How high above the table the TCP grips: the GelTips' domes just clear the table.
-const GRIP_HEIGHT: f64 = 0.032;
+/// How high above the rope's end the TCP grips: the GelTips' tubes (not their domes) at the
+/// rope, so the grip is a side pinch. Pinched under their domes' equators, a rope is wedged out
+/// downward as soon as it is lifted.
+const GRIP_ABOVE_ROPE: f64 = 0.005;
 
-/// In a [`GelTipWorld`](crate::worlds::GelTipWorld): grasps the rope lying on the table by one
-/// end and pulls it 25 cm across; saves what each GelTip sees while holding the rope
+/// How far the rope's end is lifted before the pull: clear of the peg it rested on.
+const LIFT: f64 = 0.05;
+
+/// In a [`GelTipWorld`](crate::worlds::GelTipWorld): grasps the rope by the end that rests on
+/// a peg, lifts it and pulls it 25 cm across the table; saves what each GelTip sees while holding the rope
 /// (`OUT/geltip_left.png`, `OUT/geltip_right.png`, OUT the behaviour's setting `out`, default
 /// `out`). Fails if the rope's end moved less than 10 cm.
 pub async fn pull(pl: Pl) -> BehaviourResult {
@@ -31,7 +36,8 @@ pub async fn pull(pl: Pl) -> BehaviourResult {
     let down = |x: f64, y: f64, z: f64| pose_from_vector([x, y, z, PI, 0.0, 0.0]);
 
     let [end, _] = rope.ends();
-    let [x, y, _] = end;
+    let [x, y, z] = end;
+    let grip_height = z - table + GRIP_ABOVE_ROPE;
     gripper.open().await?;
     // Above the rope's end with the shoulder lifted and the elbow up, clear of the table: of
     // the arm's inverse solutions, the nearest of that posture.
@@ -44,8 +50,8 @@ pub async fn pull(pl: Pl) -> BehaviourResult {
         .min_by(|a, b| motion(a, &current).total_cmp(&motion(b, &current)))
         .ok_or("the rope's end is out of reach")?;
     arm.move_j(above).await?;
-    arm.move_l(down(x, y, GRIP_HEIGHT)).await?;
-    if !gripper.close().force(150).await?.object_detected {
+    arm.move_l(down(x, y, grip_height)).await?;
+    if !gripper.close().force(60).await?.object_detected {
         return Err("the gripper closed on nothing".into());
     }
     pl.wait_seconds(0.1).await?;
@@ -59,8 +65,8 @@ pub async fn pull(pl: Pl) -> BehaviourResult {
             contact.area * 1e6
         ));
     }
-    arm.move_l(down(x, y, GRIP_HEIGHT + 0.02)).await?;
-    arm.move_l(down(x, y + 0.25, GRIP_HEIGHT + 0.02))
+    arm.move_l(down(x, y, grip_height + LIFT)).await?;
+    arm.move_l(down(x, y + 0.25, grip_height + LIFT))
         .speed(0.1)
         .await?;
     let [moved, _] = rope.ends();

@@ -529,15 +529,16 @@ fn sink(indentation: f64, push: [f64; 3], rays: &[[f32; 3]], surface: &[f32], de
         (f64::from(ray[2]) / facing.max(0.2)) as f32
     };
     if indentation > 0.0 {
-        let deepest = rays
+        let approaches: Vec<f32> = rays.iter().map(approach).collect();
+        let deepest = approaches
             .iter()
             .zip(surface.iter().zip(depth.iter()))
-            .map(|(ray, (surface, depth))| (surface - depth) / approach(ray))
+            .map(|(approach, (surface, depth))| (surface - depth) / approach)
             .fold(0.0f32, f32::max);
         let shift = (indentation as f32 - deepest).max(0.0);
         if shift > 0.0 {
-            for (ray, depth) in rays.iter().zip(depth.iter_mut()) {
-                *depth -= shift * approach(ray);
+            for (approach, depth) in approaches.iter().zip(depth.iter_mut()) {
+                *depth -= shift * approach;
             }
         }
     }

@@ -121,8 +121,10 @@ impl Component for DigitWorld {
 
 /// [`PickAndPlaceWorld`] with a GelTip along each of the gripper's fingers
 /// (`/arm/gripper/left_geltip`, `/arm/gripper/right_geltip`; each tube takes 30 mm of its
-/// finger's stroke) and, instead of the blocks, a rope of 20 segments lying along +x on the table
-/// (`/rope`), to grasp by one end and pull.
+/// finger's stroke) and, instead of the blocks, a rope of 20 segments lying along +x
+/// (`/rope`), its first 8 cm on a 3 cm high peg (`peg`) and the rest draped to the table: the
+/// GelTips' 30 mm tubes can pinch its end from the sides, which they cannot do to a 12 mm rope
+/// lying flat (their domes' equators are 15 mm above the table).
 #[derive(Debug, Clone)]
 pub struct GelTipWorld;
 
