@@ -3,7 +3,8 @@
 
 Reads `cargo metadata` (all targets, features and platforms: normal, build and dev dependencies)
 and evaluates each package's SPDX licence expression: a package passes when some way of satisfying
-its expression uses only permissive licences from ALLOWED. The workspace's own crates must be
+its expression uses only permissive licences from ALLOWED, or it is one of MPL_CRATES (MPL-2.0,
+unmodified from the registry). The workspace's own crates must be
 exactly `MIT OR Apache-2.0`. Prints the offenders and exits 1 if any.
 """
 
@@ -17,6 +18,9 @@ ALLOWED = {
     "ISC", "Zlib", "0BSD", "Unlicense", "CC0-1.0", "BSL-1.0", "Unicode-3.0", "Unicode-DFS-2016",
 }
 OWN_LICENCE = "MIT OR Apache-2.0"
+# MPL-2.0 is file-level copyleft: allowed for these crates, used unmodified from the registry (no
+# vendored or patched copy), and for no other.
+MPL_CRATES = {"serialport"}
 
 
 def tokens(expression):
@@ -94,6 +98,9 @@ def main():
                 problems.append(f"{name}: workspace crate must be {OWN_LICENCE!r}, is {licence!r}")
         elif not licence:
             problems.append(f"{name}: no SPDX licence expression (license-file only)")
+        elif package["name"] in MPL_CRATES and licence == "MPL-2.0":
+            if not package["source"] or not package["source"].startswith("registry+"):
+                problems.append(f"{name}: MPL-2.0 crates must come unmodified from the registry")
         else:
             try:
                 if not satisfiable(licence):

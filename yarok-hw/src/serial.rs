@@ -1,13 +1,11 @@
-//! [`SerialPort`]: a serial device or pseudo-terminal as an async byte stream, in raw mode at a
-//! baud rate.
+//! [`SerialPort`]: a serial device or pseudo-terminal as an async byte stream, in raw mode at any
+//! baud rate the device takes.
 
-use std::os::unix::fs::OpenOptionsExt;
 use std::pin::Pin;
 use std::task::{Context, Poll};
 
-use nix::sys::termios::{self, BaudRate, ControlFlags, SetArg};
 use tokio::io::{AsyncRead, AsyncWrite, ReadBuf};
-use tokio::net::unix::pipe;
+use tokio_serial::{DataBits, FlowControl, Parity, SerialPortBuilderExt, SerialStream, StopBits};
 
 /// A serial port could not be opened or set up.
 #[derive(Debug, thiserror::Error)]
@@ -21,44 +19,38 @@ pub enum SerialError {
         /// Why.
         source: std::io::Error,
     },
-    /// The device is not a terminal, or refused the settings.
-    #[error("serial port {path}: cannot set it up: {source}")]
+    /// The device is not a terminal, or refused the settings (the baud rate among them).
+    #[error("serial port {path}: cannot set it up at {baud} baud: {source}")]
     Setup {
-        /// The device.
-        path: String,
-        /// Why.
-        source: nix::Error,
-    },
-    /// The baud rate is not one the terminal interface offers.
-    #[error("serial port {path}: {baud} baud is not a standard rate (9600 … 1000000)")]
-    Baud {
         /// The device.
         path: String,
         /// The rate asked for.
         baud: u32,
+        /// Why.
+        source: std::io::Error,
     },
 }
 
 /// A serial port (a USB-serial printer board, or a pseudo-terminal) in raw mode: 8 data bits,
-/// no parity, no flow control, no echo, no line editing; reads and writes never block the
-/// thread. Opening it asserts DTR, which resets many printer boards.
+/// no parity, one stop bit, no flow control, no echo, no line editing; reads and writes never
+/// block the thread. Any baud rate the device takes works, standard or not (Marlin's 250000 and
+/// 500000 among them: on Linux the kernel's arbitrary-rate interface sets the exact rate). The
+/// port is opened exclusively, so a second program cannot interleave its own commands. Opening
+/// it asserts DTR, which resets many printer boards.
 ///
 /// ```no_run
 /// # async fn run() -> Result<(), Box<dyn std::error::Error>> {
 /// use yarok_hw::SerialPort;
 /// use yarok_hw::marlin::{Marlin, MarlinSettings};
 ///
-/// let port = SerialPort::open("/dev/ttyUSB0", 115_200)?;
+/// let port = SerialPort::open("/dev/ttyUSB0", 250_000)?;
 /// let mut printer = Marlin::connect(port, MarlinSettings::new("/dev/ttyUSB0")).await?;
 /// printer.home().await?;
 /// # Ok(()) }
 /// ```
 #[derive(Debug)]
 pub struct SerialPort {
-    // The device opened twice, each half registered with tokio's reactor as a stream (a
-    // terminal polls like a pipe).
-    reader: pipe::Receiver,
-    writer: pipe::Sender,
+    stream: SerialStream,
 }
 
 impl SerialPort {
@@ -66,54 +58,33 @@ impl SerialPort {
     ///
     /// # Errors
     ///
-    /// [`SerialError`] naming the device.
+    /// [`SerialError`] naming the device: [`SerialError::Open`] if it cannot be opened,
+    /// [`SerialError::Setup`] if it is not a terminal or refuses the settings.
     pub fn open(path: &str, baud: u32) -> Result<Self, SerialError> {
-        let rate = baud_rate(baud).ok_or_else(|| SerialError::Baud {
-            path: path.to_owned(),
-            baud,
-        })?;
-        let open = |source| SerialError::Open {
-            path: path.to_owned(),
-            source,
-        };
-        let file = std::fs::OpenOptions::new()
-            .read(true)
-            .write(true)
-            .custom_flags(nix::libc::O_NOCTTY | nix::libc::O_NONBLOCK)
-            .open(path)
-            .map_err(open)?;
-        let setup = |source| SerialError::Setup {
-            path: path.to_owned(),
-            source,
-        };
-        let mut settings = termios::tcgetattr(&file).map_err(setup)?;
-        termios::cfmakeraw(&mut settings);
-        settings.control_flags |= ControlFlags::CLOCAL | ControlFlags::CREAD;
-        termios::cfsetspeed(&mut settings, rate).map_err(setup)?;
-        termios::tcsetattr(&file, SetArg::TCSANOW, &settings).map_err(setup)?;
-        let reader = file.try_clone().map_err(open)?;
-        Ok(Self {
-            reader: pipe::Receiver::from_file_unchecked(reader).map_err(open)?,
-            writer: pipe::Sender::from_file_unchecked(file).map_err(open)?,
-        })
+        let stream = tokio_serial::new(path, baud)
+            .data_bits(DataBits::Eight)
+            .parity(Parity::None)
+            .stop_bits(StopBits::One)
+            .flow_control(FlowControl::None)
+            .dtr_on_open(true)
+            .open_native_async()
+            .map_err(|error| {
+                let opening = matches!(
+                    error.kind(),
+                    tokio_serial::ErrorKind::NoDevice
+                        | tokio_serial::ErrorKind::Io(
+                            std::io::ErrorKind::NotFound | std::io::ErrorKind::PermissionDenied
+                        )
+                );
+                let (path, source) = (path.to_owned(), std::io::Error::from(error));
+                if opening {
+                    SerialError::Open { path, source }
+                } else {
+                    SerialError::Setup { path, baud, source }
+                }
+            })?;
+        Ok(Self { stream })
     }
-}
-
-/// The terminal interface's constant for `baud`, if it has one.
-fn baud_rate(baud: u32) -> Option<BaudRate> {
-    Some(match baud {
-        9_600 => BaudRate::B9600,
-        19_200 => BaudRate::B19200,
-        38_400 => BaudRate::B38400,
-        57_600 => BaudRate::B57600,
-        115_200 => BaudRate::B115200,
-        230_400 => BaudRate::B230400,
-        460_800 => BaudRate::B460800,
-        500_000 => BaudRate::B500000,
-        921_600 => BaudRate::B921600,
-        1_000_000 => BaudRate::B1000000,
-        _ => return None,
-    })
 }
 
 impl AsyncRead for SerialPort {
@@ -122,9 +93,9 @@ impl AsyncRead for SerialPort {
         cx: &mut Context<'_>,
         buf: &mut ReadBuf<'_>,
     ) -> Poll<std::io::Result<()>> {
-        match Pin::new(&mut self.reader).poll_read(cx, buf) {
+        match Pin::new(&mut self.stream).poll_read(cx, buf) {
             // A pseudo-terminal whose other side closed reads EIO: the end of the stream.
-            Poll::Ready(Err(error)) if error.raw_os_error() == Some(nix::libc::EIO) => {
+            Poll::Ready(Err(error)) if error.raw_os_error() == Some(libc::EIO) => {
                 Poll::Ready(Ok(()))
             }
             other => other,
@@ -138,14 +109,14 @@ impl AsyncWrite for SerialPort {
         cx: &mut Context<'_>,
         bytes: &[u8],
     ) -> Poll<std::io::Result<usize>> {
-        Pin::new(&mut self.writer).poll_write(cx, bytes)
+        Pin::new(&mut self.stream).poll_write(cx, bytes)
     }
 
     fn poll_flush(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<std::io::Result<()>> {
-        Pin::new(&mut self.writer).poll_flush(cx)
+        Pin::new(&mut self.stream).poll_flush(cx)
     }
 
     fn poll_shutdown(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<std::io::Result<()>> {
-        Pin::new(&mut self.writer).poll_shutdown(cx)
+        Pin::new(&mut self.stream).poll_shutdown(cx)
     }
 }

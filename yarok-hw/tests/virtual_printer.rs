@@ -112,7 +112,7 @@ async fn a_resend_storm_is_an_error_not_a_loop() {
 async fn unplugged_mid_move_and_back_the_move_fails_and_the_next_completes() {
     let printer = VirtualPrinter::replugging(r#"{"sendWait": false}"#, 0.5);
     let path = printer.path.clone();
-    let open = async || SerialPort::open(&path, 115_200);
+    let open = async || SerialPort::open(&path, 250_000);
     let mut marlin = Reconnecting::connect(open, printer.settings())
         .await
         .unwrap();
@@ -151,7 +151,7 @@ async fn unplugged_mid_move_and_back_the_move_fails_and_the_next_completes() {
 async fn a_printer_that_does_not_come_back_is_an_error_in_time() {
     let printer = VirtualPrinter::start(r#"{"sendWait": false}"#);
     let path = printer.path.clone();
-    let open = async || SerialPort::open(&path, 115_200);
+    let open = async || SerialPort::open(&path, 250_000);
     let mut settings = printer.settings();
     settings.replug_timeout = Duration::from_secs(1);
     let mut marlin = Reconnecting::connect(open, settings).await.unwrap();

@@ -104,7 +104,7 @@ impl VirtualPrinter {
     }
 
     pub(crate) async fn connect(&self) -> Marlin<SerialPort> {
-        let port = SerialPort::open(&self.path, 115_200).expect("the device opens");
+        let port = SerialPort::open(&self.path, 250_000).expect("the device opens");
         Marlin::connect(port, self.settings())
             .await
             .expect("the printer answers")
