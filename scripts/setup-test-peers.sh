@@ -11,7 +11,8 @@
 #    Robotiq clients the fake controller's faithfulness is checked with (separate processes);
 #    the `mcap` reader (MIT) and Pillow (MIT-CMU), which read back yarok's recordings, and
 #    python-xlib (LGPL), which drives the viewer's windows as a user would, and eclipse-zenoh
-#    (EPL-2.0 OR Apache-2.0), the Zenoh client that talks to the bridge.
+#    (EPL-2.0 OR Apache-2.0), the Zenoh client that talks to the bridge, and scikit-image
+#    (BSD-3-Clause), whose SSIM the tactile fidelity measures are checked against.
 set -euo pipefail
 
 source "$(dirname "$0")/debian-packages.sh"
@@ -46,4 +47,5 @@ mcap mcap==1.6.0
 PIL pillow==12.0.0
 Xlib python-xlib==0.33
 zenoh eclipse-zenoh==1.10.2
+skimage scikit-image==0.25.2
 PEERS

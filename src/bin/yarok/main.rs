@@ -8,7 +8,9 @@
 //! yarok run --list
 //! yarok compose WORLD [--set [/PATH/]KEY=VALUE]... [--out FILE]
 //! yarok tactile digit|gelsight|geltip DEPTH OUT.png [--background PNG] [--geltip-params DIR]
-//!               [--noise SIGMA] [--seed N]
+//!               [--noise SIGMA] [--seed N] [--calibration FILE.json] [--pixels-per-mm PX]
+//! yarok tactile calibrate UNTOUCHED.png PRESSES.csv OUT.json [--ball-diameter-mm MM]
+//!               [--pixels-per-mm PX] [--contact-scale S,…] [--spread SIGMA,…] [--hold-out N]
 //! ```
 //!
 //! `run` runs a bundled world (`pick_and_place_world`, …; `--list` lists them) with one of its
@@ -28,8 +30,12 @@
 //! `tactile` turns a depth map into a tactile image with a sensor's optical model. DEPTH is a
 //! 16-bit PNG in millimetres or a `.npy`/`.npy.gz` float array in the model's unit (DIGIT: the raw
 //! z-buffer, as the reference; a PNG selects DIGIT's metric mode). GelTip needs its geometry:
-//! `--geltip-params DIR` with `bkg_depth_m.npy.gz` and `light_field_{0,1,2}.npy.gz`.
+//! `--geltip-params DIR` with `bkg_depth_m.npy.gz` and `light_field_{0,1,2}.npy.gz`. With
+//! `--calibration FILE` the image is that calibrated model's instead (the gel at the depth map's
+//! farthest value). `tactile calibrate` fits a calibration to real frames of ball presses
+//! (`yarok::components::tactile::calibration`).
 
+mod calibrate;
 mod compose;
 mod run;
 mod tactile;
@@ -43,12 +49,20 @@ const USAGE: &str = "usage: yarok run WORLD [--behaviour NAME] [--viewer] [--ins
        yarok compose WORLD [--set [/PATH/]KEY=VALUE]... [--out FILE]
        yarok tactile digit|gelsight|geltip DEPTH OUT.png [--background PNG] [--noise SIGMA] [--seed N]
                      [--geltip-params DIR] [--light-fields files|linear|plane]
+                     [--calibration FILE.json] [--pixels-per-mm PX]
+       yarok tactile calibrate UNTOUCHED.png PRESSES.csv OUT.json [--ball-diameter-mm 4.7]
+                     [--pixels-per-mm 19.58] [--contact-scale 0.6,0.9,1.2] [--spread 6,10,14,18]
+                     [--hold-out N]
   WORLD  run: a bundled world's tag (see --list); compose: a bundled component's tag, or an
          MJCF template file
   DEPTH  a 16-bit PNG in millimetres, or a .npy/.npy.gz float array
   DIR    GelTip geometry: bkg_depth_m.npy.gz (the membrane's depth) and, for --light-fields files
          (the default), light_field_{0,1,2}.npy.gz; linear and plane compute the fields for three
-         LEDs on a 12.6 mm ring at the membrane's nearest depth";
+         LEDs on a 12.6 mm ring at the membrane's nearest depth
+  FILE   a calibration (from calibrate): the image is the calibrated model's, the gel taken to
+         be at the depth map's farthest value and PX (default the calibration's) its scale
+  PRESSES.csv  rows frame,center_x,center_y,radius_px; frames/FRAME.png beside it; --hold-out N
+         leaves out the frames whose number is one less than a multiple of N";
 
 /// How a command failed: its message, and the exit status.
 struct Failure {

@@ -1,5 +1,6 @@
 //! `yarok tactile`: a depth map turned into a tactile image by a sensor's optical model.
 
+use yarok::components::tactile::calibration::Calibration;
 use yarok::components::tactile::geltip::{GelTipModel, GelTipParams, read_membrane};
 use yarok::components::tactile::light_fields::{LightFieldMethod, led_ring};
 use yarok::components::tactile::phong::{PhongModel, PhongParams};
@@ -14,6 +15,8 @@ struct Options<'a> {
     light_fields: Option<LightFieldMethod>,
     noise: Option<f64>,
     seed: u64,
+    calibration: Option<&'a str>,
+    pixels_per_mm: Option<f64>,
 }
 
 fn options(args: &[String]) -> Result<Options<'_>, String> {
@@ -29,12 +32,24 @@ fn options(args: &[String]) -> Result<Options<'_>, String> {
         light_fields: None,
         noise: None,
         seed: 0,
+        calibration: None,
+        pixels_per_mm: None,
     };
     let mut rest = rest.iter();
     while let Some(flag) = rest.next() {
         let value = rest.next().ok_or_else(|| format!("{flag} needs a value"))?;
         match flag.as_str() {
             "--background" => options.background = Some(value),
+            "--calibration" => options.calibration = Some(value),
+            "--pixels-per-mm" => {
+                options.pixels_per_mm = Some(
+                    value
+                        .parse()
+                        .ok()
+                        .filter(|v: &f64| v.is_finite() && *v > 0.0)
+                        .ok_or_else(|| format!("--pixels-per-mm {value}: not a positive number"))?,
+                )
+            }
             "--geltip-params" => options.geltip_params = Some(value),
             "--light-fields" => {
                 options.light_fields = match value.as_str() {
@@ -104,8 +119,14 @@ fn geltip(dir: &str, method: Option<LightFieldMethod>) -> Result<GelTipModel, St
 
 /// Runs `yarok tactile` with the arguments after `tactile`.
 pub(super) fn run(args: &[String]) -> Result<(), String> {
+    if args.first().is_some_and(|a| a == "calibrate") {
+        return super::calibrate::run(&args[1..]);
+    }
     let options = options(args)?;
     let (depth, width, metric) = depth(options.depth)?;
+    if let Some(path) = options.calibration {
+        return calibrated(path, &options, &depth, width);
+    }
     let height = depth.len() / width.max(1);
     let background = match options.background {
         Some(path) => {
@@ -159,6 +180,44 @@ pub(super) fn run(args: &[String]) -> Result<(), String> {
     };
     image::RgbImage::from_raw(width as u32, height as u32, image)
         .ok_or("internal: image size")?
+        .save(options.out)
+        .map_err(|e| format!("{}: {e}", options.out))
+}
+
+/// Renders `depth` with the calibration in `path` (the gel at the map's farthest value).
+fn calibrated(
+    path: &str,
+    options: &Options<'_>,
+    depth: &[f32],
+    width: usize,
+) -> Result<(), String> {
+    let calibration = Calibration::load(path).map_err(|e| e.to_string())?;
+    let height = depth.len() / width.max(1);
+    if calibration.size() != (width, height) {
+        let (w, h) = calibration.size();
+        return Err(format!(
+            "{path} is for {w}×{h} images, the depth map {} is {width}×{height}",
+            options.depth
+        ));
+    }
+    let gel = depth
+        .iter()
+        .copied()
+        .filter(|d| d.is_finite())
+        .fold(f32::NEG_INFINITY, f32::max);
+    if !gel.is_finite() {
+        return Err(format!("{}: no finite depth", options.depth));
+    }
+    let indentation: Vec<f32> = depth
+        .iter()
+        .map(|d| if d.is_finite() { gel - d } else { 0.0 })
+        .collect();
+    let pixels_per_mm = options
+        .pixels_per_mm
+        .unwrap_or(calibration.geometry().pixels_per_mm);
+    calibration
+        .render_indentation(&indentation, 1e-3 / pixels_per_mm)
+        .map_err(|e| format!("{}: {e}", options.depth))?
         .save(options.out)
         .map_err(|e| format!("{}: {e}", options.out))
 }

@@ -23,7 +23,7 @@ pub fn gaussian_kernel(n: usize, sigma: f64) -> Vec<f64> {
 }
 
 /// SciPy's `reflect` border (`dcba|abcd|dcba`).
-fn reflect(mut index: i64, len: i64) -> i64 {
+pub(crate) fn reflect(mut index: i64, len: i64) -> i64 {
     let period = 2 * len;
     index = index.rem_euclid(period);
     if index < len {

@@ -9,7 +9,9 @@
 //! Images are row-major, top row first; colours RGB. Output sizes: DIGIT 320 rows × 240 columns,
 //! GelSight 480 × 640, GelTip 240 × 320 (the input depth's size).
 
+pub mod calibration;
 pub mod elastomer;
+pub mod fidelity;
 mod field;
 pub mod filter;
 pub mod geltip;

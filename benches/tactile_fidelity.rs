@@ -1,0 +1,143 @@
+//! Fidelity and speed of the tactile optical models against a real sensor's photographs: for
+//! each real set bundled in `yarok-components/data/tactile-real/` (a DIGIT and a GelSight-type
+//! sensor from FOTS, ball presses), the median over the held-out presses (frame numbers one less
+//! than a multiple of 3, never used to calibrate) of whole-image and contact-region SSIM, MAE and
+//! PSNR and of the change-image correlation, for the real untouched frame alone, the reference
+//! Phong model (given the real untouched frame) and the calibrated model (the DIGIT's bundled
+//! calibration; the GelSight's fitted here to the other presses); then ms per frame of the
+//! calibrated and the reference model, alternating, one core.
+//!
+//! ```text
+//! cargo bench --bench tactile_fidelity
+//! ```
+
+use image::RgbImage;
+use yarok::components::tactile::calibration::{
+    Calibration, FitSettings, Press, read_presses, split_held_out,
+};
+use yarok::components::tactile::fidelity::{self, Scores};
+use yarok::components::tactile::phong::{PhongModel, PhongParams};
+
+mod measure;
+
+/// Every 3rd press (0002, 0005, …) is held out of calibration.
+const HOLD_OUT: u32 = 3;
+
+struct RealSet {
+    name: &'static str,
+    untouched: RgbImage,
+    calibration: Vec<Press>,
+    held_out: Vec<Press>,
+}
+
+fn real_set(name: &'static str, presses: &str) -> RealSet {
+    let folder = format!(
+        "{}/yarok-components/data/tactile-real/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let untouched = image::open(format!("{folder}/background.png"))
+        .expect("untouched frame")
+        .to_rgb8();
+    let (calibration, held_out) = split_held_out(
+        read_presses(&format!("{folder}/{presses}")).expect("presses"),
+        HOLD_OUT,
+    );
+    RealSet {
+        name,
+        untouched,
+        calibration,
+        held_out,
+    }
+}
+
+fn row(model: &str, scores: &Scores) {
+    println!(
+        "  {model:<22} {:>6.3} {:>8.3} {:>6.2} {:>8.2} {:>6.2} {:>8.2}   {:.2}/{:.2}/{:.2} ({:.2})",
+        scores.whole_ssim,
+        scores.contact_ssim,
+        scores.whole_mae,
+        scores.contact_mae,
+        scores.whole_psnr,
+        scores.contact_psnr,
+        scores.change_correlation[0],
+        scores.change_correlation[1],
+        scores.change_correlation[2],
+        scores.mean_change_correlation(),
+    );
+}
+
+fn main() {
+    let sets = [
+        (
+            real_set("digit", "presses.csv"),
+            PhongParams::digit_metric(),
+            0.030,
+        ),
+        (
+            real_set("gelsight", "labels.csv"),
+            PhongParams::gelsight2014(),
+            0.034,
+        ),
+    ];
+    for (set, params, surface) in sets {
+        let calibration = if set.name == "digit" {
+            Calibration::digit()
+        } else {
+            let geometry = Calibration::digit().geometry();
+            let settings = FitSettings {
+                contact_scales: vec![geometry.contact_scale],
+                spreads: vec![geometry.spread],
+                ..FitSettings::default()
+            };
+            Calibration::fit(&set.untouched, &set.calibration, &settings).expect("a calibration")
+        };
+        let geometry = calibration.geometry();
+        let mut reference = PhongModel::new(params);
+        println!(
+            "{}: {} held-out presses (calibrated on {}); medians",
+            set.name,
+            set.held_out.len(),
+            set.calibration.len()
+        );
+        println!(
+            "  {:<22} {:>6} {:>8} {:>6} {:>8} {:>6} {:>8}   change correlation R/G/B (mean)",
+            "model", "SSIM", "contact", "MAE", "contact", "PSNR", "contact"
+        );
+        let untouched = &set.untouched;
+        let alone = fidelity::score(untouched, untouched, &set.held_out, |_| untouched.clone());
+        row("untouched frame alone", &fidelity::median(&alone));
+        let flat = fidelity::phong_image(&mut reference, surface, &geometry, None, untouched);
+        let phong = fidelity::score(untouched, &flat, &set.held_out, |press| {
+            fidelity::phong_image(&mut reference, surface, &geometry, Some(press), untouched)
+        });
+        row("reference (Phong)", &fidelity::median(&phong));
+        let calibrated = fidelity::score(
+            untouched,
+            calibration.background(),
+            &set.held_out,
+            |press| calibration.render_press(press.centre, press.radius),
+        );
+        row("calibrated", &fidelity::median(&calibrated));
+        // Each model given its input ready: the press's indentation, or its depth map.
+        let (width, height) = calibration.size();
+        let press = Some(&set.held_out[0]);
+        let depth = fidelity::phong_depth(surface, &geometry, press, width, height);
+        let indentation: Vec<f32> = depth.iter().map(|d| surface as f32 - d).collect();
+        let metres_per_pixel = 1e-3 / geometry.pixels_per_mm;
+        let [calibrated_ms, reference_ms] = measure::mean_times(|variant| match variant {
+            0 => calibration
+                .render_indentation(&indentation, metres_per_pixel)
+                .expect("its size")
+                .into_raw(),
+            _ => reference
+                .render(&depth, width, untouched.as_raw())
+                .expect("its size"),
+        })
+        .map(|t| t.as_secs_f64() * 1e3);
+        println!(
+            "  ms per frame, one core: calibrated {calibrated_ms:.2}, reference {reference_ms:.2} \
+             (calibrated/reference {:.2})",
+            calibrated_ms / reference_ms
+        );
+    }
+}

@@ -1,0 +1,65 @@
+//! `yarok tactile calibrate`: a sensor's optical model fitted to real frames of ball presses.
+
+use yarok::components::tactile::calibration::{
+    Calibration, FitSettings, read_presses, split_held_out,
+};
+
+/// The values of a comma-separated list option.
+fn numbers(flag: &str, value: &str) -> Result<Vec<f64>, String> {
+    value
+        .split(',')
+        .map(|v| {
+            v.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite() && *v >= 0.0)
+                .ok_or_else(|| format!("{flag} {value}: {v:?} is not a non-negative number"))
+        })
+        .collect()
+}
+
+/// Runs `yarok tactile calibrate` with the arguments after `calibrate`.
+pub(super) fn run(args: &[String]) -> Result<(), String> {
+    let [untouched, presses, out, rest @ ..] = args else {
+        return Err(super::USAGE.to_owned());
+    };
+    let mut settings = FitSettings::default();
+    let mut hold_out = 0;
+    let mut rest = rest.iter();
+    while let Some(flag) = rest.next() {
+        let value = rest.next().ok_or_else(|| format!("{flag} needs a value"))?;
+        let single = |flag: &str| -> Result<f64, String> {
+            match numbers(flag, value)?[..] {
+                [v] if v > 0.0 => Ok(v),
+                _ => Err(format!("{flag} {value}: expected one positive number")),
+            }
+        };
+        match flag.as_str() {
+            "--ball-diameter-mm" => settings.ball_diameter_mm = single(flag)?,
+            "--pixels-per-mm" => settings.pixels_per_mm = single(flag)?,
+            "--contact-scale" => settings.contact_scales = numbers(flag, value)?,
+            "--spread" => settings.spreads = numbers(flag, value)?,
+            "--hold-out" => {
+                hold_out = value
+                    .parse()
+                    .map_err(|_| format!("--hold-out {value}: not a whole number"))?
+            }
+            other => return Err(format!("unknown option {other}\n{}", super::USAGE)),
+        }
+    }
+    let background = image::open(untouched)
+        .map_err(|e| format!("{untouched}: {e}"))?
+        .to_rgb8();
+    let (used, held) = split_held_out(read_presses(presses).map_err(|e| e.to_string())?, hold_out);
+    let calibration = Calibration::fit(&background, &used, &settings).map_err(|e| e.to_string())?;
+    calibration.save(out).map_err(|e| e.to_string())?;
+    let geometry = calibration.geometry();
+    println!(
+        "{out}: fitted to {} of {} presses (contact scale {}, spread {} px)",
+        used.len(),
+        used.len() + held.len(),
+        geometry.contact_scale,
+        geometry.spread
+    );
+    Ok(())
+}

@@ -1,0 +1,148 @@
+//! A [`Calibration`] as a JSON file: its geometry, its coefficients named by their terms, and
+//! the untouched gel as a base64 PNG.
+
+use base64::Engine;
+use image::{ImageEncoder, RgbImage};
+use serde::{Deserialize, Serialize};
+
+use super::surface::{NORMAL_TERMS, POSITION_TERMS};
+use super::{Calibration, CalibrationError, Geometry};
+
+/// The format's name and version, the file's first field.
+const FORMAT: &str = "yarok tactile calibration 1";
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CalibrationFile {
+    format: String,
+    width: u32,
+    height: u32,
+    pixels_per_mm: f64,
+    ball_diameter_mm: f64,
+    contact_scale: f64,
+    spread_pixels: f64,
+    normal_terms: Vec<String>,
+    position_terms: Vec<String>,
+    /// Per normal term, per position term: R, G, B.
+    coefficients: Vec<[f64; 3]>,
+    background_png: String,
+}
+
+impl Calibration {
+    /// The calibration as the JSON a calibration file holds (deterministic).
+    pub fn to_json(&self) -> String {
+        let mut png = Vec::new();
+        image::codecs::png::PngEncoder::new(&mut png)
+            .write_image(
+                self.background.as_raw(),
+                self.background.width(),
+                self.background.height(),
+                image::ExtendedColorType::Rgb8,
+            )
+            .expect("an RGB image encodes as PNG");
+        let file = CalibrationFile {
+            format: FORMAT.to_owned(),
+            width: self.background.width(),
+            height: self.background.height(),
+            pixels_per_mm: self.geometry.pixels_per_mm,
+            ball_diameter_mm: self.geometry.ball_diameter_mm,
+            contact_scale: self.geometry.contact_scale,
+            spread_pixels: self.geometry.spread,
+            normal_terms: NORMAL_TERMS.map(str::to_owned).to_vec(),
+            position_terms: POSITION_TERMS.map(str::to_owned).to_vec(),
+            coefficients: self.coefficients.clone(),
+            background_png: base64::engine::general_purpose::STANDARD.encode(png),
+        };
+        serde_json::to_string_pretty(&file).expect("a calibration serialises") + "\n"
+    }
+
+    /// Writes the calibration to `path` as JSON.
+    ///
+    /// # Errors
+    ///
+    /// [`CalibrationError::Io`] naming the file.
+    pub fn save(&self, path: &str) -> Result<(), CalibrationError> {
+        std::fs::write(path, self.to_json()).map_err(|source| CalibrationError::Io {
+            path: path.to_owned(),
+            source,
+        })
+    }
+
+    /// Reads a calibration file written by [`Calibration::save`] (or `yarok tactile
+    /// calibrate`).
+    ///
+    /// # Errors
+    ///
+    /// [`CalibrationError::Io`] if it cannot be read, [`CalibrationError::Format`] (naming the
+    /// file and what is wrong) if it is not a calibration.
+    pub fn load(path: &str) -> Result<Self, CalibrationError> {
+        let text = std::fs::read_to_string(path).map_err(|source| CalibrationError::Io {
+            path: path.to_owned(),
+            source,
+        })?;
+        parse(&text, path)
+    }
+}
+
+/// The calibration in `text`, read from `path` (for errors).
+pub(super) fn parse(text: &str, path: &str) -> Result<Calibration, CalibrationError> {
+    let format = |reason: String| CalibrationError::Format {
+        path: path.to_owned(),
+        reason,
+    };
+    let file: CalibrationFile = serde_json::from_str(text).map_err(|e| {
+        format(format!(
+            "not a calibration (line {}, column {}): {e}",
+            e.line(),
+            e.column()
+        ))
+    })?;
+    if file.format != FORMAT {
+        return Err(format(format!(
+            "format {:?}, expected {FORMAT:?}",
+            file.format
+        )));
+    }
+    if file.normal_terms != NORMAL_TERMS || file.position_terms != POSITION_TERMS {
+        return Err(format(format!(
+            "its terms ({:?} × {:?}) are not this version's ({NORMAL_TERMS:?} × {POSITION_TERMS:?})",
+            file.normal_terms, file.position_terms
+        )));
+    }
+    let png = base64::engine::general_purpose::STANDARD
+        .decode(&file.background_png)
+        .map_err(|e| format(format!("background_png is not base64: {e}")))?;
+    let background: RgbImage = image::load_from_memory_with_format(&png, image::ImageFormat::Png)
+        .map_err(|e| format(format!("background_png is not a PNG: {e}")))?
+        .to_rgb8();
+    if background.dimensions() != (file.width, file.height) {
+        return Err(format(format!(
+            "the background is {}×{}, the file says {}×{}",
+            background.width(),
+            background.height(),
+            file.width,
+            file.height
+        )));
+    }
+    let geometry = Geometry {
+        pixels_per_mm: file.pixels_per_mm,
+        ball_diameter_mm: file.ball_diameter_mm,
+        contact_scale: file.contact_scale,
+        spread: file.spread_pixels,
+    };
+    let positive = [
+        geometry.pixels_per_mm,
+        geometry.ball_diameter_mm,
+        geometry.contact_scale,
+    ];
+    if !(positive.iter().all(|v| v.is_finite() && *v > 0.0)
+        && geometry.spread.is_finite()
+        && geometry.spread >= 0.0
+        && geometry.spread <= 1000.0)
+    {
+        return Err(format(format!(
+            "its geometry is not finite and positive: {geometry:?}"
+        )));
+    }
+    Calibration::new(background, geometry, file.coefficients).map_err(|e| format(e.to_string()))
+}

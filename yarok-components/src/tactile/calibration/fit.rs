@@ -1,0 +1,258 @@
+//! Fitting a [`Calibration`] to real frames of ball presses.
+
+use image::RgbImage;
+use nalgebra::{DMatrix, SMatrix};
+
+use super::press::{Press, within};
+use super::surface::{
+    NORMAL_TERMS, POSITION_TERMS, between, half_normal_terms, half_position_terms, half_size,
+    spread,
+};
+use super::{Calibration, CalibrationError, Geometry};
+
+/// Terms of the colour polynomial: every normal term times every position term.
+const TERMS: usize = NORMAL_TERMS.len() * POSITION_TERMS.len();
+
+/// How a calibration is fitted: the ball's size and the frames' scale, and the candidates
+/// tried for the two geometric parameters (the one fitting the presses best is kept).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FitSettings {
+    /// The pressing ball's diameter, millimetres (FOTS' and Taxim's indenters: 4.70 mm).
+    pub ball_diameter_mm: f64,
+    /// The frames' scale at the gel, pixels per millimetre.
+    pub pixels_per_mm: f64,
+    /// Candidates for the contact circle's radius as a multiple of each press's radius (1 when
+    /// the radii are contact circles; below 1 when they are visible imprints).
+    pub contact_scales: Vec<f64>,
+    /// Candidates for how far (Gaussian σ, pixels) the gel around a contact sinks with it.
+    pub spreads: Vec<f64>,
+}
+
+impl Default for FitSettings {
+    /// A 4.70 mm ball, 19.58 px/mm, contact scales 0.6, 0.9 and 1.2, spreads 6, 10, 14 and 18
+    /// pixels.
+    fn default() -> Self {
+        Self {
+            ball_diameter_mm: 4.7,
+            pixels_per_mm: 19.58,
+            contact_scales: vec![0.6, 0.9, 1.2],
+            spreads: vec![6.0, 10.0, 14.0, 18.0],
+        }
+    }
+}
+
+/// Beyond how many radii of its centre a press's frame shows the untouched gel.
+const FAR_FIELD: f64 = 1.8;
+/// Within how many radii of its centre a press's pixels are fitted.
+const FITTED: f64 = 2.5;
+/// Within how many radii of its centre a press's fit is scored (the fidelity protocol's
+/// contact region).
+const SCORED: f64 = 1.5;
+/// How much the background estimated from the frames is smoothed (σ, pixels).
+const BACKGROUND_SMOOTHING: f64 = 2.0;
+/// Ridge regularisation, relative to the normal equations' mean diagonal.
+const RIDGE: f64 = 1e-3;
+
+/// Fits a calibration to an untouched frame and presses (see [`Calibration::fit`]).
+pub(super) fn fit(
+    untouched: &RgbImage,
+    presses: &[Press],
+    settings: &FitSettings,
+) -> Result<Calibration, CalibrationError> {
+    check(untouched, presses, settings)?;
+    let background = background(untouched, presses);
+    let mut best: Option<(f64, Calibration)> = None;
+    for &contact_scale in &settings.contact_scales {
+        for &spread in &settings.spreads {
+            let geometry = Geometry {
+                pixels_per_mm: settings.pixels_per_mm,
+                ball_diameter_mm: settings.ball_diameter_mm,
+                contact_scale,
+                spread,
+            };
+            let coefficients = coefficients(&background, presses, &geometry)?;
+            let calibration = Calibration::new(background.clone(), geometry, coefficients)?;
+            let error = mean_error(&calibration, presses);
+            if best.as_ref().is_none_or(|(least, _)| error < *least) {
+                best = Some((error, calibration));
+            }
+        }
+    }
+    Ok(best.expect("checked: at least one candidate").1)
+}
+
+fn check(
+    untouched: &RgbImage,
+    presses: &[Press],
+    settings: &FitSettings,
+) -> Result<(), CalibrationError> {
+    let invalid = |reason: String| Err(CalibrationError::Fit(reason));
+    if presses.is_empty() {
+        return invalid("no presses to fit to".into());
+    }
+    if let Some((index, press)) = presses
+        .iter()
+        .enumerate()
+        .find(|(_, p)| p.frame.dimensions() != untouched.dimensions())
+    {
+        return invalid(format!(
+            "press {index}'s frame is {}×{}, the untouched frame {}×{}",
+            press.frame.width(),
+            press.frame.height(),
+            untouched.width(),
+            untouched.height()
+        ));
+    }
+    if let Some(index) = presses.iter().position(|p| {
+        !(p.radius.is_finite() && p.radius > 0.0 && p.centre.iter().all(|c| c.is_finite()))
+    }) {
+        return invalid(format!(
+            "press {index} has no finite centre and positive radius"
+        ));
+    }
+    let positive =
+        |values: &[f64]| !values.is_empty() && values.iter().all(|v| v.is_finite() && *v > 0.0);
+    if !(positive(&[settings.ball_diameter_mm, settings.pixels_per_mm])
+        && positive(&settings.contact_scales)
+        && settings.spreads.iter().all(|s| s.is_finite() && *s >= 0.0)
+        && !settings.spreads.is_empty())
+    {
+        return invalid(format!(
+            "the settings must be finite and positive: {settings:?}"
+        ));
+    }
+    Ok(())
+}
+
+/// The untouched gel: per pixel, the mean of the untouched frame and of the presses' frames
+/// where they are far from their press (averaging out the camera's noise), slightly smoothed.
+fn background(untouched: &RgbImage, presses: &[Press]) -> RgbImage {
+    let (width, height) = (untouched.width() as usize, untouched.height() as usize);
+    let mut channels: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; width * height]);
+    for (index, pixel) in untouched.pixels().enumerate() {
+        let (x, y) = (index % width, index / width);
+        let mut count = 1.0;
+        let mut sum = pixel.0.map(f64::from);
+        for press in presses.iter().filter(|p| !within(p, x, y, FAR_FIELD)) {
+            let seen = press.frame.get_pixel(x as u32, y as u32).0;
+            for (sum, seen) in sum.iter_mut().zip(seen) {
+                *sum += f64::from(seen);
+            }
+            count += 1.0;
+        }
+        for (channel, sum) in channels.iter_mut().zip(sum) {
+            channel[index] = sum / count;
+        }
+    }
+    for channel in &mut channels {
+        spread(channel, width, BACKGROUND_SMOOTHING);
+    }
+    RgbImage::from_fn(width as u32, height as u32, |x, y| {
+        let index = y as usize * width + x as usize;
+        image::Rgb(
+            channels
+                .each_ref()
+                .map(|c| c[index].round().clamp(0.0, 255.0) as u8),
+        )
+    })
+}
+
+/// The colour polynomial's coefficients (per term, R, G and B) that fit the presses' change
+/// from the background best in the least-squares sense (ridge-regularised).
+fn coefficients(
+    background: &RgbImage,
+    presses: &[Press],
+    geometry: &Geometry,
+) -> Result<Vec<[f64; 3]>, CalibrationError> {
+    let (width, height) = (background.width() as usize, background.height() as usize);
+    let mut normal = DMatrix::<f64>::zeros(TERMS, TERMS);
+    let mut target = DMatrix::<f64>::zeros(TERMS, 3);
+    let (half_width, half_height) = half_size(width, height);
+    let positions: Vec<[f64; 6]> = (0..half_width * half_height)
+        .map(|i| half_position_terms(i % half_width, i / half_width, width, height))
+        .collect();
+    let columns: Vec<_> = (0..width).map(|x| between(x, half_width)).collect();
+    let mut terms = [0.0; TERMS];
+    for press in presses {
+        let normals = half_normal_terms(
+            &geometry.heights(width, height, press.centre, press.radius),
+            half_width,
+        );
+        for y in 0..height {
+            let (y0, y1, fy) = between(y, half_height);
+            for (x, &(x0, x1, fx)) in columns.iter().enumerate() {
+                if !within(press, x, y, FITTED) {
+                    continue;
+                }
+                // The image's terms: the grid's, interpolated as the model's changes are.
+                terms.fill(0.0);
+                for (corner, weight) in [
+                    (y0 * half_width + x0, (1.0 - fx) * (1.0 - fy)),
+                    (y0 * half_width + x1, fx * (1.0 - fy)),
+                    (y1 * half_width + x0, (1.0 - fx) * fy),
+                    (y1 * half_width + x1, fx * fy),
+                ] {
+                    let Some(grid_terms) = &normals[corner] else {
+                        continue;
+                    };
+                    for (k, n) in grid_terms.iter().enumerate() {
+                        for (q, p) in positions[corner].iter().enumerate() {
+                            terms[k * POSITION_TERMS.len() + q] += weight * n * p;
+                        }
+                    }
+                }
+                let (seen, untouched) = (
+                    press.frame.get_pixel(x as u32, y as u32).0,
+                    background.get_pixel(x as u32, y as u32).0,
+                );
+                for i in 0..TERMS {
+                    for j in i..TERMS {
+                        normal[(i, j)] += terms[i] * terms[j];
+                    }
+                    for c in 0..3 {
+                        target[(i, c)] += terms[i] * (f64::from(seen[c]) - f64::from(untouched[c]));
+                    }
+                }
+            }
+        }
+    }
+    let ridge = RIDGE * normal.trace() / TERMS as f64;
+    for i in 0..TERMS {
+        normal[(i, i)] += ridge;
+        for j in 0..i {
+            normal[(i, j)] = normal[(j, i)];
+        }
+    }
+    let solution = normal
+        .cholesky()
+        .ok_or_else(|| CalibrationError::Fit("the presses do not determine the model".into()))?
+        .solve(&target);
+    Ok((0..TERMS)
+        .map(|i| {
+            let row: SMatrix<f64, 1, 3> = solution.fixed_view::<1, 3>(i, 0).into_owned();
+            [row[0], row[1], row[2]]
+        })
+        .collect())
+}
+
+/// Mean absolute error (levels) of the calibration's images of the presses within their
+/// scored regions.
+fn mean_error(calibration: &Calibration, presses: &[Press]) -> f64 {
+    let (mut sum, mut count) = (0.0, 0usize);
+    for press in presses {
+        let image = calibration.render_press(press.centre, press.radius);
+        for (x, y, pixel) in image.enumerate_pixels() {
+            if within(press, x as usize, y as usize, SCORED) {
+                let seen = press.frame.get_pixel(x, y).0;
+                sum += pixel
+                    .0
+                    .iter()
+                    .zip(seen)
+                    .map(|(a, b)| f64::from(a.abs_diff(b)))
+                    .sum::<f64>();
+                count += 3;
+            }
+        }
+    }
+    sum / count.max(1) as f64
+}

@@ -1,0 +1,294 @@
+//! A tactile sensor's optical model calibrated from real frames: how the gel's surface (its
+//! normal, its height and where on the gel it is) becomes colour, fitted to a few dozen frames
+//! of a ball pressed into a real sensor, as Taxim, FOTS and digit-depth calibrate theirs.
+//!
+//! The model: the indentation map (pixels) is spread as the gel around a contact sinks with it
+//! (a Gaussian of [`Geometry::spread`] pixels); each pixel's colour is the untouched gel's
+//! (estimated from the frames) plus, per channel, a polynomial of the surface's normal and height
+//! (third degree, [`NORMAL_TERMS`]) whose coefficients are polynomials of the pixel's position
+//! (second degree, [`POSITION_TERMS`]: each light reaches each part of the gel at its own
+//! angle). The coefficients are a least-squares fit to the presses; the contact circle's scale
+//! and the spread are chosen among candidates by how well they fit.
+//!
+//! A calibration is saved as JSON (`yarok tactile calibrate` writes one; the DIGIT's bundled one,
+//! [`Calibration::digit`], is fitted to a real DIGIT's frames from FOTS).
+//!
+//! ```
+//! use yarok_components::tactile::calibration::Calibration;
+//!
+//! let digit = Calibration::digit();
+//! let (width, height) = digit.size();
+//! let untouched = digit.render_indentation(&vec![0.0; width * height], 5e-5)?;
+//! assert_eq!(untouched, *digit.background());
+//! let pressed = digit.render_press([120.0, 160.0], 40.0);
+//! assert_ne!(pressed, untouched);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+mod file;
+mod fit;
+mod press;
+mod surface;
+
+use std::sync::Arc;
+
+use image::RgbImage;
+
+pub use fit::FitSettings;
+pub use press::{Press, ball_press, held_out, read_presses, split_held_out};
+pub use surface::{NORMAL_TERMS, POSITION_TERMS};
+
+use super::SizeError;
+
+/// A calibration could not be fitted, read or written.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum CalibrationError {
+    /// The presses or settings cannot be fitted.
+    #[error("cannot calibrate: {0}")]
+    Fit(String),
+    /// A calibration file could not be read or written.
+    #[error("calibration file {path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// A calibration file is not one.
+    #[error("calibration file {path}: {reason}")]
+    Format {
+        /// The file.
+        path: String,
+        /// What is wrong with it.
+        reason: String,
+    },
+}
+
+/// The press geometry a calibration was fitted with.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Geometry {
+    /// The frames' scale at the gel, pixels per millimetre.
+    pub pixels_per_mm: f64,
+    /// The pressing ball's diameter, millimetres.
+    pub ball_diameter_mm: f64,
+    /// The contact circle's radius as a multiple of a press's radius.
+    pub contact_scale: f64,
+    /// How far (Gaussian σ, pixels) the gel around a contact sinks with it.
+    pub spread: f64,
+}
+
+impl Geometry {
+    /// The spread indentation (pixels, on the half-resolution grid) of a ball pressed at
+    /// `centre` with a press radius of `radius` pixels.
+    fn heights(&self, width: usize, height: usize, centre: [f64; 2], radius: f64) -> Vec<f64> {
+        let ball_radius = self.ball_diameter_mm * self.pixels_per_mm / 2.0;
+        self.spread_half(
+            &ball_press(
+                width,
+                height,
+                centre,
+                self.contact_scale * radius,
+                ball_radius,
+            ),
+            width,
+        )
+    }
+
+    /// A `width`-wide indentation map (pixels) halved and spread.
+    fn spread_half(&self, heights: &[f64], width: usize) -> Vec<f64> {
+        let mut half = surface::halve(heights, width);
+        surface::spread(
+            &mut half,
+            width.div_ceil(surface::HALF),
+            self.spread / surface::HALF as f64,
+        );
+        half
+    }
+}
+
+/// A calibrated optical model (see the [module](self)): cheap to clone (the per-pixel weights
+/// are shared).
+#[derive(Debug, Clone)]
+pub struct Calibration {
+    background: RgbImage,
+    geometry: Geometry,
+    coefficients: Vec<[f64; 3]>,
+    /// Per point of the half-resolution grid, per channel (R, G, B), per normal term: the
+    /// coefficients' position polynomials evaluated.
+    weights: Arc<Vec<f32>>,
+}
+
+impl Calibration {
+    fn new(
+        background: RgbImage,
+        geometry: Geometry,
+        coefficients: Vec<[f64; 3]>,
+    ) -> Result<Self, CalibrationError> {
+        let terms = NORMAL_TERMS.len() * POSITION_TERMS.len();
+        if coefficients.len() != terms || coefficients.iter().flatten().any(|c| !c.is_finite()) {
+            return Err(CalibrationError::Fit(format!(
+                "{} coefficients (finite) are needed, not {}",
+                terms,
+                coefficients.len()
+            )));
+        }
+        let (width, height) = (background.width() as usize, background.height() as usize);
+        let (half_width, half_height) = surface::half_size(width, height);
+        let mut weights = Vec::with_capacity(half_width * half_height * NORMAL_TERMS.len() * 3);
+        for hy in 0..half_height {
+            for hx in 0..half_width {
+                let positions = surface::half_position_terms(hx, hy, width, height);
+                for channel in 0..3 {
+                    for term in coefficients.chunks_exact(POSITION_TERMS.len()) {
+                        let weight: f64 = positions
+                            .iter()
+                            .zip(term)
+                            .map(|(p, c)| p * c[channel])
+                            .sum();
+                        weights.push(weight as f32);
+                    }
+                }
+            }
+        }
+        Ok(Self {
+            background,
+            geometry,
+            coefficients,
+            weights: Arc::new(weights),
+        })
+    }
+
+    /// Fits a calibration to a sensor's `untouched` frame and frames of a ball pressed into it
+    /// (a few dozen, spread over the gel): the untouched gel is estimated from all of them, the
+    /// colour polynomial fitted by least squares, and of `settings`' candidate geometries the
+    /// one whose images of the presses are nearest the frames (mean absolute error within 1.5
+    /// radii) kept. Deterministic: the same inputs give the same calibration, bit for bit.
+    ///
+    /// # Errors
+    ///
+    /// [`CalibrationError::Fit`] if there are no presses, a frame's size differs from the
+    /// untouched frame's, a press or setting is not finite and positive, or the presses do not
+    /// determine the model.
+    pub fn fit(
+        untouched: &RgbImage,
+        presses: &[Press],
+        settings: &FitSettings,
+    ) -> Result<Self, CalibrationError> {
+        fit::fit(untouched, presses, settings)
+    }
+
+    /// The calibration bundled for the DIGIT: fitted (contact scale 0.9, spread 18 pixels) to
+    /// the 14 calibration presses of a real DIGIT's frames from FOTS (MIT licence; see
+    /// `yarok-components/data/tactile-real/`), the other 7 held out to measure it.
+    pub fn digit() -> Self {
+        file::parse(include_str!("digit.json"), "the bundled DIGIT calibration")
+            .expect("the bundled calibration is valid (tested)")
+    }
+
+    /// Columns and rows of the images it renders.
+    pub fn size(&self) -> (usize, usize) {
+        (
+            self.background.width() as usize,
+            self.background.height() as usize,
+        )
+    }
+
+    /// The untouched gel's image.
+    pub fn background(&self) -> &RgbImage {
+        &self.background
+    }
+
+    /// The geometry it was fitted with.
+    pub fn geometry(&self) -> Geometry {
+        self.geometry
+    }
+
+    /// The image of a gel sunk by `indentation` (metres per pixel, row-major, the image's size;
+    /// zero where nothing presses), seen at `metres_per_pixel` at the gel.
+    ///
+    /// # Errors
+    ///
+    /// [`SizeError`] if `indentation` is not the image's size.
+    pub fn render_indentation(
+        &self,
+        indentation: &[f32],
+        metres_per_pixel: f64,
+    ) -> Result<RgbImage, SizeError> {
+        let (width, height) = self.size();
+        if indentation.len() != width * height {
+            return Err(SizeError::Mismatch {
+                what: "indentation map",
+                actual: indentation.len(),
+                width,
+                height,
+                expected: width * height,
+            });
+        }
+        if !indentation.iter().any(|m| *m > 0.0) {
+            return Ok(self.background.clone());
+        }
+        let heights: Vec<f64> = indentation
+            .iter()
+            .map(|m| (f64::from(*m) / metres_per_pixel).max(0.0))
+            .map(|h| if h.is_finite() { h } else { 0.0 })
+            .collect();
+        Ok(self.render_heights(&self.geometry.spread_half(&heights, width)))
+    }
+
+    /// The image of the ball it was fitted with pressed at `centre` (column, row) with a press
+    /// radius of `radius` pixels, as the presses it was fitted to are described.
+    pub fn render_press(&self, centre: [f64; 2], radius: f64) -> RgbImage {
+        let (width, height) = self.size();
+        self.render_heights(&self.geometry.heights(width, height, centre, radius))
+    }
+
+    /// The image of a spread half-resolution height map (pixels).
+    fn render_heights(&self, heights: &[f64]) -> RgbImage {
+        let (width, height) = self.size();
+        let (half_width, half_height) = surface::half_size(width, height);
+        let count = NORMAL_TERMS.len();
+        let changes: Vec<Option<[f32; 3]>> = surface::half_normal_terms(heights, half_width)
+            .iter()
+            .enumerate()
+            .map(|(index, terms)| {
+                let terms = terms.as_ref()?.map(|t| t as f32);
+                let weights = &self.weights[index * 3 * count..(index + 1) * 3 * count];
+                let mut change = [0.0f32; 3];
+                for (change, weights) in change.iter_mut().zip(weights.chunks_exact(count)) {
+                    *change = terms.iter().zip(weights).map(|(t, w)| t * w).sum();
+                }
+                Some(change)
+            })
+            .collect();
+        let mut image = self.background.clone();
+        let pixels: &mut [u8] = &mut image;
+        let columns: Vec<_> = (0..width)
+            .map(|x| surface::between(x, half_width))
+            .collect();
+        for y in 0..height {
+            let (y0, y1, fy) = surface::between(y, half_height);
+            for (x, &(x0, x1, fx)) in columns.iter().enumerate() {
+                let corners = [
+                    (changes[y0 * half_width + x0], (1.0 - fx) * (1.0 - fy)),
+                    (changes[y0 * half_width + x1], fx * (1.0 - fy)),
+                    (changes[y1 * half_width + x0], (1.0 - fx) * fy),
+                    (changes[y1 * half_width + x1], fx * fy),
+                ];
+                if corners.iter().all(|(change, _)| change.is_none()) {
+                    continue;
+                }
+                for c in 0..3 {
+                    let change: f32 = corners
+                        .iter()
+                        .map(|(change, weight)| change.map_or(0.0, |v| v[c]) * *weight as f32)
+                        .sum();
+                    let pixel = &mut pixels[(y * width + x) * 3 + c];
+                    // Rounds half up: the sum is non-negative once clamped.
+                    *pixel = (f32::from(*pixel) + change + 0.5).clamp(0.0, 255.0) as u8;
+                }
+            }
+        }
+        image
+    }
+}
