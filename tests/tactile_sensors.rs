@@ -9,7 +9,8 @@ use yarok::prelude::*;
 
 /// A DIGIT facing up with its gel's face at z = 0.118 m, and a 5 mm sphere pressed `press`
 /// metres into the gel at (`dx`, `dy`) from its centre (it stands still and collides with
-/// nothing: only the camera sees it).
+/// nothing: only the camera sees it). The DIGIT draws with the reference Phong model unless
+/// `calibration` says otherwise.
 struct PressWorld;
 
 impl Component for PressWorld {
@@ -21,9 +22,10 @@ impl Component for PressWorld {
             .default("dx", 0.003)
             .default("dy", -0.002)
             .default("noise", false)
+            .default("calibration", "none")
             .template(
                 r#"<mujoco><worldbody>
-                  <digit name="digit" pos="{[0, 0, 0.1]}" noise="{noise}"/>
+                  <digit name="digit" pos="{[0, 0, 0.1]}" noise="{noise}" calibration="{calibration}"/>
                   <geom name="indenter" type="sphere" size="0.005" pos="{dx} {dy} {0.118 + 0.005 - press}"
                         rgba="0.8 0.2 0.2 1"/>
                 </worldbody></mujoco>"#,
@@ -85,9 +87,21 @@ fn imprint(frame: &image::RgbImage, untouched: &image::RgbImage) -> (usize, f64,
 
 #[test]
 fn an_imprint_appears_where_the_object_presses() {
-    let (untouched, nothing) = press(&["press=-0.01"]);
+    imprint_where_pressed(&[], 4.0);
+}
+
+/// The calibrated model's imprint is lit from its sides as a real DIGIT's is, so where its
+/// colour changes most lies a few pixels off the press.
+#[test]
+fn with_the_bundled_calibration_an_imprint_appears_where_the_object_presses() {
+    imprint_where_pressed(&["calibration=\"bundled\""], 6.0);
+}
+
+/// The imprint's changed pixels centre within `tolerance` pixels of the press.
+fn imprint_where_pressed(settings: &[&str], tolerance: f64) {
+    let (untouched, nothing) = press(&[settings, &["press=-0.01"]].concat());
     assert!(!nothing.in_contact, "{nothing:?}");
-    let (frame, contact) = press(&[]);
+    let (frame, contact) = press(settings);
     assert!(
         contact.in_contact && (contact.max_indentation - 0.001).abs() < 2e-4,
         "{contact:?}"
@@ -100,7 +114,7 @@ fn an_imprint_appears_where_the_object_presses() {
         160.0 - 0.002 / 5.4347826087e-5,
     );
     assert!(
-        (column - expected_column).abs() < 4.0 && (row - expected_row).abs() < 4.0,
+        (column - expected_column).abs() < tolerance && (row - expected_row).abs() < tolerance,
         "imprint at ({column:.1}, {row:.1}), expected ({expected_column:.1}, {expected_row:.1})"
     );
 }
@@ -128,6 +142,23 @@ fn without_contact_the_frame_is_the_untouched_gel() {
         "the frame is not the untouched gel"
     );
     assert!(far == farther);
+}
+
+/// With the bundled calibration the untouched frame is the calibration's untouched gel (the
+/// real DIGIT's, estimated from its frames), and a deeper press makes a larger imprint.
+#[test]
+fn with_the_bundled_calibration_the_untouched_gel_is_the_real_digits() {
+    use yarok::components::tactile::calibration::Calibration;
+    let (far, _) = press(&["calibration=\"bundled\"", "press=-0.01"]);
+    assert!(far == *Calibration::digit().background());
+    let (shallow, _) = press(&["calibration=\"bundled\"", "press=0.0005"]);
+    let (deep, _) = press(&["calibration=\"bundled\"", "press=0.0015"]);
+    let (shallow_pixels, _, _) = imprint(&shallow, &far);
+    let (deep_pixels, _, _) = imprint(&deep, &far);
+    assert!(
+        deep_pixels > shallow_pixels && shallow_pixels > 50,
+        "{shallow_pixels} then {deep_pixels} pixels"
+    );
 }
 
 #[test]

@@ -173,10 +173,18 @@ fn the_inspector_shows_the_probes_images() {
     // Four images (each DIGIT's tactile image and depth, 240×320) side by side.
     assert_eq!(size.trim(), "size 980 348");
     let image = image::open(&shot).unwrap().to_rgb8();
-    // The tactile images' grey-blue gel, under each label.
+    // The tactile images' gel, under each label: the colours of the real DIGIT's untouched gel
+    // that the bundled calibration draws.
+    let colour = |p: &image::Rgb<u8>| p.0.map(|c| c / 8);
+    let real_gel: std::collections::HashSet<[u8; 3]> =
+        yarok::components::tactile::calibration::Calibration::digit()
+            .background()
+            .pixels()
+            .map(colour)
+            .collect();
     let gel = image
         .pixels()
-        .filter(|p| (90..200).contains(&p[2]) && p[2] >= p[0] && p[0] > 60)
+        .filter(|p| real_gel.contains(&colour(p)))
         .count();
     assert!(gel > 2 * 240 * 200, "{gel} gel pixels");
     x.window("yarok inspector", &["close"]);

@@ -2,6 +2,7 @@
 
 use super::phong::Spec;
 use super::sensor::{SensorKind, TactileSensor, tactile_sensor_component};
+use crate::tactile::calibration::Calibration;
 use crate::tactile::elastomer::Elastomer;
 use crate::tactile::phong::PhongParams;
 
@@ -17,6 +18,7 @@ const DIGIT: Spec = Spec {
     gel: [0.0095, 0.008],
     model: PhongParams::digit_metric,
     elastomer: Elastomer::DIGIT,
+    bundled: Some(Calibration::digit),
     fps: 60.0,
     #[cfg(feature = "camera")]
     turned: true,
@@ -26,8 +28,12 @@ tactile_sensor_component! {
     /// A DIGIT tactile sensor (a [`TactileSensor`]: `read()`, `read_depth()`, `contact()`).
     ///
     /// Tag `digit`; config `pos` and `quat` (placement; it senses along its +z), `fps` (default 60,
-    /// the DIGIT's QVGA rate), `noise` (the gel's texture, default on, seeded from the platform's
-    /// seed), `parallel` (its model across threads), `housing` (half sizes, m). Mount it on a
+    /// the DIGIT's QVGA rate), `noise` (default on, seeded from the platform's seed: with the
+    /// calibration, a fixed pattern of the real camera's noise as it measured it; with the
+    /// reference model, the gel's texture), `parallel` (its model across threads), `housing` (half
+    /// sizes, m), `calibration` (the optical model: `"bundled"`, the default, fitted to a real
+    /// DIGIT's frames, [`Calibration::digit`]; `"none"`, the reference Phong model; or a
+    /// calibration file written by `yarok tactile calibrate`). Mount it on a
     /// gripper pad with `parent=` and a `quat` that turns +z inward. The gel's and camera's
     /// geometry (`gel_face`, `thickness`, `gel`, `fovy`) is the optical model's and cannot be
     /// set.

@@ -17,6 +17,7 @@ const GELSIGHT_2014: Spec = Spec {
     gel: [0.0175, 0.0131],
     model: PhongParams::gelsight2014,
     elastomer: Elastomer::GELSIGHT2014,
+    bundled: None,
     fps: 30.0,
     #[cfg(feature = "camera")]
     turned: false,
@@ -28,7 +29,9 @@ tactile_sensor_component! {
     ///
     /// Tag `gelsight2014`; config `pos` and `quat` (placement; it senses along its +z), `fps`
     /// (default 30), `noise` (the gel's texture, default on, seeded from the platform's seed),
-    /// `parallel` (its model across threads), `housing` (half sizes, m). The gel's and camera's
+    /// `parallel` (its model across threads), `housing` (half sizes, m), `calibration` (the
+    /// optical model: `"none"`, the default, the reference Phong model; or a 640 × 480
+    /// calibration file written by `yarok tactile calibrate`). The gel's and camera's
     /// geometry (`gel_face`, `thickness`, `gel`, `fovy`) is the optical model's and cannot be
     /// set.
     ///

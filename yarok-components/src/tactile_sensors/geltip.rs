@@ -5,6 +5,7 @@ use yarok_core::component::Declaration;
 
 use super::sensor::{Optics, SensorKind, TactileSensor, tactile_sensor_component};
 use crate::tactile::SizeError;
+use crate::tactile::calibration::Calibration;
 use crate::tactile::elastomer::Elastomer;
 use crate::tactile::geltip::{GelTipModel, GelTipParams};
 use crate::tactile::light_fields::{LightFieldMethod, led_ring};
@@ -89,6 +90,7 @@ impl SensorKind for Kind {
             .default("start", START)
             .default("tip", TIP)
             .default("fovy", FOVY)
+            .default("calibration", "none")
             .template(include_str!("geltip.xml"))
     }
 
@@ -109,7 +111,15 @@ impl SensorKind for Kind {
         TIP.hypot(RADIUS)
     }
 
-    fn optics(&self, _seed: u64, _noise: bool) -> Result<Box<dyn Optics>, String> {
+    fn optics(
+        &self,
+        _seed: u64,
+        _noise: bool,
+        calibration: Option<Calibration>,
+    ) -> Result<Box<dyn Optics>, String> {
+        if calibration.is_some() {
+            return Err("a calibration models a flat gel; the GelTip's is a tube".into());
+        }
         let membrane = Self::membrane();
         let params = GelTipParams {
             fov_deg: FOVY,
@@ -183,7 +193,8 @@ tactile_sensor_component! {
     /// "plane" method, diffuse light clamped) over the depth its base camera (70°) renders.
     ///
     /// Tag `geltip`; config `pos` and `quat` (placement; its axis is +z), `fps`, `parallel` (its
-    /// model across threads). The model has no texture noise, so `noise` changes nothing; the
+    /// model across threads), `calibration` (only `"none"`: calibrations model flat gels). The
+    /// model has no texture noise, so `noise` changes nothing; the
     /// membrane's and camera's geometry (`radius`, `start`, `tip`, `fovy`) is the model's and
     /// cannot be set.
     ///

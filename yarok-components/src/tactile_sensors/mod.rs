@@ -1,7 +1,9 @@
 //! Tactile sensors in the world: components whose images come from the [`crate::tactile`]
 //! optical models over the depth their internal cameras render.
 
+mod calibrated;
 mod digit;
+mod flat_gel;
 mod gelsight;
 mod geltip;
 mod phong;

@@ -1,10 +1,12 @@
-//! Sensors of the Phong kind (DIGIT, GelSight): a flat gel in front of the camera, and the Phong
-//! optical model.
+//! Sensors with a flat gel in front of the camera (DIGIT, GelSight), seen through the Phong
+//! optical model or a calibrated one.
 
 use yarok_core::component::Declaration;
 
+use super::calibrated::CalibratedModel;
+use super::flat_gel::FlatGelOptics;
 use super::sensor::{Optics, SensorKind};
-use crate::tactile::SizeError;
+use crate::tactile::calibration::Calibration;
 use crate::tactile::elastomer::Elastomer;
 use crate::tactile::phong::{PhongModel, PhongParams};
 
@@ -26,6 +28,8 @@ pub(super) struct Spec {
     pub(super) model: fn() -> PhongParams,
     /// How deep the gel sinks under a force.
     pub(super) elastomer: Elastomer,
+    /// The calibration bundled for the sensor (`calibration = "bundled"`, then the default).
+    pub(super) bundled: Option<fn() -> Calibration>,
     /// Frames per second by default: the real sensor's.
     pub(super) fps: f64,
     /// Whether the real sensor's camera lies across the image (see `SensorKind::turned`).
@@ -40,6 +44,19 @@ impl Spec {
             elastomer_thickness: self.thickness,
             min_depth: self.gel_face - self.thickness,
             ..(self.model)()
+        }
+    }
+
+    /// This gel seen through `model`.
+    fn flat_gel<M>(&self, model: M) -> FlatGelOptics<M> {
+        FlatGelOptics {
+            model,
+            width: self.width as usize,
+            gel_face: self.gel_face,
+            thickness: self.thickness,
+            gel: self.gel,
+            pixel: self.params().px2m_ratio,
+            surface: vec![self.gel_face as f32; (self.width * self.height) as usize],
         }
     }
 
@@ -63,6 +80,14 @@ impl SensorKind for Spec {
             .default("housing", self.housing)
             .default("gel", self.gel)
             .default("fovy", self.field_of_view())
+            .default(
+                "calibration",
+                if self.bundled.is_some() {
+                    "bundled"
+                } else {
+                    "none"
+                },
+            )
             .template(include_str!("phong.xml"))
     }
 
@@ -102,62 +127,33 @@ impl SensorKind for Spec {
         self.gel_face.hypot(half[0].hypot(half[1]))
     }
 
-    fn optics(&self, seed: u64, noise: bool) -> Result<Box<dyn Optics>, String> {
+    fn bundled_calibration(&self) -> Option<Calibration> {
+        self.bundled.map(|calibration| calibration())
+    }
+
+    fn optics(
+        &self,
+        seed: u64,
+        noise: bool,
+        calibration: Option<Calibration>,
+    ) -> Result<Box<dyn Optics>, String> {
         let base = self.params();
+        if let Some(calibration) = calibration {
+            let noise_seed = noise.then_some(seed);
+            let model = CalibratedModel::new(
+                calibration,
+                self.gel_face,
+                base.px2m_ratio,
+                self.size(),
+                noise_seed,
+            )?;
+            return Ok(Box::new(self.flat_gel(model)));
+        }
         let params = PhongParams {
             seed,
             texture_sigma: if noise { base.texture_sigma } else { 0.0 },
             ..base
         };
-        Ok(Box::new(PhongOptics {
-            pixel: params.px2m_ratio,
-            model: PhongModel::new(params),
-            spec: *self,
-            surface: vec![self.gel_face as f32; (self.width * self.height) as usize],
-        }))
-    }
-}
-
-/// A flat gel `gel_face` in front of the camera, seen through the Phong model.
-struct PhongOptics {
-    spec: Spec,
-    model: PhongModel,
-    /// Metres a pixel spans on the gel.
-    pixel: f64,
-    /// The gel's face, at every pixel.
-    surface: Vec<f32>,
-}
-
-impl Optics for PhongOptics {
-    fn surface(&self) -> &[f32] {
-        &self.surface
-    }
-
-    fn thickness(&self) -> f64 {
-        self.spec.thickness
-    }
-
-    fn pixel_area(&self) -> f64 {
-        self.pixel * self.pixel
-    }
-
-    fn surface_distance(&self, x: f64, y: f64) -> Option<f64> {
-        let [half_x, half_y] = self.spec.gel;
-        (x.abs() <= half_x && y.abs() <= half_y).then_some(self.spec.gel_face)
-    }
-
-    fn render(
-        &mut self,
-        depth: &[f32],
-        background: &[u8],
-        out: &mut [u8],
-    ) -> Result<(), SizeError> {
-        self.model
-            .render_into(depth, self.spec.width as usize, background, out)
-    }
-
-    #[cfg(feature = "parallel")]
-    fn set_parallel(&mut self, parallel: bool) {
-        self.model.set_parallel(parallel);
+        Ok(Box::new(self.flat_gel(PhongModel::new(params))))
     }
 }

@@ -11,6 +11,7 @@ use yarok_core::time::Clock;
 use yarok_mjc::{Body, Camera, DepthImage, Geom, RenderPreset, Sim, SimBind};
 
 use crate::probe_images;
+use crate::tactile::calibration::Calibration;
 use crate::tactile::elastomer::Elastomer;
 use crate::tactile::{SizeError, default_background};
 
@@ -99,12 +100,22 @@ pub(super) trait SensorKind {
     /// The config keys the optical model fixes (the gel's and the camera's geometry), with
     /// their values.
     fn geometry(&self) -> Vec<(&'static str, Vec<f64>)>;
-    /// The optics, with the gel's texture noise seeded by `seed` (none when `noise` is off).
+    /// The calibration its `calibration = "bundled"` names, if it has one.
+    fn bundled_calibration(&self) -> Option<Calibration> {
+        None
+    }
+    /// The optics, with the gel's texture noise seeded by `seed` (none when `noise` is off):
+    /// the `calibration`'s model if one is given, else the reference model.
     ///
     /// # Errors
     ///
-    /// When the model cannot be made for this geometry.
-    fn optics(&self, seed: u64, noise: bool) -> Result<Box<dyn Optics>, String>;
+    /// When the model cannot be made for this geometry (or calibration).
+    fn optics(
+        &self,
+        seed: u64,
+        noise: bool,
+        calibration: Option<Calibration>,
+    ) -> Result<Box<dyn Optics>, String>;
 }
 
 /// A camera-based tactile sensor: `read()` gives its colour image (the sensor's optical model
@@ -321,8 +332,11 @@ impl TactileSensor {
         check_geometry(kind, bind)?;
         let noise: bool = bind.config_value("noise")?;
         let parallel: bool = bind.config_value("parallel")?;
+        let calibration = calibration(kind, bind)?;
         #[cfg_attr(not(feature = "parallel"), expect(unused_mut))]
-        let mut optics = kind.optics(bind.seed(), noise).map_err(|e| bind.error(e))?;
+        let mut optics = kind
+            .optics(bind.seed(), noise, calibration)
+            .map_err(|e| bind.error(e))?;
         #[cfg(feature = "parallel")]
         optics.set_parallel(parallel);
         if parallel && !cfg!(feature = "parallel") {
@@ -400,7 +414,9 @@ impl TactileSensor {
         };
         let rate = fps.round().clamp(1.0, f64::from(u32::MAX)) as u32;
         let frames = crate::cameras::real::bind_frames(bind, across, down, rate).await?;
-        let optics = kind.optics(bind.seed(), false).map_err(|e| bind.error(e))?;
+        let optics = kind
+            .optics(bind.seed(), false, None)
+            .map_err(|e| bind.error(e))?;
         let sensor = Self {
             feed: Feed::Real(Rc::new(RealSensor {
                 frames,
@@ -426,6 +442,24 @@ fn frame_rate<E: Environment>(bind: &Bind<E>) -> Result<f64, BindError> {
         return Err(bind.error(format!("fps must be a positive number, not {fps}")));
     }
     Ok(fps)
+}
+
+/// The calibration the config's `calibration` names: `"none"` (the reference model),
+/// `"bundled"` (the kind's own) or a calibration file.
+fn calibration<E: Environment>(
+    kind: &dyn SensorKind,
+    bind: &Bind<E>,
+) -> Result<Option<Calibration>, BindError> {
+    let named: String = bind.config_value("calibration")?;
+    match named.as_str() {
+        "none" => Ok(None),
+        "bundled" => kind.bundled_calibration().map(Some).ok_or_else(|| {
+            bind.error("calibration = \"bundled\", but this sensor has no bundled calibration")
+        }),
+        path => Calibration::load(path)
+            .map(Some)
+            .map_err(|e| bind.error(format!("calibration = {path:?}: {e}"))),
+    }
 }
 
 /// Refuses config that changes the geometry the optical model is made for.

@@ -25,6 +25,8 @@ struct CalibrationFile {
     position_terms: Vec<String>,
     /// Per normal term, per position term: R, G, B.
     coefficients: Vec<[f64; 3]>,
+    /// The camera's noise, standard deviation per channel (levels).
+    noise_levels: [f64; 3],
     background_png: String,
 }
 
@@ -51,6 +53,7 @@ impl Calibration {
             normal_terms: NORMAL_TERMS.map(str::to_owned).to_vec(),
             position_terms: POSITION_TERMS.map(str::to_owned).to_vec(),
             coefficients: self.coefficients.clone(),
+            noise_levels: self.noise,
             background_png: base64::engine::general_purpose::STANDARD.encode(png),
         };
         serde_json::to_string_pretty(&file).expect("a calibration serialises") + "\n"
@@ -144,5 +147,6 @@ pub(super) fn parse(text: &str, path: &str) -> Result<Calibration, CalibrationEr
             "its geometry is not finite and positive: {geometry:?}"
         )));
     }
-    Calibration::new(background, geometry, file.coefficients).map_err(|e| format(e.to_string()))
+    Calibration::new(background, geometry, file.coefficients, file.noise_levels)
+        .map_err(|e| format(e.to_string()))
 }

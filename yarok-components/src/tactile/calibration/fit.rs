@@ -61,6 +61,7 @@ pub(super) fn fit(
 ) -> Result<Calibration, CalibrationError> {
     check(untouched, presses, settings)?;
     let background = background(untouched, presses);
+    let noise = camera_noise(&background, presses);
     let mut best: Option<(f64, Calibration)> = None;
     for &contact_scale in &settings.contact_scales {
         for &spread in &settings.spreads {
@@ -71,7 +72,7 @@ pub(super) fn fit(
                 spread,
             };
             let coefficients = coefficients(&background, presses, &geometry)?;
-            let calibration = Calibration::new(background.clone(), geometry, coefficients)?;
+            let calibration = Calibration::new(background.clone(), geometry, coefficients, noise)?;
             let error = mean_error(&calibration, presses);
             if best.as_ref().is_none_or(|(least, _)| error < *least) {
                 best = Some((error, calibration));
@@ -155,6 +156,33 @@ fn background(untouched: &RgbImage, presses: &[Press]) -> RgbImage {
                 .map(|c| c[index].round().clamp(0.0, 255.0) as u8),
         )
     })
+}
+
+/// The camera's noise: per channel, the standard deviation of the presses' frames from the
+/// untouched gel far from their press (each frame's own mean offset removed), levels.
+fn camera_noise(background: &RgbImage, presses: &[Press]) -> [f64; 3] {
+    let mut squares = [0.0; 3];
+    let mut count = 0usize;
+    for press in presses {
+        let far: Vec<[f64; 3]> = press
+            .frame
+            .enumerate_pixels()
+            .filter(|(x, y, _)| !within(press, *x as usize, *y as usize, FAR_FIELD))
+            .map(|(x, y, seen)| {
+                let untouched = background.get_pixel(x, y);
+                std::array::from_fn(|c| f64::from(seen[c]) - f64::from(untouched[c]))
+            })
+            .collect();
+        let n = far.len().max(1) as f64;
+        let mean: [f64; 3] = std::array::from_fn(|c| far.iter().map(|d| d[c]).sum::<f64>() / n);
+        for difference in &far {
+            for c in 0..3 {
+                squares[c] += (difference[c] - mean[c]).powi(2);
+            }
+        }
+        count += far.len();
+    }
+    squares.map(|sum| (sum / count.max(1) as f64).sqrt())
 }
 
 /// The colour polynomial's coefficients (per term, R, G and B) that fit the presses' change

@@ -8,7 +8,9 @@
 //! (third degree, [`NORMAL_TERMS`]) whose coefficients are polynomials of the pixel's position
 //! (second degree, [`POSITION_TERMS`]: each light reaches each part of the gel at its own
 //! angle). The coefficients are a least-squares fit to the presses; the contact circle's scale
-//! and the spread are chosen among candidates by how well they fit.
+//! and the spread are chosen among candidates by how well they fit. The camera's noise is
+//! measured too ([`Calibration::noise_levels`]); images are rendered without it (the expected
+//! image), and a sensor in the world adds a fixed pattern of it when its `noise` is on.
 //!
 //! A calibration is saved as JSON (`yarok tactile calibrate` writes one; the DIGIT's bundled one,
 //! [`Calibration::digit`], is fitted to a real DIGIT's frames from FOTS).
@@ -114,6 +116,8 @@ pub struct Calibration {
     background: RgbImage,
     geometry: Geometry,
     coefficients: Vec<[f64; 3]>,
+    /// The camera's noise, per channel: standard deviation, levels.
+    noise: [f64; 3],
     /// Per point of the half-resolution grid, per channel (R, G, B), per normal term: the
     /// coefficients' position polynomials evaluated.
     weights: Arc<Vec<f32>>,
@@ -124,7 +128,13 @@ impl Calibration {
         background: RgbImage,
         geometry: Geometry,
         coefficients: Vec<[f64; 3]>,
+        noise: [f64; 3],
     ) -> Result<Self, CalibrationError> {
+        if noise.iter().any(|n| !(n.is_finite() && *n >= 0.0)) {
+            return Err(CalibrationError::Fit(format!(
+                "the noise levels {noise:?} are not finite and non-negative"
+            )));
+        }
         let terms = NORMAL_TERMS.len() * POSITION_TERMS.len();
         if coefficients.len() != terms || coefficients.iter().flatten().any(|c| !c.is_finite()) {
             return Err(CalibrationError::Fit(format!(
@@ -155,6 +165,7 @@ impl Calibration {
             background,
             geometry,
             coefficients,
+            noise,
             weights: Arc::new(weights),
         })
     }
@@ -197,6 +208,12 @@ impl Calibration {
     /// The untouched gel's image.
     pub fn background(&self) -> &RgbImage {
         &self.background
+    }
+
+    /// The camera noise of the frames it was fitted to: per channel (R, G, B), the standard
+    /// deviation (levels) of a frame from the untouched gel where nothing presses.
+    pub fn noise_levels(&self) -> [f64; 3] {
+        self.noise
     }
 
     /// The geometry it was fitted with.

@@ -1,0 +1,107 @@
+//! [`CalibratedModel`]: a flat gel's image by a [`Calibration`] fitted to a real sensor.
+
+use super::flat_gel::FlatGelModel;
+use crate::tactile::SizeError;
+use crate::tactile::calibration::Calibration;
+use crate::tactile::noise::SplitMix64;
+
+/// A calibration's model of a flat gel `gel_face` metres from the camera, `pixel` metres a
+/// pixel there. It draws its own untouched gel (the calibration's), not the sensor's background,
+/// and, with noise, adds a pattern of the calibration's camera noise.
+pub(super) struct CalibratedModel {
+    calibration: Calibration,
+    gel_face: f32,
+    pixel: f64,
+    indentation: Vec<f32>,
+    noise: Option<CameraNoise>,
+}
+
+/// The camera's noise as a fixed pattern drawn from a seed (as the reference model's gel
+/// texture is), so that a frame depends on what presses alone, not on the frames before.
+struct CameraNoise {
+    /// Per value of a frame (RGB): the noise, levels.
+    pattern: Vec<f32>,
+}
+
+impl CameraNoise {
+    fn new(levels: [f64; 3], values: usize, seed: u64) -> Self {
+        let samples = SplitMix64::new(seed).normal(values, 1.0);
+        let pattern = samples
+            .iter()
+            .enumerate()
+            .map(|(index, sample)| (sample * levels[index % 3]) as f32)
+            .collect();
+        Self { pattern }
+    }
+
+    /// Adds the noise to `pixels` (RGB).
+    fn add(&self, pixels: &mut [u8]) {
+        for (pixel, noise) in pixels.iter_mut().zip(&self.pattern) {
+            *pixel = (f32::from(*pixel) + noise + 0.5).clamp(0.0, 255.0) as u8;
+        }
+    }
+}
+
+impl CalibratedModel {
+    /// The model, if `calibration` makes images of the sensor's `size` (columns, rows); with
+    /// the calibration's camera noise seeded by `noise_seed`, if given.
+    pub(super) fn new(
+        calibration: Calibration,
+        gel_face: f64,
+        pixel: f64,
+        size: (u32, u32),
+        noise_seed: Option<u64>,
+    ) -> Result<Self, String> {
+        let (width, height) = calibration.size();
+        if (width as u32, height as u32) != size {
+            return Err(format!(
+                "the calibration makes {width}×{height} images, the sensor's are {}×{}",
+                size.0, size.1
+            ));
+        }
+        let noise = noise_seed
+            .map(|seed| CameraNoise::new(calibration.noise_levels(), width * height * 3, seed));
+        Ok(Self {
+            calibration,
+            gel_face: gel_face as f32,
+            pixel,
+            indentation: Vec::with_capacity(width * height),
+            noise,
+        })
+    }
+}
+
+impl FlatGelModel for CalibratedModel {
+    fn render_into(
+        &mut self,
+        depth: &[f32],
+        _width: usize,
+        _background: &[u8],
+        out: &mut [u8],
+    ) -> Result<(), SizeError> {
+        self.indentation.clear();
+        self.indentation
+            .extend(depth.iter().map(|d| (self.gel_face - d).max(0.0)));
+        let image = self
+            .calibration
+            .render_indentation(&self.indentation, self.pixel)?;
+        let (width, height) = self.calibration.size();
+        if out.len() != image.as_raw().len() {
+            return Err(SizeError::Mismatch {
+                what: "image",
+                actual: out.len(),
+                width,
+                height,
+                expected: image.as_raw().len(),
+            });
+        }
+        out.copy_from_slice(image.as_raw());
+        if let Some(noise) = &self.noise {
+            noise.add(out);
+        }
+        Ok(())
+    }
+
+    #[cfg(feature = "parallel")]
+    fn set_parallel(&mut self, _parallel: bool) {}
+}
