@@ -9,7 +9,9 @@ Prints, a line each:
   `image TOPIC TIME WIDTH HEIGHT MODE SPREAD` for every image message, decoded (SPREAD: the
   difference between its brightest and darkest pixel values);
   `transforms COUNT` for the bodies in the last /tf message;
-  `log TIME TEXT` for every /log message.
+  `log TIME TEXT` for every /log message;
+  `summary CHANNELS MESSAGES` from the file's summary section (`summary none` without one: a
+  file cut short).
 """
 
 import base64
@@ -52,10 +54,15 @@ def main():
                 last_transforms = len(body["transforms"])
             elif topic == "/log":
                 print("log", repr(seconds(body["timestamp"])), body["message"])
+        summary = reader.get_summary()
     for topic, count in sorted(counts.items()):
         schema, encoding = kinds[topic]
         print("topic", topic, schema, encoding, count)
     print("transforms", last_transforms)
+    if summary is None or summary.statistics is None:
+        print("summary none")
+    else:
+        print("summary", len(summary.channels), summary.statistics.message_count)
 
 
 if __name__ == "__main__":

@@ -1,5 +1,5 @@
-//! Ctrl-C ends a run cleanly. Alone in its file, so that the signal reaches no other test's
-//! platform (each test file is its own process).
+//! Ctrl-C, SIGTERM and SIGHUP end a run cleanly. Alone in its file, so that the signal reaches
+//! no other test's platform (each test file is its own process).
 
 #[allow(dead_code, reason = "each test file uses part of the shared device")]
 mod device;
@@ -42,8 +42,10 @@ impl Plugin for Watch {
     }
 }
 
-#[test]
-fn ctrl_c_stops_the_run_plugins_see_the_end_and_devices_are_stopped() {
+/// Sends `signal` (a `kill` name) to this process while a platform runs: the run stops with
+/// [`RuntimeError::Interrupted`] naming `number`, the plugins see the end, and the device gets
+/// its stop.
+fn a_signal_stops_the_run_cleanly(signal: &'static str, number: i32) {
     let ended = Rc::new(Cell::new(false));
     let server = Server::start(None);
     let error = Platform::builder()
@@ -54,10 +56,10 @@ fn ctrl_c_stops_the_run_plugins_see_the_end_and_devices_are_stopped() {
         .set(&format!("interfaces/arm/port={}", server.port()))
         .unwrap()
         .plugin(Watch(Rc::clone(&ended)))
-        .behaviour(|pl| async move {
+        .behaviour(move |pl| async move {
             pl.wait_seconds(0.1).await?;
             let status = std::process::Command::new("kill")
-                .args(["-INT", &std::process::id().to_string()])
+                .args([&format!("-{signal}"), &std::process::id().to_string()])
                 .status()?;
             assert!(status.success());
             pl.wait_forever().timeout(10.0).await?;
@@ -65,9 +67,28 @@ fn ctrl_c_stops_the_run_plugins_see_the_end_and_devices_are_stopped() {
         })
         .run()
         .unwrap_err();
-    assert!(matches!(error, RuntimeError::Interrupted), "{error}");
+    assert!(
+        matches!(error, RuntimeError::Interrupted { signal } if signal == number),
+        "{error}"
+    );
+    assert!(error.to_string().contains(signal), "{error}");
     assert!(ended.get());
     assert_eq!(server.received(1), ["STOP"], "the device was left safe");
+}
+
+#[test]
+fn ctrl_c_stops_the_run_plugins_see_the_end_and_devices_are_stopped() {
+    a_signal_stops_the_run_cleanly("INT", 2);
+}
+
+#[test]
+fn sigterm_stops_the_run_as_ctrl_c_does() {
+    a_signal_stops_the_run_cleanly("TERM", 15);
+}
+
+#[test]
+fn sighup_stops_the_run_as_ctrl_c_does() {
+    a_signal_stops_the_run_cleanly("HUP", 1);
 }
 
 /// Set in the child process of [`ctrl_c_ends_the_process_again_after_run`].
@@ -97,6 +118,16 @@ fn ctrl_c_child() {
 /// After `run()` returns, Ctrl-C ends the process, as it did before the run.
 #[test]
 fn ctrl_c_ends_the_process_again_after_run() {
+    a_signal_ends_the_process_after_run("INT", 2);
+}
+
+/// After `run()` returns, SIGTERM ends the process, as it did before the run.
+#[test]
+fn sigterm_ends_the_process_again_after_run() {
+    a_signal_ends_the_process_after_run("TERM", 15);
+}
+
+fn a_signal_ends_the_process_after_run(signal: &str, number: i32) {
     use std::io::{BufRead, BufReader};
     use std::os::unix::process::ExitStatusExt;
     let mut child = std::process::Command::new(std::env::current_exe().unwrap())
@@ -109,7 +140,7 @@ fn ctrl_c_ends_the_process_again_after_run() {
     let ended = lines.find(|line| line.as_ref().is_ok_and(|l| l.contains("run ended")));
     assert!(ended.is_some(), "the child's run did not end");
     let status = std::process::Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
+        .args([&format!("-{signal}"), &child.id().to_string()])
         .status()
         .unwrap();
     assert!(status.success());
@@ -120,9 +151,9 @@ fn ctrl_c_ends_the_process_again_after_run() {
         }
         if started.elapsed() > std::time::Duration::from_secs(10) {
             child.kill().unwrap();
-            panic!("Ctrl-C was swallowed after run()");
+            panic!("SIG{signal} was swallowed after run()");
         }
         std::thread::sleep(std::time::Duration::from_millis(20));
     };
-    assert_eq!(status.signal(), Some(2), "{status:?}");
+    assert_eq!(status.signal(), Some(number), "{status:?}");
 }

@@ -147,10 +147,10 @@ pub(super) fn run(args: &[String]) -> Result<(), Failure> {
     if std::io::stderr().is_terminal() {
         platform = platform.plugin(StatusLine::new());
     }
-    platform.run().map_err(|error| match error {
-        RuntimeError::Interrupted => Failure {
-            message: "interrupted".into(),
-            status: 130,
+    platform.run().map_err(|error| match &error {
+        RuntimeError::Interrupted { signal } => Failure {
+            message: error.to_string(),
+            status: u8::try_from(128 + signal).unwrap_or(1),
         },
         error => Failure::from(error.to_string()),
     })

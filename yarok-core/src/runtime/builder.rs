@@ -228,10 +228,12 @@ impl PlatformBuilder {
         self
     }
 
-    /// Whether Ctrl-C stops the platform (default: yes). While it runs, the first Ctrl-C stops it
-    /// cleanly ([`RuntimeError::Interrupted`], after the components' stop actions) and a second
-    /// one, if shutdown hangs, exits with status 130; once no platform runs, Ctrl-C ends the
-    /// process again. An application that handles Ctrl-C itself (say with `tokio::signal`)
+    /// Whether Ctrl-C, `SIGTERM` and `SIGHUP` stop the platform (default: yes). While it runs, the
+    /// first such signal stops it cleanly ([`RuntimeError::Interrupted`] naming it, after the
+    /// behaviours saw their waits stopped, the plugins ended — recorders close their files — and
+    /// the components' stop actions ran) and a second one, if shutdown hangs, exits with status
+    /// 128 + the signal's number (130, 143, 129); once no platform runs, the signals end the
+    /// process again. An application that handles signals itself (say with `tokio::signal`)
     /// passes `false` and stops the platform through its [stop flag](Platform::stop_flag).
     pub fn ctrl_c(mut self, stops: bool) -> Self {
         self.ctrl_c = stops;

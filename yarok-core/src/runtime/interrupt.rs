@@ -1,25 +1,31 @@
-//! Ctrl-C while platforms run, and its default effect once none does.
+//! Ctrl-C, SIGTERM and SIGHUP while platforms run, and their default effect once none does.
 
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 
-use signal_hook::consts::SIGINT;
+use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
 
-/// How many platforms listen for Ctrl-C now.
+/// The signals that stop a platform cleanly: Ctrl-C, and what schedulers (Slurm, Kubernetes,
+/// systemd) and closing terminals send.
+const SIGNALS: [i32; 3] = [SIGINT, SIGTERM, SIGHUP];
+
+/// How many platforms listen for the signals now.
 static LISTENING: Mutex<usize> = Mutex::new(0);
 
-/// Set while no platform listens: Ctrl-C then has its default effect (the process ends).
+/// Set while no platform listens: the signals then have their default effect (the process
+/// ends).
 ///
 /// signal-hook keeps its own handler installed once anything registered for a signal, and does
 /// not put the default disposition back when the last action is unregistered, so without this a
 /// Ctrl-C after `run()` would be swallowed for the rest of the process.
 static IDLE: OnceLock<Arc<AtomicBool>> = OnceLock::new();
 
-/// Ctrl-C while a platform runs: the first one stops it cleanly (it sets the platform's stop
-/// flag, checked every tick, and its own, which says why it stopped); a second one, if shutdown
-/// hangs, exits the process with status 130.
+/// A signal while a platform runs: the first one stops it cleanly (it sets the platform's stop
+/// flag, checked every tick, and notes which signal it was); a second one, if shutdown hangs,
+/// exits the process with the conventional status (128 + the signal's number: 130 for Ctrl-C,
+/// 143 for SIGTERM, 129 for SIGHUP).
 pub(super) struct Interrupt {
-    flag: Arc<AtomicBool>,
+    signal: Arc<AtomicUsize>,
     handlers: Vec<signal_hook::SigId>,
 }
 
@@ -29,27 +35,41 @@ impl Interrupt {
         *listening += 1;
         idle().store(false, Ordering::SeqCst);
         drop(listening);
-        let flag = Arc::new(AtomicBool::new(false));
-        // Registered first, so that it sees the flag as the previous Ctrl-C left it.
-        let handlers = [
-            signal_hook::flag::register_conditional_shutdown(SIGINT, 130, Arc::clone(&flag)),
-            signal_hook::flag::register(SIGINT, Arc::clone(&flag)),
-            signal_hook::flag::register(SIGINT, Arc::clone(stop)),
-        ]
-        .into_iter()
-        .filter_map(|registered| {
-            registered
-                .map_err(
-                    |error| tracing::warn!(%error, "Ctrl-C will not stop the platform cleanly"),
-                )
-                .ok()
-        })
-        .collect();
-        Self { flag, handlers }
+        let signalled = Arc::new(AtomicBool::new(false));
+        let signal = Arc::new(AtomicUsize::new(0));
+        let handlers = SIGNALS
+            .into_iter()
+            .flat_map(|number| {
+                let value = usize::try_from(number).unwrap_or_default();
+                // The shutdown first, so that it sees the flag as the previous signal left it.
+                [
+                    signal_hook::flag::register_conditional_shutdown(
+                        number,
+                        128 + number,
+                        Arc::clone(&signalled),
+                    ),
+                    signal_hook::flag::register(number, Arc::clone(&signalled)),
+                    signal_hook::flag::register_usize(number, Arc::clone(&signal), value),
+                    signal_hook::flag::register(number, Arc::clone(stop)),
+                ]
+            })
+            .filter_map(|registered| {
+                registered
+                    .map_err(|error| {
+                        tracing::warn!(%error, "a signal will not stop the platform cleanly")
+                    })
+                    .ok()
+            })
+            .collect();
+        Self { signal, handlers }
     }
 
-    pub(super) fn happened(&self) -> bool {
-        self.flag.load(Ordering::Relaxed)
+    /// The signal that asked the platform to stop, if one did.
+    pub(super) fn signal(&self) -> Option<i32> {
+        match self.signal.load(Ordering::Relaxed) {
+            0 => None,
+            number => i32::try_from(number).ok(),
+        }
     }
 }
 
@@ -66,15 +86,17 @@ impl Drop for Interrupt {
     }
 }
 
-/// The idle flag, with the action that gives Ctrl-C its default effect while it is set
+/// The idle flag, with the actions that give the signals their default effect while it is set
 /// (registered once per process, before any platform's own actions).
 fn idle() -> &'static AtomicBool {
     IDLE.get_or_init(|| {
         let idle = Arc::new(AtomicBool::new(true));
-        if let Err(error) =
-            signal_hook::flag::register_conditional_default(SIGINT, Arc::clone(&idle))
-        {
-            tracing::warn!(%error, "Ctrl-C may be ignored after the platform stops");
+        for number in SIGNALS {
+            if let Err(error) =
+                signal_hook::flag::register_conditional_default(number, Arc::clone(&idle))
+            {
+                tracing::warn!(%error, number, "a signal may be ignored after the platform stops");
+            }
         }
         idle
     })

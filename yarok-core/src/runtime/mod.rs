@@ -152,9 +152,22 @@ pub enum RuntimeError {
     /// The platform's thread ended without a result (it panicked).
     #[error("the platform thread died without a result")]
     ThreadDied,
-    /// Ctrl-C.
-    #[error("interrupted")]
-    Interrupted,
+    /// A signal asked the platform to stop: Ctrl-C (`SIGINT`), `SIGTERM` or `SIGHUP`.
+    #[error("interrupted by {}", signal_name(*signal))]
+    Interrupted {
+        /// The signal's number.
+        signal: i32,
+    },
+}
+
+/// The name of a signal that stops the platform.
+fn signal_name(signal: i32) -> String {
+    match signal {
+        signal_hook::consts::SIGINT => "Ctrl-C (SIGINT)".into(),
+        signal_hook::consts::SIGTERM => "SIGTERM".into(),
+        signal_hook::consts::SIGHUP => "SIGHUP".into(),
+        other => format!("signal {other}"),
+    }
 }
 
 /// A component that cannot run in the selected environment.

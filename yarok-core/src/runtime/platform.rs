@@ -175,7 +175,7 @@ impl Platform {
     /// # Errors
     ///
     /// The first binding, behaviour, plugin, component or backend error;
-    /// [`RuntimeError::Interrupted`] on Ctrl-C.
+    /// [`RuntimeError::Interrupted`] on Ctrl-C, `SIGTERM` or `SIGHUP`.
     pub fn run(self) -> Result<(), RuntimeError> {
         let runtime = tokio::runtime::Builder::new_current_thread()
             .enable_all()
@@ -357,13 +357,13 @@ impl Platform {
     ///
     /// # Errors
     ///
-    /// [`RuntimeError::Interrupted`] when Ctrl-C asked.
+    /// [`RuntimeError::Interrupted`] when a signal asked.
     fn goes_on(&self) -> Result<bool, RuntimeError> {
         if !self.stop.load(std::sync::atomic::Ordering::Relaxed) {
             return Ok(!self.executor.behaviours_done());
         }
-        if self.interrupt.as_ref().is_some_and(Interrupt::happened) {
-            return Err(RuntimeError::Interrupted);
+        if let Some(signal) = self.interrupt.as_ref().and_then(Interrupt::signal) {
+            return Err(RuntimeError::Interrupted { signal });
         }
         Ok(false)
     }
