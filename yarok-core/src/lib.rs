@@ -18,6 +18,7 @@ pub mod config;
 pub mod report;
 pub mod runtime;
 mod stack;
+pub mod stdout;
 pub mod suggest;
 pub mod template;
 pub mod time;

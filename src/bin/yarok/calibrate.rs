@@ -54,12 +54,11 @@ pub(super) fn run(args: &[String]) -> Result<(), String> {
     let calibration = Calibration::fit(&background, &used, &settings).map_err(|e| e.to_string())?;
     calibration.save(out).map_err(|e| e.to_string())?;
     let geometry = calibration.geometry();
-    println!(
-        "{out}: fitted to {} of {} presses (contact scale {}, spread {} px)",
+    super::print(&format!(
+        "{out}: fitted to {} of {} presses (contact scale {}, spread {} px)\n",
         used.len(),
         used.len() + held.len(),
         geometry.contact_scale,
         geometry.spread
-    );
-    Ok(())
+    ))
 }

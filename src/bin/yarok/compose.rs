@@ -68,9 +68,6 @@ pub(super) fn run(args: &[String]) -> Result<(), String> {
         Some(path) => {
             std::fs::write(&path, xml).map_err(|e| format!("cannot write {}: {e}", path.display()))
         }
-        None => {
-            print!("{xml}");
-            Ok(())
-        }
+        None => super::print(&xml),
     }
 }

@@ -64,6 +64,14 @@ const USAGE: &str = "usage: yarok run WORLD [--behaviour NAME] [--viewer] [--ins
   PRESSES.csv  rows frame,center_x,center_y,radius_px; frames/FRAME.png beside it; --hold-out N
          leaves out the frames whose number is one less than a multiple of N";
 
+/// Writes `text` to standard output; a closed standard output (`yarok … | head`) ends the
+/// output quietly, as Unix tools do.
+fn print(text: &str) -> Result<(), String> {
+    yarok::core::stdout::write(text)
+        .map(|_| ())
+        .map_err(|e| format!("cannot write to standard output: {e}"))
+}
+
 /// How a command failed: its message, and the exit status.
 struct Failure {
     message: String,
@@ -78,11 +86,10 @@ impl From<String> for Failure {
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    if args.iter().any(|a| a == "-h" || a == "--help") {
-        println!("{USAGE}");
-        return ExitCode::SUCCESS;
-    }
     let result = match args.first().map(String::as_str) {
+        _ if args.iter().any(|a| a == "-h" || a == "--help") => {
+            print(&format!("{USAGE}\n")).map_err(Failure::from)
+        }
         Some("run") => run::run(&args[1..]),
         Some("compose") => compose::run(&args[1..]).map_err(Failure::from),
         Some("tactile") => tactile::run(&args[1..]).map_err(Failure::from),

@@ -127,8 +127,7 @@ fn find(world: &str) -> Result<Demo, String> {
 pub(super) fn run(args: &[String]) -> Result<(), Failure> {
     let args = parse(args)?;
     if args.list {
-        println!("{}", list());
-        return Ok(());
+        return super::print(&format!("{}\n", list())).map_err(Failure::from);
     }
     let world = args.world.ok_or_else(|| USAGE.to_owned())?;
     let demo = find(&world)?;

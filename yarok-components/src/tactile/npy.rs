@@ -52,8 +52,18 @@ pub fn read(path: impl AsRef<Path>) -> Result<NpyArray, NpyError> {
     let bytes = if path.extension().is_some_and(|e| e == "gz") {
         let mut decompressed = Vec::new();
         flate2::read::GzDecoder::new(raw.as_slice())
+            .take(MAX_DECOMPRESSED + 1)
             .read_to_end(&mut decompressed)
             .map_err(io)?;
+        if decompressed.len() as u64 > MAX_DECOMPRESSED {
+            return Err(NpyError::Format {
+                path: name,
+                message: format!(
+                    "decompresses to more than {} MiB, more than any depth map",
+                    MAX_DECOMPRESSED >> 20
+                ),
+            });
+        }
         decompressed
     } else {
         raw
@@ -63,6 +73,10 @@ pub fn read(path: impl AsRef<Path>) -> Result<NpyArray, NpyError> {
         message,
     })
 }
+
+/// The most a `.npy.gz` may decompress to: 1 GiB (a 16384 × 16384 float64 map is 2 GiB less
+/// than twice that; depth maps are far smaller).
+const MAX_DECOMPRESSED: u64 = 1 << 30;
 
 /// Parses the bytes of a `.npy` file.
 ///
@@ -108,16 +122,15 @@ pub fn parse(bytes: &[u8]) -> Result<NpyArray, String> {
         .filter(|s| !s.is_empty())
         .map(|s| s.parse().map_err(|_| format!("bad shape ({shape_text})")))
         .collect::<Result<_, _>>()?;
-    let count = shape
+    let expected = shape
         .iter()
-        .try_fold(1usize, |n, d| n.checked_mul(*d))
-        .ok_or("shape too large")?;
+        .try_fold(width, |n: usize, d| n.checked_mul(*d))
+        .ok_or_else(|| format!("shape {shape:?} is too large"))?;
     let body = &bytes[header_start + header_len..];
-    if body.len() != count * width {
+    if body.len() != expected {
         return Err(format!(
-            "{} data bytes for shape {shape:?}, expected {}",
+            "{} data bytes for shape {shape:?}, expected {expected}",
             body.len(),
-            count * width
         ));
     }
     let data = if width == 4 {
@@ -202,6 +215,51 @@ mod tests {
                 .contains("data bytes")
         );
         assert!(super::parse(b"hello").is_err());
+    }
+
+    /// A 128-byte file may declare any shape: one whose size overflows, or is far larger than
+    /// the file, is refused before anything is allocated for it.
+    #[test]
+    fn huge_or_overflowing_shapes_are_refused_without_allocating() {
+        for shape in [
+            "(9223372036854775807,)",
+            "(4294967296, 4294967296)",
+            "(2305843009213693952,)",
+        ] {
+            let header = format!("{{'descr': '<f8', 'fortran_order': False, 'shape': {shape}, }}");
+            let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+            bytes.extend_from_slice(&(header.len() as u16).to_le_bytes());
+            bytes.extend_from_slice(header.as_bytes());
+            bytes.resize(128, 0);
+            let error = super::parse(&bytes).unwrap_err();
+            assert!(
+                error.contains("too large") || error.contains("data bytes"),
+                "{shape}: {error}"
+            );
+        }
+    }
+
+    /// A small `.npy.gz` that inflates to gigabytes (a zip bomb) is refused once past 1 GiB.
+    #[test]
+    fn a_gzip_that_inflates_beyond_any_depth_map_is_refused() {
+        use std::io::Write;
+        let folder = tempfile::tempdir().unwrap();
+        let path = folder.path().join("bomb.npy.gz");
+        let mut encoder = flate2::write::GzEncoder::new(
+            std::fs::File::create(&path).unwrap(),
+            flate2::Compression::fast(),
+        );
+        let zeros = vec![0u8; 1 << 20];
+        for _ in 0..1100 {
+            encoder.write_all(&zeros).unwrap();
+        }
+        encoder.finish().unwrap();
+        assert!(std::fs::metadata(&path).unwrap().len() < 8 << 20);
+        let error = super::read(&path).unwrap_err().to_string();
+        assert!(
+            error.contains("more than 1024 MiB") && error.contains("bomb.npy.gz"),
+            "{error}"
+        );
     }
 
     #[test]

@@ -128,7 +128,7 @@ impl Pl {
         self.inner.handles.borrow().get(path)
     }
 
-    /// Prints `line` on standard output and keeps it, with the platform time, for plugins
+    /// Prints `line` on standard output (if it is still open: see [`crate::stdout`]) and keeps it, with the platform time, for plugins
     /// ([`World::happenings`](super::World::happenings)): a recorder stores it beside the run's
     /// data.
     ///
@@ -141,7 +141,7 @@ impl Pl {
     /// ```
     pub fn log(&self, line: impl Into<String>) {
         let text = line.into();
-        println!("{text}");
+        crate::stdout::print_line(&text);
         let line = LogLine {
             time: self.time(),
             tick: self.ticks(),
