@@ -18,7 +18,7 @@ pub mod cameras;
 pub mod demos;
 pub mod grippers;
 pub mod plugins;
-mod probe_images;
+pub mod probe_images;
 pub mod robots;
 pub mod tactile;
 pub mod tactile_sensors;

@@ -105,7 +105,7 @@ impl Cam {
         bind.probe("rgb", move || Ok(probe_images::rgb(shown.read()?)));
         let shown = self.clone();
         bind.probe("depth", move || {
-            Ok(probe_images::depth(shown.read_depth()?))
+            Ok(probe_images::depth(shown.read_depth()?, 1e-3))
         });
     }
 }

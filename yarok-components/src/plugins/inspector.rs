@@ -74,6 +74,7 @@ fn rgb(image: ProbeImage) -> Result<(u32, u32, Vec<u8>), BoxError> {
             width,
             height,
             metres,
+            ..
         } => {
             let finite = metres.iter().copied().filter(|m| m.is_finite());
             let near = finite.clone().fold(f32::INFINITY, f32::min);

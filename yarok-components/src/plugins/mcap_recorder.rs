@@ -101,7 +101,16 @@ impl Recording {
         };
         recording.channels.log = recording.channel(foxglove::LOG, "/log")?;
         for probe in world.probes() {
-            let channel = recording.channel(foxglove::COMPRESSED_IMAGE, &probe.path())?;
+            // A depth probe's channel states the unit its PNGs count in (as their text does).
+            let mut metadata = BTreeMap::new();
+            if let Ok(ProbeImage::Depth { unit, .. }) = probe.read() {
+                metadata.insert(
+                    probe_images::DEPTH_UNIT_KEYWORD.to_owned(),
+                    format!("{unit:e}"),
+                );
+            }
+            let channel =
+                recording.channel_with(foxglove::COMPRESSED_IMAGE, &probe.path(), &metadata)?;
             recording.channels.probes.push(channel);
         }
         if world.backend::<SimBackend>().is_some() {
@@ -119,10 +128,19 @@ impl Recording {
     }
 
     fn channel(&mut self, schema: Schema, topic: &str) -> Result<u16, BoxError> {
+        self.channel_with(schema, topic, &BTreeMap::new())
+    }
+
+    fn channel_with(
+        &mut self,
+        schema: Schema,
+        topic: &str,
+        metadata: &BTreeMap<String, String>,
+    ) -> Result<u16, BoxError> {
         let writer = &mut self.writer;
         let added = writer
             .add_schema(schema.name, "jsonschema", schema.json_schema.as_bytes())
-            .and_then(|id| writer.add_channel(id, topic, "json", &BTreeMap::new()));
+            .and_then(|id| writer.add_channel(id, topic, "json", metadata));
         added.map_err(|e| failed(&self.path, e))
     }
 
@@ -175,7 +193,9 @@ fn failed(path: &Path, error: impl std::fmt::Display) -> BoxError {
 /// Records a run in MCAP: topic `/joint_states` (every joint coordinate's position and
 /// velocity, named as [`JointRecorder`](super::JointRecorder) names its columns), `/tf` (every
 /// named body's pose in the world frame, `foxglove.FrameTransforms`), one image topic per probe
-/// (`/arm/gripper/left/image`: PNG, depth as 16-bit millimetres) and per camera asked for
+/// (`/arm/gripper/left/image`: PNG; depth as 16-bit counts of the unit its channel's metadata and
+/// the PNG's text state under `depth_unit_m` — a tactile sensor's 1 µm, a camera's 1 mm; see
+/// [`probe_images::png`](crate::probe_images::png)) and per camera asked for
 /// (`/cameras/overview`), and `/log` (the behaviours' [`Pl::log`](yarok_core::runtime::Pl::log)
 /// lines, `foxglove.Log`). Messages are JSON; times are platform time.
 ///

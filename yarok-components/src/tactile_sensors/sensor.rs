@@ -376,7 +376,7 @@ impl TactileSensor {
         sensor.show_image(bind);
         let shown = sensor.clone();
         bind.probe("depth", move || {
-            Ok(probe_images::depth(shown.read_depth()?))
+            Ok(probe_images::depth(shown.read_depth()?, 1e-6))
         });
         // The world went back to its start: a frame of it now, and the frames' schedule anew.
         let restarting = Rc::clone(&inner);

@@ -24,6 +24,10 @@ pub enum ProbeImage {
         height: u32,
         /// The distances.
         metres: Vec<f32>,
+        /// The distance (metres) one count stands for where the depth is written as 16-bit
+        /// integers (a PNG): the finest the probe's range allows — a tactile sensor's 1 µm (up to
+        /// 65.5 mm), a camera's 1 mm (up to 65.5 m).
+        unit: f32,
     },
 }
 
