@@ -49,7 +49,7 @@ pub const DEPTH_UNIT_KEYWORD: &str = "depth_unit_m";
 /// let bytes = png(&depth)?;
 /// let decoded = image::load_from_memory(&bytes)?.to_luma16();
 /// assert_eq!(decoded.into_raw(), [18000, 16300]);
-/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// # Ok::<(), yarok_core::BoxError>(())
 /// ```
 pub fn png(image: &ProbeImage) -> Result<Vec<u8>, yarok_core::BoxError> {
     let mut out = Vec::new();

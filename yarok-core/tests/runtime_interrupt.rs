@@ -76,19 +76,13 @@ fn a_signal_stops_the_run_cleanly(signal: &'static str, number: i32) {
     assert_eq!(server.received(1), ["STOP"], "the device was left safe");
 }
 
+/// One test for the three, in turn: a signal reaches every platform the process runs, so two
+/// such tests as threads of one process (`cargo test`) would stop each other's runs.
 #[test]
-fn ctrl_c_stops_the_run_plugins_see_the_end_and_devices_are_stopped() {
-    a_signal_stops_the_run_cleanly("INT", 2);
-}
-
-#[test]
-fn sigterm_stops_the_run_as_ctrl_c_does() {
-    a_signal_stops_the_run_cleanly("TERM", 15);
-}
-
-#[test]
-fn sighup_stops_the_run_as_ctrl_c_does() {
-    a_signal_stops_the_run_cleanly("HUP", 1);
+fn ctrl_c_sigterm_and_sighup_stop_the_run_plugins_see_the_end_and_devices_are_stopped() {
+    for (signal, number) in [("INT", 2), ("TERM", 15), ("HUP", 1)] {
+        a_signal_stops_the_run_cleanly(signal, number);
+    }
 }
 
 /// Set in the child process of [`ctrl_c_ends_the_process_again_after_run`].
