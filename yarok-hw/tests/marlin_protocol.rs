@@ -381,3 +381,77 @@ async fn serial_ports_run_at_any_rate_the_device_takes() {
         assert_eq!(kernel_baud_rate(pty.slave), baud, "{path}");
     }
 }
+
+/// A board silent past the quiet time (a bootloader, a slow SD card) that echoes the first
+/// `M110` and starts 3 s after the port opened: `M110` is sent again, and after the late
+/// banner once more, and acknowledged.
+#[tokio::test(start_paused = true)]
+async fn a_board_that_starts_late_after_echoing_m110_is_connected() {
+    let (ours, theirs) = tokio::io::duplex(4096);
+    let printer = tokio::spawn(printer(
+        theirs,
+        vec![
+            // At 1.5 s of quiet the driver tries; the bootloader echoes it.
+            Expect("N0 M110 N0*125"),
+            Send(&["N0 M110 N0*125"]),
+            // Unanswered for a second: sent again.
+            Expect("N0 M110 N0*125"),
+            Sleep(0.5),
+            Send(&["start", "echo:Marlin 2.1.2"]),
+            // After the banner and 1.5 s of quiet, once more.
+            Expect("N0 M110 N0*125"),
+            Send(&["ok"]),
+            Expect("N1 M114*38"),
+            Send(&["X:1.00 Y:2.00 Z:3.00 E:0.00 Count X:0 Y:0 Z:0", "ok"]),
+        ],
+    ));
+    let started = tokio::time::Instant::now();
+    let mut marlin = Marlin::connect(ours, MarlinSettings::new("/dev/ttyTEST"))
+        .await
+        .unwrap();
+    assert_eq!(started.elapsed(), Duration::from_millis(4500));
+    let position = marlin.position().await.unwrap();
+    assert_eq!(
+        position,
+        Position {
+            x: 1.0,
+            y: 2.0,
+            z: 3.0
+        }
+    );
+    drop(marlin);
+    printer.await.unwrap();
+}
+
+/// Garbage (as a wrong baud rate gives) and then nothing: `M110` is tried until the boot time
+/// is up, and the error says so, naming what was heard.
+#[tokio::test(start_paused = true)]
+async fn garbage_then_silence_is_an_error_after_the_boot_time_naming_what_was_heard() {
+    let (ours, theirs) = tokio::io::duplex(4096);
+    let printer = tokio::spawn(printer(
+        theirs,
+        vec![Bytes(b"\xf0~\x8f\x1a~x\x80\n"), Sleep(100.0)],
+    ));
+    let started = tokio::time::Instant::now();
+    let error = Marlin::connect(ours, MarlinSettings::new("/dev/ttyTEST"))
+        .await
+        .err()
+        .unwrap();
+    assert_eq!(started.elapsed(), Duration::from_secs(10));
+    assert!(
+        matches!(
+            &error,
+            MarlinError::NoHandshake {
+                last_heard: Some(_),
+                ..
+            }
+        ),
+        "{error}"
+    );
+    let message = error.to_string();
+    assert!(
+        message.contains("baud rate") && message.contains("last heard"),
+        "{message}"
+    );
+    printer.abort();
+}

@@ -175,3 +175,27 @@ async fn a_printer_that_does_not_come_back_is_an_error_in_time() {
     let again = marlin.run(async |m| m.position().await).await.unwrap_err();
     assert!(matches!(again, MarlinError::Unplugged { .. }), "{again}");
 }
+
+/// OctoPrint's VirtualPrinter told not to answer the next line (`!!DEBUG:dont_answer`): the
+/// `ok` of `M400` is lost. The printer, idle, keeps sending `wait`; the driver takes the second
+/// as the sign, within a few of its `waitInterval`s, not after the 300 s motion limit.
+#[tokio::test]
+async fn a_lost_ok_after_m400_is_found_while_the_printer_waits() {
+    let printer = VirtualPrinter::start(r#"{"sendWait": true, "waitInterval": 0.5}"#);
+    let mut marlin = printer.connect().await;
+    marlin.home().await.unwrap();
+    marlin.send_unnumbered("!!DEBUG:dont_answer").await.unwrap();
+    let started = std::time::Instant::now();
+    let error = tokio::time::timeout(Duration::from_secs(20), marlin.finish_moves())
+        .await
+        .expect("the lost ok is found in time")
+        .unwrap_err();
+    assert!(matches!(error, MarlinError::LostAnswer { .. }), "{error}");
+    assert!(
+        started.elapsed() < Duration::from_secs(5),
+        "{:?}",
+        started.elapsed()
+    );
+    // The line is still good.
+    marlin.finish_moves().await.unwrap();
+}

@@ -13,6 +13,24 @@ use crate::reading::{Unread, line_by, read_line};
 /// The longest line kept from the printer; the rest of a longer one is dropped.
 const MAX_LINE: usize = 512;
 
+/// The start-up command that resets the line numbers.
+const HANDSHAKE: &str = "M110 N0";
+
+/// How long [`Marlin::connect`] waits for `M110`'s `ok` before sending it again.
+pub const HANDSHAKE_RETRY: Duration = Duration::from_secs(1);
+
+/// How long after a command is sent a `wait` line counts as the printer idle with it (earlier
+/// ones were sent before the command arrived, or sat unread in the line's buffer).
+const IDLE_GRACE: Duration = Duration::from_secs(1);
+
+/// How a start-up `M110` fared.
+enum Handshake {
+    Acknowledged,
+    /// The board (re)started: it did not see the command.
+    Started,
+    Unanswered,
+}
+
 /// How the driver talks to a printer; every wait is bounded by one of these.
 #[derive(Debug, Clone)]
 #[non_exhaustive]
@@ -76,6 +94,11 @@ struct InFlight {
     resends: u32,
     error: Option<String>,
     position: Option<Position>,
+    /// When it was sent.
+    sent: Instant,
+    /// How many `wait` lines (the printer idle) came while it was in flight, later than
+    /// [`IDLE_GRACE`] after it was sent.
+    idle_reports: u32,
 }
 
 impl InFlight {
@@ -89,6 +112,8 @@ impl InFlight {
             resends: 0,
             error: None,
             position: None,
+            sent: Instant::now(),
+            idle_reports: 0,
         }
     }
 }
@@ -118,13 +143,17 @@ pub struct Marlin<T> {
 
 impl<T: AsyncRead + AsyncWrite + Unpin> Marlin<T> {
     /// Starts talking to a printer over `transport`: lets the board boot (until the line is
-    /// quiet for [`MarlinSettings::boot_quiet`] or the printer says `wait`, within
-    /// [`MarlinSettings::boot_timeout`]), then resets the line numbers (`M110 N0`).
+    /// quiet for [`MarlinSettings::boot_quiet`] or the printer says `wait`), then resets the line
+    /// numbers (`M110 N0`) — all within [`MarlinSettings::boot_timeout`], as boards really start:
+    /// silent for seconds (a bootloader, a slow SD card), the `start` banner late or never,
+    /// garbage (a wrong baud rate), `M110` echoed or refused before the banner. `M110` is sent
+    /// again after each `start` and whenever [`HANDSHAKE_RETRY`] passes without its `ok`.
     ///
     /// # Errors
     ///
-    /// [`MarlinError`] when the printer does not acknowledge `M110` in time, or the transport
-    /// fails.
+    /// [`MarlinError::NoHandshake`] (naming the last line heard) when the printer does not
+    /// acknowledge `M110` within the boot time; [`MarlinError::Halted`], or the transport's
+    /// failure.
     pub async fn connect(transport: T, settings: MarlinSettings) -> Result<Self, MarlinError> {
         let mut marlin = Self {
             stream: BufReader::new(transport),
@@ -134,8 +163,7 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Marlin<T> {
             partial: Vec::new(),
             halted: None,
         };
-        marlin.let_boot().await?;
-        marlin.command("M110 N0").await?;
+        marlin.handshake().await?;
         Ok(marlin)
     }
 
@@ -344,7 +372,21 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Marlin<T> {
                         command: sent.command.clone(),
                     });
                 }
-                Reply::Busy | Reply::Wait | Reply::Other => {}
+                Reply::Wait => {
+                    // `wait` comes only from an idle printer. Those read just after sending were
+                    // on their way before the command arrived; two later ones mean its answer
+                    // was lost.
+                    if sent.sent.elapsed() >= IDLE_GRACE {
+                        sent.idle_reports += 1;
+                    }
+                    if sent.idle_reports >= 2 {
+                        return Err(MarlinError::LostAnswer {
+                            printer,
+                            command: sent.command.clone(),
+                        });
+                    }
+                }
+                Reply::Busy | Reply::Other => {}
             }
         }
     }
@@ -386,33 +428,103 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Marlin<T> {
         })
     }
 
-    /// Reads boot lines until the line is quiet, the printer says `wait`, or the boot time is
-    /// up.
-    async fn let_boot(&mut self) -> Result<(), MarlinError> {
+    /// Lets the board boot and resets the line numbers, by `boot_timeout` (see
+    /// [`Marlin::connect`]).
+    async fn handshake(&mut self) -> Result<(), MarlinError> {
         let until = Instant::now() + self.settings.boot_timeout;
+        let mut last_heard = self.let_boot(until).await?;
         loop {
             let now = Instant::now();
             if now >= until {
-                return Ok(());
-            }
-            let quiet = self.settings.boot_quiet.min(until - now);
-            let line = match tokio::time::timeout(quiet, self.read_line()).await {
-                Err(_) => return Ok(()),
-                Ok(line) => line.map_err(|source| MarlinError::Io {
+                return Err(MarlinError::NoHandshake {
                     printer: self.settings.name.clone(),
-                    source,
-                })?,
+                    seconds: self.settings.boot_timeout.as_secs_f64(),
+                    last_heard,
+                });
+            }
+            self.write(&numbered_line(0, HANDSHAKE)?).await?;
+            let window = HANDSHAKE_RETRY.min(until - now);
+            match self.handshake_answer(now + window, &mut last_heard).await? {
+                Handshake::Acknowledged => {
+                    self.next_number = 1;
+                    return Ok(());
+                }
+                Handshake::Started => {
+                    if let Some(heard) = self.let_boot(until).await? {
+                        last_heard = Some(heard);
+                    }
+                }
+                Handshake::Unanswered => {}
+            }
+        }
+    }
+
+    /// Reads until `M110`'s `ok`, a restart, or `until`; notes the last line heard.
+    async fn handshake_answer(
+        &mut self,
+        until: Instant,
+        last_heard: &mut Option<String>,
+    ) -> Result<Handshake, MarlinError> {
+        loop {
+            let Ok(line) = tokio::time::timeout_at(until, self.read_line()).await else {
+                return Ok(Handshake::Unanswered);
             };
-            match line.as_deref().map(Reply::parse) {
-                None => {
-                    return Err(MarlinError::Closed {
+            let line = self.boot_line(line)?;
+            let reply = Reply::parse(&line);
+            if !line.trim().is_empty() {
+                *last_heard = Some(line);
+            }
+            match reply {
+                Reply::Ok { .. } => return Ok(Handshake::Acknowledged),
+                Reply::Start => return Ok(Handshake::Started),
+                // Refused (a garbled line, or lines counted from elsewhere): send it again.
+                Reply::Resend(_) => return Ok(Handshake::Unanswered),
+                Reply::Halted(message) => {
+                    self.halted = Some(message.clone());
+                    return Err(MarlinError::Halted {
                         printer: self.settings.name.clone(),
-                        command: "start-up".into(),
+                        message,
                     });
                 }
-                Some(Reply::Wait) => return Ok(()),
-                Some(_) => {}
+                _ => {}
             }
+        }
+    }
+
+    /// Reads boot lines until the line is quiet for `boot_quiet`, the printer says `wait`, or
+    /// `until`: the last non-empty line heard, if any.
+    async fn let_boot(&mut self, until: Instant) -> Result<Option<String>, MarlinError> {
+        let mut last_heard = None;
+        loop {
+            let now = Instant::now();
+            if now >= until {
+                return Ok(last_heard);
+            }
+            let quiet = self.settings.boot_quiet.min(until - now);
+            let Ok(line) = tokio::time::timeout(quiet, self.read_line()).await else {
+                return Ok(last_heard);
+            };
+            let line = self.boot_line(line)?;
+            let reply = Reply::parse(&line);
+            if !line.trim().is_empty() {
+                last_heard = Some(line);
+            }
+            if reply == Reply::Wait {
+                return Ok(last_heard);
+            }
+        }
+    }
+
+    /// A line read during start-up, or the error that the line closed or failed.
+    fn boot_line(&self, line: std::io::Result<Option<String>>) -> Result<String, MarlinError> {
+        let printer = self.settings.name.clone();
+        match line {
+            Ok(Some(line)) => Ok(line),
+            Ok(None) => Err(MarlinError::Closed {
+                printer,
+                command: "start-up".into(),
+            }),
+            Err(source) => Err(MarlinError::Io { printer, source }),
         }
     }
 

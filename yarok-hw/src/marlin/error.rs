@@ -78,6 +78,32 @@ pub enum MarlinError {
         /// How many times.
         resends: u32,
     },
+    /// The printer did not acknowledge the start-up `M110 N0` within its boot time.
+    #[error(
+        "printer {printer}: no answer to `M110 N0` within {seconds} s of opening it (is it on, and \
+         at this baud rate? {})",
+        match last_heard {
+            Some(line) => format!("last heard: {:?}", line.chars().take(60).collect::<String>()),
+            None => "it sent nothing".to_owned(),
+        }
+    )]
+    NoHandshake {
+        /// The printer.
+        printer: String,
+        /// The boot time allowed.
+        seconds: f64,
+        /// The last line it sent, if any (garbage suggests a wrong baud rate).
+        last_heard: Option<String>,
+    },
+    /// The printer went idle (`wait`, twice) while a command waited for its answer: the `ok`
+    /// was lost on the line.
+    #[error("printer {printer} is idle but never answered `{command}`: its `ok` was lost")]
+    LostAnswer {
+        /// The printer.
+        printer: String,
+        /// The command.
+        command: String,
+    },
     /// The printer answered without the position asked for.
     #[error("printer {printer}: `{command}` answered without a position")]
     NoPosition {

@@ -7,7 +7,7 @@ mod line;
 mod reconnect;
 mod reply;
 
-pub use driver::{Answer, Marlin, MarlinSettings};
+pub use driver::{Answer, HANDSHAKE_RETRY, Marlin, MarlinSettings};
 pub use error::MarlinError;
 pub use line::numbered_line;
 pub use reconnect::Reconnecting;
