@@ -219,3 +219,33 @@ fn urx_reads_the_fake_arms_joints_from_the_real_time_interface() {
         }
     }
 }
+
+/// A loop that remakes `next_state` each time round a `select!` beside a faster stream (as the
+/// arm's driver does beside RTDE) still finds the secondary interface gone silent: the limit
+/// counts from the last robot state, not from each call.
+#[tokio::test(start_paused = true)]
+async fn silence_is_found_though_the_call_is_made_again_and_again() {
+    let (ours, mut theirs) = tokio::io::duplex(1024);
+    // A robot state without sub-packages, then nothing more.
+    tokio::io::AsyncWriteExt::write_all(&mut theirs, &[0, 0, 0, 5, 16])
+        .await
+        .unwrap();
+    let silence = Duration::from_secs(1);
+    let mut secondary = Secondary::connect(ours, "fake", silence).await.unwrap();
+    let started = tokio::time::Instant::now();
+    let mut ticks = 0u32;
+    let error = loop {
+        tokio::select! {
+            state = secondary.next_state() => break state.unwrap_err(),
+            () = tokio::time::sleep(Duration::from_millis(8)) => ticks += 1,
+        }
+        assert!(started.elapsed() < silence * 3, "silence never found");
+    };
+    assert!(
+        error.to_string().contains("no robot state within 1 s"),
+        "{error}"
+    );
+    assert_eq!(started.elapsed(), silence);
+    assert!(ticks > 100, "{ticks}");
+    drop(theirs);
+}

@@ -14,7 +14,7 @@ use yarok_core::component::{Bind, BindError};
 use yarok_hw::Real;
 use yarok_hw::ur::dashboard::Dashboard;
 use yarok_hw::ur::rtde::{Rtde, RtdeSettings, Value};
-use yarok_hw::ur::secondary::{KinematicsInfo, Secondary};
+use yarok_hw::ur::secondary::{KinematicsInfo, Secondary, send_script};
 
 use super::kinematics::{DhParameters, Joints, Kinematics};
 
@@ -294,9 +294,15 @@ pub(super) async fn connect(
     });
     bind.spawn(drive(Rc::clone(&link), settings, rtde, secondary));
     bind.on_stop(async move {
-        // The driver's task has ended: a connection of its own stops the arm.
-        let mut secondary = secondary_stream(&host, reply).await?;
-        secondary.send_script("stopj(2.0)").await?;
+        // The driver's task has ended: a connection of its own stops the arm, without waiting
+        // for a robot state (the interface may be what fell silent).
+        let stopping = async {
+            let mut stream = TcpStream::connect((host.as_str(), SECONDARY_PORT)).await?;
+            send_script(&mut stream, "stopj(2.0)").await
+        };
+        tokio::time::timeout(reply, stopping).await.map_err(|_| {
+            format!("controller {host}: no connection to send stopj within {reply:?}")
+        })??;
         Ok(())
     });
     Ok((link, first.q))

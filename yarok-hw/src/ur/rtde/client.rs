@@ -56,7 +56,7 @@ pub enum RtdeError {
         waiting_for: &'static str,
     },
     /// Nothing came in time.
-    #[error("controller {controller}: RTDE: no {waiting_for} within {seconds} s")]
+    #[error("controller {controller}: RTDE: {waiting_for} did not come within {seconds} s")]
     Timeout {
         /// The controller.
         controller: String,
@@ -135,8 +135,9 @@ pub enum RtdeError {
 ///
 /// # Cancel safety
 ///
-/// [`Rtde::receive`] is cancel safe: bytes read stay for the next call. The set-up methods
-/// are not (a reply may be left unread); call them again after reconnecting.
+/// [`Rtde::receive`] is cancel safe: bytes read stay for the next call, and its silence limit
+/// counts from the last data package (or the start), not from the call. The set-up methods are
+/// not (a reply may be left unread); call them again after reconnecting.
 #[derive(Debug)]
 pub struct Rtde<T> {
     stream: T,
@@ -144,6 +145,8 @@ pub struct Rtde<T> {
     settings: RtdeSettings,
     version: ControllerVersion,
     outputs: Option<Recipe>,
+    /// When the last data package came (the outputs' start, before the first).
+    heard: Instant,
 }
 
 impl<T: AsyncRead + AsyncWrite + Unpin> Rtde<T> {
@@ -165,6 +168,7 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Rtde<T> {
                 build: 0,
             },
             outputs: None,
+            heard: Instant::now(),
         };
         rtde.send_request(&Request::ProtocolVersion(PROTOCOL))
             .await?;
@@ -273,6 +277,7 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Rtde<T> {
             })
             .await?;
         if accepted {
+            self.heard = Instant::now();
             Ok(())
         } else {
             Err(self.refused("to start".into()))
@@ -308,13 +313,14 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Rtde<T> {
     /// match the output recipe; other [`RtdeError`]s.
     pub async fn receive(&mut self) -> Result<Vec<Value>, RtdeError> {
         let silence = self.settings.silence;
-        let deadline = Instant::now() + silence;
+        let deadline = self.heard + silence;
         loop {
             let reply = self.next_reply("a data package", deadline, silence).await?;
             if let Reply::Data { recipe, payload } = reply
                 && let Some(outputs) = &self.outputs
                 && outputs.id == recipe
             {
+                self.heard = Instant::now();
                 return outputs
                     .decode(&payload)
                     .map_err(|source| RtdeError::Recipe {

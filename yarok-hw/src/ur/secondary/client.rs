@@ -44,6 +44,29 @@ pub enum SecondaryError {
     },
 }
 
+/// Sends URScript over a secondary-interface connection without reading from it: what to send at
+/// shutdown, when the controller may have stopped sending robot states (a [`Secondary`] waits
+/// for one to connect).
+///
+/// ```
+/// # async fn run() -> std::io::Result<()> {
+/// let (mut ours, theirs) = tokio::io::duplex(64);
+/// yarok_hw::ur::secondary::send_script(&mut ours, "stopj(2.0)").await?;
+/// # Ok(()) }
+/// ```
+///
+/// # Errors
+///
+/// When the transport cannot be written.
+pub async fn send_script<T: AsyncWrite + Unpin>(
+    transport: &mut T,
+    script: &str,
+) -> std::io::Result<()> {
+    let text = format!("{}\n", script.trim_end());
+    transport.write_all(text.as_bytes()).await?;
+    transport.flush().await
+}
+
 /// A client of the UR controller's secondary interface over any byte transport (a TCP stream
 /// to port 30002): it reads the robot states the controller sends at 10 Hz (mode, joints, TCP,
 /// kinematics; CB3 and e-Series layouts, unknown sub-packages skipped) and the version message,
@@ -65,7 +88,9 @@ pub enum SecondaryError {
 ///
 /// # Cancel safety
 ///
-/// [`Secondary::next_state`] is cancel safe: bytes read stay for the next call.
+/// [`Secondary::next_state`] is cancel safe: bytes read stay for the next call, and its silence
+/// limit counts from the last robot state, not from the call, so a loop that drops and makes the
+/// call again (a `select!` beside a faster stream) still finds a controller gone silent.
 #[derive(Debug)]
 pub struct Secondary<T> {
     stream: T,
@@ -74,6 +99,8 @@ pub struct Secondary<T> {
     silence: Duration,
     version: Option<VersionMessage>,
     latest: RobotState,
+    /// When the last robot state came (the connection's start, before the first).
+    heard: tokio::time::Instant,
 }
 
 impl<T: AsyncRead + AsyncWrite + Unpin> Secondary<T> {
@@ -95,6 +122,7 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Secondary<T> {
             silence,
             version: None,
             latest: RobotState::default(),
+            heard: tokio::time::Instant::now(),
         };
         secondary.next_state().await?;
         Ok(secondary)
@@ -116,13 +144,14 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Secondary<T> {
     ///
     /// [`SecondaryError::Silent`] when none comes in time; other [`SecondaryError`]s.
     pub async fn next_state(&mut self) -> Result<RobotState, SecondaryError> {
-        let deadline = tokio::time::Instant::now() + self.silence;
+        let deadline = self.heard + self.silence;
         loop {
             let taken = take_packet(&mut self.buffer).map_err(|source| self.packet(source))?;
             if let Some(packet) = taken {
                 match parse(&packet).map_err(|source| self.packet(source))? {
                     Packet::RobotState(state) => {
                         self.latest = *state;
+                        self.heard = tokio::time::Instant::now();
                         return Ok(self.latest);
                     }
                     Packet::Version(version) => self.version = Some(version),
@@ -153,15 +182,12 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Secondary<T> {
     ///
     /// [`SecondaryError::Io`].
     pub async fn send_script(&mut self, script: &str) -> Result<(), SecondaryError> {
-        let text = format!("{}\n", script.trim_end());
-        let written = async {
-            self.stream.write_all(text.as_bytes()).await?;
-            self.stream.flush().await
-        };
-        written.await.map_err(|source| SecondaryError::Io {
-            controller: self.controller.clone(),
-            source,
-        })
+        send_script(&mut self.stream, script)
+            .await
+            .map_err(|source| SecondaryError::Io {
+                controller: self.controller.clone(),
+                source,
+            })
     }
 
     fn packet(&self, source: PacketError) -> SecondaryError {
