@@ -247,3 +247,32 @@ fn dropping_a_motion_stops_the_arm() {
         "{scripts:?}"
     );
 }
+
+/// The secondary interface falls silent while RTDE streams (a hung controller service): the run
+/// ends with an error naming the secondary interface instead of carrying on blind, and the
+/// stop still reaches the controller over a fresh connection that waits for no robot state.
+#[test]
+fn a_silent_secondary_interface_ends_the_run_and_the_arm_is_still_stopped() {
+    let fake = std::sync::Arc::new(fake_ur5e());
+    let muting = std::sync::Arc::clone(&fake);
+    let error = real::<Ur5eAlone>(&fake)
+        .behaviour(move |pl| async move {
+            let _arm: Ur5e = pl.get("/arm")?;
+            muting.mute_secondary();
+            pl.wait_seconds(30.0).await?;
+            Ok(())
+        })
+        .run()
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("secondary interface") || error.contains("robot state"),
+        "{error}"
+    );
+    let stopped = |scripts: &[String]| scripts.iter().any(|s| s == "stopj(2.0)");
+    let asked = std::time::Instant::now();
+    while !stopped(&fake.scripts()) && asked.elapsed() < Duration::from_secs(2) {
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    assert!(stopped(&fake.scripts()), "no stopj: {:?}", fake.scripts());
+}

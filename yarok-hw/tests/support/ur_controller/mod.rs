@@ -111,6 +111,8 @@ struct Shared {
     tcp: Mutex<[f64; 6]>,
     /// Bumped to drop every RTDE and secondary connection.
     drops: AtomicU32,
+    /// Set while the secondary interface sends no robot state (its connections stay open).
+    secondary_mute: std::sync::atomic::AtomicBool,
     /// Set when the fake is dropped: its sessions end.
     closed: std::sync::atomic::AtomicBool,
 }
@@ -177,6 +179,7 @@ impl FakeController {
             inputs: Mutex::new(HashMap::new()),
             asked: Mutex::new(Vec::new()),
             drops: AtomicU32::new(0),
+            secondary_mute: std::sync::atomic::AtomicBool::new(false),
             closed: std::sync::atomic::AtomicBool::new(false),
             arm: Mutex::new(Arm {
                 robot_mode: "RUNNING",
@@ -312,6 +315,12 @@ impl FakeController {
     /// Makes the gripper report fault `code` (its fingers stop).
     pub(crate) fn gripper_fault(&self, code: u8) {
         self.shared.fingers.lock().unwrap().flt = code;
+    }
+
+    /// Stops the secondary interface's robot states, its connections left open (a controller
+    /// whose secondary interface hangs while RTDE streams).
+    pub(crate) fn mute_secondary(&self) {
+        self.shared.secondary_mute.store(true, Ordering::Relaxed);
     }
 
     /// Drops every RTDE and secondary connection, as a network hiccup does.

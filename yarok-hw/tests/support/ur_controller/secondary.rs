@@ -189,6 +189,9 @@ pub(super) async fn serve_secondary(stream: TcpStream, shared: Arc<Shared>) {
                 if shared.drops.load(Ordering::Relaxed) != drops {
                     return;
                 }
+                if shared.secondary_mute.load(Ordering::Relaxed) {
+                    continue;
+                }
                 if writer.write_all(&shared.robot_state()).await.is_err() {
                     return;
                 }
