@@ -117,8 +117,24 @@ fn hex(bytes: &[u8]) -> String {
     bytes.iter().map(|b| format!("{b:02x}")).collect()
 }
 
+/// Whether `file` is a regular file, or absent: anything else (a FIFO, a device, a folder) is
+/// left alone — reading a FIFO would block start-up.
+fn usable(file: &Path) -> bool {
+    match std::fs::metadata(file) {
+        Ok(metadata) if !metadata.is_file() => {
+            tracing::warn!(file = %file.display(),
+                "a compiled-model cache entry that is not a regular file; compiling without it");
+            false
+        }
+        _ => true,
+    }
+}
+
 /// The model in `file`, if the file is whole and ours; a file that is not is removed.
 fn load(file: &Path) -> Option<Model> {
+    if !usable(file) {
+        return None;
+    }
     let bytes = std::fs::read(file).ok()?;
     let payload = verified(&bytes);
     let model = payload.and_then(|payload| Model::from_binary(payload).ok());
@@ -149,15 +165,20 @@ fn save(model: &Model, file: &Path) {
     bytes.extend_from_slice(&(payload.len() as u64).to_le_bytes());
     bytes.extend_from_slice(&Sha256::digest(&payload));
     bytes.extend_from_slice(&payload);
+    if !usable(file) {
+        return;
+    }
+    let partial = PathBuf::from(format!("{}.{}.partial", file.display(), std::process::id()));
     let written = file
         .parent()
         .map_or(Ok(()), std::fs::create_dir_all)
         .and_then(|()| {
-            let partial =
-                PathBuf::from(format!("{}.{}.partial", file.display(), std::process::id()));
             std::fs::write(&partial, &bytes)?;
             std::fs::rename(&partial, file)
         });
+    if written.is_err() {
+        let _ = std::fs::remove_file(&partial);
+    }
     if let Err(error) = written {
         tracing::warn!(file = %file.display(), %error, "cannot write the compiled-model cache");
     }
@@ -166,21 +187,76 @@ fn save(model: &Model, file: &Path) {
     }
 }
 
-/// Removes the least recently written models beyond the [`KEPT`] newest.
+/// Removes the least recently written models beyond the [`KEPT`] newest, and partial writes
+/// older than [`STALE_PARTIAL`] (of processes that died writing) — only files named as this
+/// cache names them, so that other `.mjb` files in a shared folder are never touched.
 fn forget_oldest(folder: &Path) {
     let Ok(entries) = std::fs::read_dir(folder) else {
         return;
     };
-    let mut models: Vec<(std::time::SystemTime, PathBuf)> = entries
-        .filter_map(Result::ok)
-        .filter(|entry| entry.path().extension().is_some_and(|e| e == "mjb"))
-        .filter_map(|entry| Some((entry.metadata().ok()?.modified().ok()?, entry.path())))
-        .collect();
+    let mut models: Vec<(std::time::SystemTime, PathBuf)> = Vec::new();
+    for entry in entries.filter_map(Result::ok) {
+        let (path, name) = (entry.path(), entry.file_name());
+        let Some(name) = name.to_str() else {
+            continue;
+        };
+        let Ok(modified) = entry.metadata().and_then(|m| m.modified()) else {
+            continue;
+        };
+        if is_entry_name(name) {
+            models.push((modified, path));
+        } else if is_partial_name(name) && modified.elapsed().is_ok_and(|age| age > STALE_PARTIAL) {
+            let _ = std::fs::remove_file(&path);
+        }
+    }
     if models.len() <= KEPT {
         return;
     }
     models.sort();
     for (_, old) in &models[..models.len() - KEPT] {
         let _ = std::fs::remove_file(old);
+    }
+}
+
+/// How old a partial write must be to be taken for a dead process's.
+const STALE_PARTIAL: std::time::Duration = std::time::Duration::from_secs(600);
+
+/// Whether `name` is a cache entry's: 64 lowercase hex digits and `.mjb`.
+fn is_entry_name(name: &str) -> bool {
+    name.strip_suffix(".mjb").is_some_and(|key| {
+        key.len() == 64
+            && key
+                .bytes()
+                .all(|b| b.is_ascii_digit() || (b'a'..=b'f').contains(&b))
+    })
+}
+
+/// Whether `name` is a partial write's: an entry's name, a process id and `.partial`.
+fn is_partial_name(name: &str) -> bool {
+    name.strip_suffix(".partial")
+        .and_then(|rest| rest.rsplit_once('.'))
+        .is_some_and(|(entry, pid)| {
+            is_entry_name(entry) && !pid.is_empty() && pid.bytes().all(|b| b.is_ascii_digit())
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{is_entry_name, is_partial_name};
+
+    #[test]
+    fn only_the_caches_own_names_are_its_entries() {
+        let key = "0123456789abcdef".repeat(4);
+        assert!(is_entry_name(&format!("{key}.mjb")));
+        assert!(is_partial_name(&format!("{key}.mjb.4242.partial")));
+        for other in [
+            "model.mjb",
+            "robot.mjb",
+            &format!("{}.mjb", key.to_uppercase()),
+            &format!("{key}.mjb.x.partial"),
+            &format!("{key}0.mjb"),
+        ] {
+            assert!(!is_entry_name(other) && !is_partial_name(other), "{other}");
+        }
     }
 }

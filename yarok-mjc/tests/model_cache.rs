@@ -1,6 +1,7 @@
 //! Compiled models shared in a process and kept on disk: a cache hit loads a model identical to
 //! a fresh compile (byte for byte in MuJoCo's binary format); a corrupt, truncated or foreign
-//! entry is rebuilt, never loaded; worlds alive at once share one model.
+//! entry is rebuilt, never loaded; worlds alive at once share one model; a FIFO where an entry
+//! should be does not block start-up; eviction touches only the cache's own files.
 
 use std::sync::Arc;
 
@@ -110,4 +111,76 @@ fn worlds_alive_at_once_share_one_model() {
         ModelSource::Compiled,
         "compiled again once no world used it"
     );
+}
+
+world!(FifoWorld, "0.14");
+world!(SharedFolderWorld, "0.15");
+
+/// A FIFO (or any file that is not a regular one) where an entry should be: start-up does not
+/// block reading it; the model is compiled, and the FIFO left alone.
+#[test]
+fn a_fifo_in_place_of_an_entry_is_skipped_and_the_model_compiled() {
+    let folder = tempfile::tempdir().unwrap();
+    let composition = compose::<FifoWorld>().unwrap();
+    let (model, _) = cached(&composition, folder.path());
+    drop(model);
+    let file = entry(folder.path());
+    std::fs::remove_file(&file).unwrap();
+    let made = std::process::Command::new("mkfifo").arg(&file).status().unwrap();
+    assert!(made.success());
+    let path = folder.path().to_owned();
+    let (sender, receiver) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let composition = compose::<FifoWorld>().unwrap();
+        let _ = sender.send(cached(&composition, &path).1);
+    });
+    let source = receiver
+        .recv_timeout(std::time::Duration::from_secs(20))
+        .expect("start-up blocked on the FIFO");
+    assert_eq!(source, ModelSource::Compiled);
+    use std::os::unix::fs::FileTypeExt;
+    assert!(std::fs::symlink_metadata(&file).unwrap().file_type().is_fifo());
+}
+
+/// A cache folder shared with other `.mjb` files: eviction removes only the cache's own oldest
+/// entries, and partial writes a dead process left behind (older than ten minutes).
+#[test]
+fn eviction_touches_only_the_caches_own_files() {
+    let folder = tempfile::tempdir().unwrap();
+    let old = |path: &std::path::Path| {
+        let touched = std::process::Command::new("touch")
+            .args(["-d", "2 hours ago"])
+            .arg(path)
+            .status()
+            .unwrap();
+        assert!(touched.success());
+    };
+    let theirs = ["robot.mjb", "scene.mjb", "notes.txt"].map(|name| folder.path().join(name));
+    for path in &theirs {
+        std::fs::write(path, b"someone else's").unwrap();
+        old(path);
+    }
+    for i in 0..300 {
+        let path = folder.path().join(format!("{i:064x}.mjb"));
+        std::fs::write(&path, b"an old entry").unwrap();
+        old(&path);
+    }
+    let stale = folder.path().join(format!("{:064x}.mjb.99999.partial", 7));
+    let fresh = folder.path().join(format!("{:064x}.mjb.99998.partial", 8));
+    std::fs::write(&stale, b"half").unwrap();
+    old(&stale);
+    std::fs::write(&fresh, b"being written").unwrap();
+    let composition = compose::<SharedFolderWorld>().unwrap();
+    let (_model, source) = cached(&composition, folder.path());
+    assert_eq!(source, ModelSource::Compiled);
+    let names: Vec<String> = std::fs::read_dir(folder.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    let entries = names.iter().filter(|n| n.len() == 68 && n.ends_with(".mjb")).count();
+    assert_eq!(entries, 256, "{} entries", entries);
+    for path in &theirs {
+        assert!(path.exists(), "{} was removed", path.display());
+    }
+    assert!(!stale.exists() && fresh.exists());
 }
