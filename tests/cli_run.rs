@@ -108,3 +108,43 @@ fn on_a_terminal_a_status_line_shows_time_speed_and_ticks() {
     let (_, _, stderr) = yarok(&["run", "empty_world", "--set", "behaviour/seconds=0.1"]);
     assert!(!stderr.contains("ticks/s"), "{stderr}");
 }
+
+/// Two recorders given one file would overwrite or interleave each other: refused before the
+/// run starts, naming both, and nothing is written.
+#[test]
+fn two_recorders_on_one_file_are_refused_before_the_run() {
+    let folder = tempfile::tempdir().unwrap();
+    let file = folder.path().join("run.out");
+    let file = file.to_str().unwrap();
+    let same_file_another_way = format!("{}/./run.out", folder.path().display());
+    for args in [
+        vec![
+            "run",
+            "pick_and_place_world",
+            "--record",
+            file,
+            "--video",
+            file,
+        ],
+        vec![
+            "run",
+            "pick_and_place_world",
+            "--record",
+            file,
+            "--set",
+            &format!("plugins/joints_csv/path={same_file_another_way:?}"),
+        ],
+    ] {
+        let output = std::process::Command::new(env!("CARGO_BIN_EXE_yarok"))
+            .args(&args)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains("would both write"), "{stderr}");
+        assert!(
+            !std::path::Path::new(file).exists(),
+            "{args:?} wrote the file"
+        );
+    }
+}

@@ -61,3 +61,51 @@ fn an_episode_puts_the_arm_the_gripper_and_the_blocks_back_where_they_started() 
         .run()
         .unwrap();
 }
+
+/// An episode number begun twice in a run is an error (its recordings would be overwritten),
+/// and the first episode's MCAP file is left as it was recorded.
+#[test]
+fn an_episode_number_begun_twice_is_an_error_and_its_recording_is_kept() {
+    use yarok::core::runtime::EpisodeError;
+    let folder = tempfile::tempdir().unwrap();
+    let mcap = folder.path().join("run.mcap");
+    let episode_file = folder.path().join("run_episode_0003.mcap");
+    let watched = episode_file.clone();
+    let kept = std::rc::Rc::new(std::cell::RefCell::new(Vec::new()));
+    let first = std::rc::Rc::clone(&kept);
+    yarok::platform()
+        .world::<PickAndPlaceWorld>()
+        .set(&format!(
+            "plugins/mcap/path={:?}",
+            mcap.display().to_string()
+        ))
+        .unwrap()
+        .behaviour(move |pl| async move {
+            pl.begin_episode(3)?;
+            pl.wait_seconds(0.2).await?;
+            pl.begin_episode(4)?;
+            pl.tick().await?;
+            // Episode 3's file, finished as episode 4 began.
+            *first.borrow_mut() = std::fs::read(&watched)?;
+            let error = pl.begin_episode(3).unwrap_err();
+            assert!(
+                matches!(error, EpisodeError::Repeated { number: 3 }),
+                "{error}"
+            );
+            assert!(error.to_string().contains("already begun"), "{error}");
+            pl.wait_seconds(0.1).await?;
+            Ok(())
+        })
+        .run()
+        .unwrap();
+    let first = kept.borrow();
+    assert!(
+        first.len() > 1000,
+        "episode 3's file held {} bytes",
+        first.len()
+    );
+    assert!(
+        std::fs::read(&episode_file).unwrap() == *first,
+        "episode 3's file changed"
+    );
+}

@@ -126,7 +126,10 @@ fn a_fifo_in_place_of_an_entry_is_skipped_and_the_model_compiled() {
     drop(model);
     let file = entry(folder.path());
     std::fs::remove_file(&file).unwrap();
-    let made = std::process::Command::new("mkfifo").arg(&file).status().unwrap();
+    let made = std::process::Command::new("mkfifo")
+        .arg(&file)
+        .status()
+        .unwrap();
     assert!(made.success());
     let path = folder.path().to_owned();
     let (sender, receiver) = std::sync::mpsc::channel();
@@ -139,7 +142,12 @@ fn a_fifo_in_place_of_an_entry_is_skipped_and_the_model_compiled() {
         .expect("start-up blocked on the FIFO");
     assert_eq!(source, ModelSource::Compiled);
     use std::os::unix::fs::FileTypeExt;
-    assert!(std::fs::symlink_metadata(&file).unwrap().file_type().is_fifo());
+    assert!(
+        std::fs::symlink_metadata(&file)
+            .unwrap()
+            .file_type()
+            .is_fifo()
+    );
 }
 
 /// A cache folder shared with other `.mjb` files: eviction removes only the cache's own oldest
@@ -177,7 +185,10 @@ fn eviction_touches_only_the_caches_own_files() {
         .unwrap()
         .map(|e| e.unwrap().file_name().into_string().unwrap())
         .collect();
-    let entries = names.iter().filter(|n| n.len() == 68 && n.ends_with(".mjb")).count();
+    let entries = names
+        .iter()
+        .filter(|n| n.len() == 68 && n.ends_with(".mjb"))
+        .count();
     assert_eq!(entries, 256, "{} entries", entries);
     for path in &theirs {
         assert!(path.exists(), "{} was removed", path.display());

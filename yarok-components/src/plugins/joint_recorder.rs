@@ -100,6 +100,10 @@ impl JointRecorder {
 }
 
 impl Plugin for JointRecorder {
+    fn writes(&self) -> Vec<std::path::PathBuf> {
+        vec![self.settings.path.clone()]
+    }
+
     fn name(&self) -> String {
         format!("joints_csv ({})", self.settings.path.display())
     }

@@ -368,6 +368,10 @@ impl McapRecorder {
 }
 
 impl Plugin for McapRecorder {
+    fn writes(&self) -> Vec<std::path::PathBuf> {
+        vec![self.settings.path.clone()]
+    }
+
     fn name(&self) -> String {
         format!("mcap ({})", self.settings.path.display())
     }

@@ -147,6 +147,10 @@ impl VideoRecorder {
 }
 
 impl Plugin for VideoRecorder {
+    fn writes(&self) -> Vec<std::path::PathBuf> {
+        vec![self.settings.path.clone()]
+    }
+
     fn name(&self) -> String {
         format!("video ({})", self.settings.path.display())
     }

@@ -295,6 +295,7 @@ impl PlatformBuilder {
             })?;
             plugins.push(factory(&settings, name)?);
         }
+        one_writer_per_file(&plugins)?;
         let backend = factory(&composition, &settings).map_err(|source| RuntimeError::Backend {
             environment: environment.to_owned(),
             source,
@@ -382,4 +383,36 @@ fn defaulted(defaults: &Config, settings: &Settings) -> Result<Config, RuntimeEr
         config.set(key, value);
     }
     Ok(config)
+}
+
+/// Refuses plugins that would write the same file (the second would overwrite or interleave
+/// the first's), naming both.
+fn one_writer_per_file(plugins: &[Box<dyn Plugin>]) -> Result<(), RuntimeError> {
+    let mut writers: BTreeMap<std::path::PathBuf, String> = BTreeMap::new();
+    for plugin in plugins {
+        for file in plugin.writes() {
+            let same = same_file_key(&file);
+            if let Some(other) = writers.get(&same) {
+                return Err(config_error(format!(
+                    "{other} and {} would both write {}: give each its own file",
+                    plugin.name(),
+                    file.display()
+                )));
+            }
+            writers.insert(same, plugin.name());
+        }
+    }
+    Ok(())
+}
+
+/// `file` as one path for every way of writing it: absolute, its folder's links resolved.
+fn same_file_key(file: &std::path::Path) -> std::path::PathBuf {
+    let absolute = std::path::absolute(file).unwrap_or_else(|_| file.to_owned());
+    match (absolute.parent(), absolute.file_name()) {
+        (Some(folder), Some(name)) => folder
+            .canonicalize()
+            .unwrap_or_else(|_| folder.to_owned())
+            .join(name),
+        _ => absolute,
+    }
 }

@@ -47,11 +47,24 @@ pub enum Happening {
 
 /// Why an episode could not begin.
 #[derive(Debug, thiserror::Error)]
-#[error("episode {number} cannot begin: the world cannot go back to its start state: {source}")]
-pub struct EpisodeError {
-    /// The episode's number.
-    pub number: u64,
-    /// What the backend said.
-    #[source]
-    pub source: BoxError,
+#[non_exhaustive]
+pub enum EpisodeError {
+    /// The world cannot go back to its start state.
+    #[error("episode {number} cannot begin: the world cannot go back to its start state: {source}")]
+    Restart {
+        /// The episode's number.
+        number: u64,
+        /// What the backend said.
+        #[source]
+        source: BoxError,
+    },
+    /// The number was begun before in this run: its recordings would be overwritten.
+    #[error(
+        "episode {number} was already begun in this run: its recordings would be overwritten \
+         (number each episode once)"
+    )]
+    Repeated {
+        /// The episode's number.
+        number: u64,
+    },
 }

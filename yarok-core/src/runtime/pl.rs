@@ -37,6 +37,8 @@ struct Shared {
     backend: Rc<dyn Backend>,
     lifecycle: Rc<RefCell<Lifecycle>>,
     episode: Cell<Option<Episode>>,
+    /// The numbers of the episodes begun in this run.
+    episodes_begun: RefCell<std::collections::BTreeSet<u64>>,
 }
 
 /// What the platform hands its [`Pl`].
@@ -96,6 +98,7 @@ impl Pl {
                 backend: parts.backend,
                 lifecycle: parts.lifecycle,
                 episode: Cell::new(None),
+                episodes_begun: RefCell::default(),
             }),
         }
     }
@@ -180,7 +183,9 @@ impl Pl {
     ///
     /// # Errors
     ///
-    /// [`EpisodeError`] when the backend cannot put the world back; no episode is current then.
+    /// [`EpisodeError::Restart`] when the backend cannot put the world back;
+    /// [`EpisodeError::Repeated`] for a number this run began before (its recordings would be
+    /// overwritten). No episode is current then.
     ///
     /// # Examples
     ///
@@ -197,8 +202,11 @@ impl Pl {
     /// ```
     pub fn begin_episode(&self, number: u64) -> Result<Episode, EpisodeError> {
         self.end_episode();
+        if !self.inner.episodes_begun.borrow_mut().insert(number) {
+            return Err(EpisodeError::Repeated { number });
+        }
         self.restart_world()
-            .map_err(|source| EpisodeError { number, source })?;
+            .map_err(|source| EpisodeError::Restart { number, source })?;
         let episode = Episode {
             number,
             start_tick: self.ticks(),

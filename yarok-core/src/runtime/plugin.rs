@@ -107,6 +107,12 @@ pub trait Plugin: 'static {
         std::any::type_name::<Self>().to_owned()
     }
 
+    /// The files the plugin writes (a recorder's): the platform refuses, before the run starts,
+    /// two plugins that would write the same file.
+    fn writes(&self) -> Vec<std::path::PathBuf> {
+        Vec::new()
+    }
+
     /// Called once before the first tick.
     ///
     /// # Errors
