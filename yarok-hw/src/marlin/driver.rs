@@ -431,8 +431,10 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Marlin<T> {
     /// Lets the board boot and resets the line numbers, by `boot_timeout` (see
     /// [`Marlin::connect`]).
     async fn handshake(&mut self) -> Result<(), MarlinError> {
-        let until = Instant::now() + self.settings.boot_timeout;
-        let mut last_heard = self.let_boot(until).await?;
+        let booted = Instant::now() + self.settings.boot_timeout;
+        let mut last_heard = self.let_boot(booted).await?;
+        // However short the boot time, `M110` has one full window to be answered in.
+        let until = booted.max(Instant::now() + HANDSHAKE_RETRY);
         loop {
             let now = Instant::now();
             if now >= until {
@@ -450,7 +452,7 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Marlin<T> {
                     return Ok(());
                 }
                 Handshake::Started => {
-                    if let Some(heard) = self.let_boot(until).await? {
+                    if let Some(heard) = self.let_boot(until.max(booted)).await? {
                         last_heard = Some(heard);
                     }
                 }
