@@ -233,3 +233,72 @@ fn a_millimetre_png_gives_the_same_image_as_the_equivalent_metric_npy() {
     assert_eq!(from_png.dimensions(), (columns as u32, rows as u32));
     assert!(from_png == from_npy, "the two inputs give different images");
 }
+
+/// Depth maps and settings that hold no sensible depth are refused with the reason, never
+/// turned into an image: an 8-bit or colour PNG, all-NaN or −1e30 depths, an empty render,
+/// and texture noise that is not a number from 0 to 1 mm.
+#[test]
+fn depths_and_noise_that_make_no_sense_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out.png");
+    let out = out.to_str().unwrap();
+    let grey8 = dir.path().join("grey8.png");
+    image::GrayImage::from_pixel(240, 320, image::Luma([30]))
+        .save(&grey8)
+        .unwrap();
+    let rgb = dir.path().join("rgb.png");
+    image::RgbImage::from_pixel(240, 320, image::Rgb([30, 30, 30]))
+        .save(&rgb)
+        .unwrap();
+    let nan = dir.path().join("nan.npy");
+    write_npy(&nan, 320, 240, &vec![f32::NAN; 320 * 240]);
+    let huge = dir.path().join("huge.npy");
+    let mut values = vec![0.03f32; 320 * 240];
+    values[5 * 240 + 7] = -1e30;
+    write_npy(&huge, 320, 240, &values);
+    let empty = dir.path().join("empty.npy");
+    write_npy(&empty, 320, 240, &vec![0.0; 320 * 240]);
+    let good = dir.path().join("good.npy");
+    write_npy(&good, 320, 240, &vec![0.03; 320 * 240]);
+    let path = |p: &std::path::Path| p.to_str().unwrap().to_owned();
+    for (args, expected) in [
+        (vec![path(&grey8)], "16-bit grey"),
+        (vec![path(&rgb)], "16-bit grey"),
+        (vec![path(&nan)], "row 0, column 0 holds NaN"),
+        (
+            vec![path(&huge)],
+            "row 5, column 7 holds -1000000000000000000000000000000",
+        ),
+        (vec![path(&empty)], "every depth is 0"),
+        (
+            vec![path(&good), "--noise".into(), "NaN".into()],
+            "--noise NaN",
+        ),
+        (
+            vec![path(&good), "--noise".into(), "-1".into()],
+            "--noise -1",
+        ),
+        (
+            vec![path(&good), "--noise".into(), "1e308".into()],
+            "--noise 1e308",
+        ),
+    ] {
+        let mut all = vec![
+            "tactile".to_owned(),
+            "digit".to_owned(),
+            args[0].clone(),
+            out.to_owned(),
+        ];
+        all.extend(args[1..].iter().cloned());
+        let all: Vec<&str> = all.iter().map(String::as_str).collect();
+        let (code, _, stderr) = yarok(&all);
+        assert_eq!(code, 2, "{all:?}: {stderr}");
+        assert!(stderr.contains(expected), "{all:?}: {stderr}");
+        assert!(
+            !std::path::Path::new(out).exists(),
+            "{all:?} wrote an image"
+        );
+    }
+    let (code, _, stderr) = yarok(&["tactile", "digit", &path(&good), out]);
+    assert_eq!(code, 0, "{stderr}");
+}

@@ -87,3 +87,82 @@ fn counts(metres: f32, unit: f32) -> u16 {
         .round()
         .clamp(1.0, f64::from(u16::MAX)) as u16
 }
+
+/// Reads a depth PNG as [`png`] writes it (or any 16-bit grey PNG): columns, rows and the depth
+/// in metres, row-major, `NaN` where a pixel holds 0 (no depth). The unit is the PNG's
+/// [`DEPTH_UNIT_KEYWORD`] text, or millimetres without one (the usual depth PNG).
+///
+/// ```
+/// use yarok_components::probe_images::{depth_from_png, png};
+/// use yarok_core::component::ProbeImage;
+///
+/// let depth = ProbeImage::Depth { width: 2, height: 1, metres: vec![0.018, 0.0], unit: 1e-6 };
+/// let (width, height, metres) = depth_from_png(&png(&depth)?)?;
+/// assert_eq!((width, height, metres[0]), (2, 1, 0.018));
+/// assert!(metres[1].is_nan());
+/// # Ok::<(), yarok_core::BoxError>(())
+/// ```
+///
+/// # Errors
+///
+/// A message saying what is wrong: not a PNG, not 16-bit grey (an 8-bit or colour image holds
+/// no metric depth), an unreadable or non-positive unit, or a size over 16384 × 16384.
+pub fn depth_from_png(bytes: &[u8]) -> Result<(u32, u32, Vec<f32>), String> {
+    let mut decoder = ::png::Decoder::new(std::io::Cursor::new(bytes));
+    decoder.set_transformations(::png::Transformations::IDENTITY);
+    let mut reader = decoder.read_info().map_err(|e| format!("not a PNG: {e}"))?;
+    let info = reader.info();
+    let (width, height) = (info.width, info.height);
+    if width > MAX_SIDE || height > MAX_SIDE {
+        return Err(format!(
+            "{width} × {height} is larger than {MAX_SIDE} × {MAX_SIDE}"
+        ));
+    }
+    if (info.color_type, info.bit_depth) != (::png::ColorType::Grayscale, ::png::BitDepth::Sixteen)
+    {
+        return Err(format!(
+            "a {:?}-bit {:?} PNG holds no metric depth: a depth PNG is 16-bit grey",
+            info.bit_depth as u8, info.color_type
+        ));
+    }
+    let unit = info
+        .uncompressed_latin1_text
+        .iter()
+        .find(|text| text.keyword == DEPTH_UNIT_KEYWORD)
+        .map(|text| text.text.clone())
+        .or_else(|| {
+            info.utf8_text
+                .iter()
+                .find(|text| text.keyword == DEPTH_UNIT_KEYWORD)
+                .and_then(|text| text.get_text().ok())
+        });
+    let unit: f64 = match unit {
+        None => 1e-3,
+        Some(text) => text
+            .trim()
+            .parse()
+            .ok()
+            .filter(|unit: &f64| unit.is_finite() && *unit > 0.0)
+            .ok_or_else(|| format!("its {DEPTH_UNIT_KEYWORD} {text:?} is not a positive number"))?,
+    };
+    let mut buffer = vec![
+        0;
+        reader
+            .output_buffer_size()
+            .ok_or("the image is too large")?
+    ];
+    let frame = reader
+        .next_frame(&mut buffer)
+        .map_err(|e| format!("its pixels cannot be read: {e}"))?;
+    let metres = buffer[..frame.buffer_size()]
+        .chunks_exact(2)
+        .map(|pair| match u16::from_be_bytes([pair[0], pair[1]]) {
+            0 => f32::NAN,
+            count => (f64::from(count) * unit) as f32,
+        })
+        .collect();
+    Ok((width, height, metres))
+}
+
+/// The largest side a depth PNG may have (as MuJoCo's offscreen buffers).
+const MAX_SIDE: u32 = 16384;

@@ -1,5 +1,6 @@
 //! `yarok tactile`: a depth map turned into a tactile image by a sensor's optical model.
 
+use yarok::components::probe_images::depth_from_png;
 use yarok::components::tactile::calibration::Calibration;
 use yarok::components::tactile::geltip::{GelTipModel, GelTipParams, read_membrane};
 use yarok::components::tactile::light_fields::{LightFieldMethod, led_ring};
@@ -67,7 +68,14 @@ fn options(args: &[String]) -> Result<Options<'_>, String> {
                 options.noise = Some(
                     value
                         .parse()
-                        .map_err(|_| format!("--noise {value}: not a number"))?,
+                        .ok()
+                        .filter(|sigma: &f64| (0.0..=MAX_NOISE).contains(sigma))
+                        .ok_or_else(|| {
+                            format!(
+                                "--noise {value}: the gel's texture (metres), a number from 0 to \
+                                 {MAX_NOISE}"
+                            )
+                        })?,
                 )
             }
             "--seed" => {
@@ -81,27 +89,62 @@ fn options(args: &[String]) -> Result<Options<'_>, String> {
     Ok(options)
 }
 
-/// The depth map and its width; PNGs are millimetres, converted to metres.
+/// The most texture noise `--noise` takes: 1 mm (the models' own are 2–10 µm).
+const MAX_NOISE: f64 = 1e-3;
+
+/// The depth map and its width, checked: PNGs as yarok writes them (16-bit grey, their unit
+/// stated, millimetres without), converted to metres.
 fn depth(path: &str) -> Result<(Vec<f32>, usize, bool), String> {
-    if path.ends_with(".png") {
-        let image = image::open(path)
-            .map_err(|e| format!("{path}: {e}"))?
-            .to_luma16();
-        let width = image.width() as usize;
-        return Ok((
-            image.pixels().map(|p| f32::from(p[0]) / 1000.0).collect(),
-            width,
-            true,
+    let (depth, width, metric) = if path.ends_with(".png") {
+        let bytes = std::fs::read(path).map_err(|e| format!("{path}: {e}"))?;
+        let (width, _, metres) = depth_from_png(&bytes).map_err(|e| format!("{path}: {e}"))?;
+        // A pixel without depth sees nothing: as far as the map's farthest.
+        let farthest = metres
+            .iter()
+            .copied()
+            .filter(|m| m.is_finite())
+            .fold(0.0, f32::max);
+        let filled = metres
+            .iter()
+            .map(|m| if m.is_finite() { *m } else { farthest })
+            .collect();
+        (filled, width as usize, true)
+    } else {
+        let array = npy::read(path).map_err(|e| e.to_string())?;
+        match array.shape[..] {
+            [_, width] => (array.data, width, false),
+            _ => {
+                return Err(format!(
+                    "{path}: expected a 2-D array, got shape {:?}",
+                    array.shape
+                ));
+            }
+        }
+    };
+    check_depth(path, &depth, width)?;
+    Ok((depth, width, metric))
+}
+
+/// The largest depth a map may hold: 1 km (a z-buffer's values are at most 1).
+const MAX_DEPTH: f32 = 1000.0;
+
+/// Refuses a depth map with a value that is not a finite distance, or with nothing in it.
+fn check_depth(path: &str, depth: &[f32], width: usize) -> Result<(), String> {
+    if let Some(index) = depth
+        .iter()
+        .position(|d| !(d.is_finite() && (0.0..=MAX_DEPTH).contains(d)))
+    {
+        return Err(format!(
+            "{path}: row {}, column {} holds {}, not a distance from 0 to {MAX_DEPTH} (metres)",
+            index / width.max(1),
+            index % width.max(1),
+            depth[index]
         ));
     }
-    let array = npy::read(path).map_err(|e| e.to_string())?;
-    match array.shape[..] {
-        [_, width] => Ok((array.data, width, false)),
-        _ => Err(format!(
-            "{path}: expected a 2-D array, got shape {:?}",
-            array.shape
-        )),
+    if depth.iter().all(|d| *d == 0.0) {
+        return Err(format!("{path}: every depth is 0: nothing was rendered"));
     }
+    Ok(())
 }
 
 /// The GelTip model of the geometry in `dir`, its light fields read from there or computed.
