@@ -129,7 +129,12 @@ fn a_printer_unplugged_mid_move_and_back_is_homed_and_the_move_completes() {
         scope.spawn(|| {
             // Mid-move: the move (about 1.5 s on this printer) was sent a moment ago.
             let sent = |line: &String| line.contains(" G1 X120.000");
+            // Bounded: a run that failed before the move must not hang the test.
+            let waiting = std::time::Instant::now();
             while !printer.received().iter().any(sent) {
+                if waiting.elapsed() > std::time::Duration::from_secs(60) {
+                    return;
+                }
                 std::thread::sleep(std::time::Duration::from_millis(20));
             }
             std::thread::sleep(std::time::Duration::from_millis(300));

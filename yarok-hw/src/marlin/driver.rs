@@ -147,7 +147,8 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Marlin<T> {
     /// numbers (`M110 N0`) — all within [`MarlinSettings::boot_timeout`], as boards really start:
     /// silent for seconds (a bootloader, a slow SD card), the `start` banner late or never,
     /// garbage (a wrong baud rate), `M110` echoed or refused before the banner. `M110` is sent
-    /// again after each `start` and whenever [`HANDSHAKE_RETRY`] passes without its `ok`.
+    /// again after each `start` and whenever [`HANDSHAKE_RETRY`] passes without its `ok`; after
+    /// the boot time it still has [`MarlinSettings::silence`] to be answered.
     ///
     /// # Errors
     ///
@@ -433,8 +434,9 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Marlin<T> {
     async fn handshake(&mut self) -> Result<(), MarlinError> {
         let booted = Instant::now() + self.settings.boot_timeout;
         let mut last_heard = self.let_boot(booted).await?;
-        // However short the boot time, `M110` has one full window to be answered in.
-        let until = booted.max(Instant::now() + HANDSHAKE_RETRY);
+        // However short the boot time, `M110` has as long to be answered as any command has
+        // before the printer counts as silent.
+        let until = booted.max(Instant::now() + self.settings.silence);
         loop {
             let now = Instant::now();
             if now >= until {
