@@ -88,7 +88,7 @@ fn counts(metres: f32, unit: f32) -> u16 {
         .clamp(1.0, f64::from(u16::MAX)) as u16
 }
 
-/// Reads a depth PNG as [`png`] writes it (or any 16-bit grey PNG): columns, rows and the depth
+/// Reads a depth PNG as [`png()`] writes it (or any 16-bit grey PNG): columns, rows and the depth
 /// in metres, row-major, `NaN` where a pixel holds 0 (no depth). The unit is the PNG's
 /// [`DEPTH_UNIT_KEYWORD`] text, or millimetres without one (the usual depth PNG).
 ///
