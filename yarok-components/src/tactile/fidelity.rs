@@ -17,7 +17,7 @@
 
 use image::RgbImage;
 
-use super::calibration::{Geometry, Press, ball_press};
+use super::calibration::{Geometry, Press};
 use super::filter::reflect;
 use super::phong::PhongModel;
 
@@ -123,7 +123,7 @@ pub fn compare(
             }
             if inside {
                 let real_change =
-                    error + f64::from(b[c]) - f64::from(real_untouched.as_raw()[index * 3 + c]);
+                    f64::from(a[c]) - f64::from(real_untouched.as_raw()[index * 3 + c]);
                 let simulated_change =
                     f64::from(b[c]) - f64::from(simulated_untouched.as_raw()[index * 3 + c]);
                 changes[c].push((real_change, simulated_change));
@@ -321,16 +321,10 @@ pub fn phong_depth(
     let Some(press) = press else {
         return vec![surface as f32; width * height];
     };
-    let ball_radius = geometry.ball_diameter_mm * geometry.pixels_per_mm / 2.0;
     let metres_per_pixel = 1e-3 / geometry.pixels_per_mm;
-    ball_press(
-        width,
-        height,
-        press.centre,
-        geometry.contact_scale * press.radius,
-        ball_radius,
-    )
-    .iter()
-    .map(|h| (surface - h * metres_per_pixel) as f32)
-    .collect()
+    geometry
+        .press(width, height, press.centre, press.radius)
+        .iter()
+        .map(|h| (surface - h * metres_per_pixel) as f32)
+        .collect()
 }

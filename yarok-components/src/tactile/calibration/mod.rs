@@ -81,20 +81,23 @@ pub struct Geometry {
 }
 
 impl Geometry {
-    /// The spread indentation (pixels, on the half-resolution grid) of a ball pressed at
-    /// `centre` with a press radius of `radius` pixels.
-    fn heights(&self, width: usize, height: usize, centre: [f64; 2], radius: f64) -> Vec<f64> {
+    /// How far (pixels) each pixel of a `width × height` gel sinks under this geometry's ball
+    /// pressed at `centre` (column, row) with a press radius of `radius` pixels, before the
+    /// spread: [`ball_press`] with the contact circle `contact_scale · radius`.
+    pub fn press(&self, width: usize, height: usize, centre: [f64; 2], radius: f64) -> Vec<f64> {
         let ball_radius = self.ball_diameter_mm * self.pixels_per_mm / 2.0;
-        self.spread_half(
-            &ball_press(
-                width,
-                height,
-                centre,
-                self.contact_scale * radius,
-                ball_radius,
-            ),
+        ball_press(
             width,
+            height,
+            centre,
+            self.contact_scale * radius,
+            ball_radius,
         )
+    }
+
+    /// [`Geometry::press`] spread, on the half-resolution grid.
+    fn heights(&self, width: usize, height: usize, centre: [f64; 2], radius: f64) -> Vec<f64> {
+        self.spread_half(&self.press(width, height, centre, radius), width)
     }
 
     /// A `width`-wide indentation map (pixels) halved and spread.
