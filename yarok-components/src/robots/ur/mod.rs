@@ -51,10 +51,6 @@ fn config<E: yarok_core::component::Environment>(
         kinematics,
         names: ArmNames::YAROK,
         start: Some(start),
-        gains: std::array::from_fn(|i| {
-            let wrist = usize::from(i >= 3);
-            (kp[wrist], kv[wrist])
-        }),
     })
 }
 
