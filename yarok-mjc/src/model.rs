@@ -228,9 +228,9 @@ impl Model {
         [sizes[3 * index], sizes[3 * index + 1], sizes[3 * index + 2]]
     }
 
-    /// An actuator's gains if it is a position servo on a joint (a fixed gain and an affine
-    /// bias, as `<position>` and Menagerie's `<general … biastype="affine">` servos are), `None`
-    /// otherwise.
+    /// An actuator's gains if it is a position servo on a joint or a tendon (a fixed gain and
+    /// an affine bias, as `<position>` and Menagerie's `<general … biastype="affine">` servos
+    /// are), `None` otherwise.
     ///
     /// # Panics
     ///
@@ -240,9 +240,9 @@ impl Model {
         let index = self.index_of(actuator);
         let nu = self.count(ObjectKind::Actuator);
         let (gains, biases) = (sys::mjNGAIN as usize, sys::mjNBIAS as usize);
-        // SAFETY: the type arrays hold nu entries, gainprm nu·mjNGAIN, biasprm nu·mjNBIAS and
-        // gear 6·nu; `index` < nu.
-        let (transmission, gain_type, bias_type, gainprm, biasprm, gear) = unsafe {
+        // SAFETY: the type and limit arrays hold nu entries, gainprm nu·mjNGAIN, biasprm
+        // nu·mjNBIAS, gear 6·nu and forcerange 2·nu; `index` < nu.
+        let (transmission, gain_type, bias_type, gainprm, biasprm, gear, limited, range) = unsafe {
             let m = self.raw();
             (
                 self.array(m.actuator_trntype, nu)[index],
@@ -251,9 +251,12 @@ impl Model {
                 &self.array(m.actuator_gainprm, nu * gains)[index * gains..],
                 &self.array(m.actuator_biasprm, nu * biases)[index * biases..],
                 self.array(m.actuator_gear, 6 * nu)[6 * index],
+                self.array(m.actuator_forcelimited, nu)[index],
+                &self.array(m.actuator_forcerange, 2 * nu)[2 * index..2 * index + 2],
             )
         };
-        let servo = transmission == sys::mjTRN_JOINT as i32
+        let scalar = [sys::mjTRN_JOINT, sys::mjTRN_TENDON].contains(&(transmission as u32));
+        let servo = scalar
             && gain_type == sys::mjGAIN_FIXED as i32
             && bias_type == sys::mjBIAS_AFFINE as i32
             && gainprm[0] > 0.0
@@ -263,6 +266,7 @@ impl Model {
             kp: -biasprm[1],
             kv: -biasprm[2],
             gear,
+            force_range: limited.then(|| [range[0], range[1]]),
         })
     }
 
@@ -613,7 +617,7 @@ object_ids! {
     KeyframeId, Keyframe, keyframe;
 }
 
-/// A position servo's gains ([`Model::servo_gains`]): its force is
+/// A position servo's gains and force limits ([`Model::servo_gains`]): its force is
 /// `gain · ctrl − kp · q − kv · q̇` (MuJoCo's `gainprm[0]`, `−biasprm[1]`, `−biasprm[2]`), and
 /// the joint feels `gear` times it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -624,6 +628,8 @@ pub struct ServoGains {
     pub kp: f64,
     /// Force per unit of joint velocity.
     pub kv: f64,
-    /// The transmission's ratio from actuator force to joint force.
+    /// The transmission's ratio from actuator force to joint (or tendon) force.
     pub gear: f64,
+    /// The least and most force it gives, if it is limited (`forcerange`).
+    pub force_range: Option<[f64; 2]>,
 }

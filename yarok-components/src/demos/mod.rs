@@ -34,7 +34,7 @@ use yarok_core::value::Value;
 pub use digit_world::feel;
 pub use geltip_world::pull;
 pub use idle::idle;
-pub use pick_and_place::stack;
+pub use pick_and_place::{stack, stack_with};
 pub use printer_world::survey;
 pub use tactile_rig::{INDEX_HEADER, collect, grid, press};
 

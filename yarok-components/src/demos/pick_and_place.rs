@@ -6,7 +6,7 @@ use nalgebra::Isometry3;
 use yarok_core::runtime::{BehaviourResult, Pl};
 
 use crate::grippers::Robotiq2f85;
-use crate::robots::ur::{Ur5e, pose_from_vector};
+use crate::robots::ur::{Arm, Ur5e, pose_from_vector};
 use crate::toys::{Block, Spot};
 
 /// The blocks, largest first: the order they are stacked in.
@@ -33,6 +33,13 @@ fn down_at(position: [f64; 3], table: f64) -> Isometry3<f64> {
 pub async fn stack(pl: Pl) -> BehaviourResult {
     let arm: Ur5e = pl.get("/arm")?;
     let gripper: Robotiq2f85 = pl.get("/arm/gripper")?;
+    stack_with(&pl, &arm, &gripper).await
+}
+
+/// [`stack`] with any UR arm and 2F-85 (a world of the same layout whose arm and gripper are
+/// other models, e.g. MuJoCo Menagerie's): the blocks at `/large`, `/medium` and `/small`, the
+/// spot at `/target`, the arm's base frame level with the table top, its TCP at the pinch point.
+pub async fn stack_with(pl: &Pl, arm: &Arm, gripper: &Robotiq2f85) -> BehaviourResult {
     let target: Spot = pl.get("/target")?;
     let blocks: Vec<Block> = BLOCKS
         .iter()

@@ -2,4 +2,4 @@
 
 mod robotiq_2f85;
 
-pub use robotiq_2f85::{Grip, Gripped, REACHED_COUNTS, Robotiq2f85};
+pub use robotiq_2f85::{Grip, Gripped, GripperNames, REACHED_COUNTS, Robotiq2f85};

@@ -8,7 +8,7 @@ use std::rc::Rc;
 
 use yarok_core::component::{Bind, BindError, Component, Declaration, Interface, Interfaces, Mock};
 use yarok_core::time::{Clock, WaitError};
-use yarok_mjc::{Actuator, Body, Joint, Sim, SimBind, Site};
+use yarok_mjc::{Actuator, Body, Joint, ServoGains, Sim, SimBind, Site};
 
 mod real;
 
@@ -17,14 +17,8 @@ use real::RealFingers;
 /// The driver angle (radians) at which the fingers close on nothing; position 255.
 const CLOSED_RAD: f64 = 0.8;
 
-/// The actuator's gain (force per count of command), position stiffness and damping, in tendon
-/// units: at rest, command `u` holds the drivers at `u / 255 · 0.8` rad.
-const GAIN: f64 = 0.3137255;
-const STIFFNESS: f64 = 100.0;
+/// The damping (tendon units) of the bundled template's servo unless configured.
 const DAMPING: f64 = 2.0;
-
-/// The actuator's force range (tendon units): the force request's ceiling.
-const MAX_FORCE: f64 = 5.0;
 
 /// The gap between the pad faces (millimetres) at driver angles 0, 0.2, 0.4, 0.6 and 0.8 rad.
 const GAP_MM: [f64; 5] = [85.4, 66.6, 45.6, 23.1, 0.2];
@@ -70,12 +64,47 @@ enum Drive {
     Real(Rc<RealFingers>),
 }
 
-/// The simulated gripper's actuator, drivers and pads.
+/// The simulated gripper's actuator (a position servo on the drivers' tendon, command 0–255),
+/// its gains and force cap as the model states them, drivers and pads.
 struct Fingers {
     actuator: Actuator,
+    gains: ServoGains,
+    max_force: f64,
     drivers: [Joint; 2],
     pads: [Body; 2],
-    pad_sites: [Site; 2],
+    pad_sites: Option<[Site; 2]>,
+}
+
+/// The names of a 2F-85 model's parts: its actuator, the two driver joints and the pads'
+/// bodies `[left, right]`, and the sites on the pads' faces if it has them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct GripperNames {
+    /// The position servo on the drivers (command 0–255).
+    pub actuator: &'static str,
+    /// The driver joints.
+    pub drivers: [&'static str; 2],
+    /// The pads' bodies.
+    pub pads: [&'static str; 2],
+    /// Sites on the pads' faces.
+    pub pad_sites: Option<[&'static str; 2]>,
+}
+
+impl GripperNames {
+    /// The names in yarok's own template ([`Robotiq2f85`]).
+    pub const YAROK: Self = Self {
+        actuator: "fingers",
+        drivers: ["left_driver", "right_driver"],
+        pads: ["left_pad", "right_pad"],
+        pad_sites: Some(["left_pad", "right_pad"]),
+    };
+
+    /// The names in MuJoCo Menagerie's `robotiq_2f85/2f85.xml`.
+    pub const MENAGERIE: Self = Self {
+        actuator: "fingers_actuator",
+        drivers: ["left_driver_joint", "right_driver_joint"],
+        pads: ["left_pad", "right_pad"],
+        pad_sites: None,
+    };
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -168,10 +197,10 @@ impl Robotiq2f85 {
         }
     }
 
-    /// The pad-face sites `[left, right]` (sim only).
+    /// The pad-face sites `[left, right]` (sim only, when the model has them).
     pub fn pad_sites(&self) -> Option<[Site; 2]> {
         match &self.inner.drive {
-            Drive::Sim(fingers) => Some(fingers.pad_sites.clone()),
+            Drive::Sim(fingers) => fingers.pad_sites.clone(),
             Drive::Mock | Drive::Real(_) => None,
         }
     }
@@ -228,11 +257,12 @@ impl Inner {
         if let Drive::Sim(fingers) = &self.drive {
             // The force request caps the squeeze: the command never asks more than it of the
             // actuator beyond holding the drivers where and as fast as they are.
-            let squeeze = MAX_FORCE * (0.1 + 0.9 * force / 255.0);
-            let holding = STIFFNESS * self.driver_angle() + DAMPING * self.driver_speed();
-            let held = (holding + squeeze) / GAIN;
-            let released = (holding - squeeze) / GAIN;
-            let target = command / 255.0 * CLOSED_RAD * STIFFNESS / GAIN;
+            let ServoGains { gain, kp, kv, .. } = fingers.gains;
+            let squeeze = fingers.max_force * (0.1 + 0.9 * force / 255.0);
+            let holding = kp * self.driver_angle() + kv * self.driver_speed();
+            let held = (holding + squeeze) / gain;
+            let released = (holding - squeeze) / gain;
+            let target = command / 255.0 * CLOSED_RAD * kp / gain;
             let capped = target.clamp(released.max(0.0), held.min(255.0));
             fingers.actuator.set(capped);
             let mut state = self.state.borrow_mut();
@@ -384,15 +414,51 @@ impl Robotiq2f85 {
     }
 }
 
-impl Interface<Sim> for Robotiq2f85 {
-    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
+impl Robotiq2f85 {
+    /// Binds a 2F-85 model in `sim` given its parts' `names` (yarok's template, or another
+    /// model's such as Menagerie's): its actuator must be a position servo on the drivers whose
+    /// command 0–255 closes them from 0 to 0.8 rad, as both models' are; its gains and force
+    /// range are read from the model.
+    ///
+    /// # Errors
+    ///
+    /// [`BindError`] when a part is missing or the actuator is not such a servo.
+    pub fn bind_sim(bind: &mut Bind<Sim>, names: GripperNames) -> Result<Self, BindError> {
+        let actuator = bind.actuator(names.actuator)?;
+        let gains = actuator.servo_gains().ok_or_else(|| {
+            bind.error(format!(
+                "actuator {:?} is not a position servo (a fixed gain and an affine bias on a \
+                 joint or tendon): the gripper drives one",
+                names.actuator
+            ))
+        })?;
+        let max_force = gains.force_range.map_or(f64::INFINITY, |[_, most]| most);
+        if !(max_force > 0.0 && max_force.is_finite()) {
+            return Err(bind.error(format!(
+                "actuator {:?} needs a force range whose top is above 0 (forcerange), the \
+                 most the gripper may squeeze",
+                names.actuator
+            )));
+        }
+        let pad_sites = match names.pad_sites {
+            Some([left, right]) => Some([bind.site(left)?, bind.site(right)?]),
+            None => None,
+        };
         let fingers = Fingers {
-            actuator: bind.actuator("fingers")?,
-            drivers: [bind.joint("left_driver")?, bind.joint("right_driver")?],
-            pads: [bind.body("left_pad")?, bind.body("right_pad")?],
-            pad_sites: [bind.site("left_pad")?, bind.site("right_pad")?],
+            actuator,
+            gains,
+            max_force,
+            drivers: [bind.joint(names.drivers[0])?, bind.joint(names.drivers[1])?],
+            pads: [bind.body(names.pads[0])?, bind.body(names.pads[1])?],
+            pad_sites,
         };
         Ok(Self::with_drive(bind, Drive::Sim(Box::new(fingers))))
+    }
+}
+
+impl Interface<Sim> for Robotiq2f85 {
+    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
+        Self::bind_sim(bind, GripperNames::YAROK)
     }
 }
 
