@@ -280,3 +280,38 @@ fn menageries_ur5e_and_2f85_stack_the_blocks_as_the_pick_and_place_demo_does() {
         .run()
         .unwrap();
 }
+
+/// Menagerie's 2F-85 bound with yarok's own names: an error naming the part and listing the
+/// actuators the file has.
+#[derive(Clone)]
+struct MisnamedGripper;
+
+impl Component for MisnamedGripper {
+    fn declaration() -> Declaration {
+        Declaration::new("misnamed_gripper").mjcf_file(menagerie("robotiq_2f85/2f85.xml"))
+    }
+
+    fn interfaces(interfaces: &mut Interfaces<Self>) {
+        interfaces.add::<Sim>();
+    }
+}
+
+impl Interface<Sim> for MisnamedGripper {
+    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
+        Robotiq2f85::bind_sim(bind, GripperNames::YAROK).map(|_| MisnamedGripper)
+    }
+}
+
+#[test]
+fn a_name_the_file_lacks_is_an_error_listing_the_names_it_has() {
+    let error = yarok::platform()
+        .world::<MisnamedGripper>()
+        .behaviour(|_| async { Ok(()) })
+        .run()
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains(r#"no actuator named "fingers"; it has `fingers_actuator`"#),
+        "{error}"
+    );
+}

@@ -29,6 +29,45 @@ pub fn did_you_mean<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str
         .unwrap_or_default()
 }
 
+/// [`did_you_mean`], or when nothing is close, "; it has `a`, `b`, …" (sorted, at most
+/// twelve): for names a user must take from a file they did not write.
+///
+/// # Examples
+///
+/// ```
+/// use yarok_core::suggest::did_you_mean_or_list;
+///
+/// assert_eq!(did_you_mean_or_list("gripe", ["gripper", "arm"]), "; did you mean `gripper`?");
+/// assert_eq!(
+///     did_you_mean_or_list("fingers", ["fingers_actuator", "base"]),
+///     "; it has `base`, `fingers_actuator`"
+/// );
+/// ```
+pub fn did_you_mean_or_list<'a>(
+    name: &str,
+    candidates: impl IntoIterator<Item = &'a str>,
+) -> String {
+    const LISTED: usize = 12;
+    let mut all: Vec<&str> = candidates.into_iter().collect();
+    let hint = did_you_mean(name, all.iter().copied());
+    if !hint.is_empty() {
+        return hint;
+    }
+    all.sort_unstable();
+    all.dedup();
+    if all.is_empty() {
+        return "; it has none".to_owned();
+    }
+    let listed: Vec<String> = all.iter().take(LISTED).map(|n| format!("`{n}`")).collect();
+    let more = all.len().saturating_sub(LISTED);
+    let tail = if more > 0 {
+        format!(" and {more} more")
+    } else {
+        String::new()
+    };
+    format!("; it has {}{tail}", listed.join(", "))
+}
+
 fn distance(a: &str, b: &str) -> usize {
     let b: Vec<char> = b.chars().collect();
     let mut row: Vec<usize> = (0..=b.len()).collect();

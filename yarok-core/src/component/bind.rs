@@ -12,7 +12,7 @@ use super::{
 };
 use crate::BoxError;
 use crate::config::ConfigOrigins;
-use crate::suggest::did_you_mean;
+use crate::suggest::did_you_mean_or_list;
 use crate::time::Clock;
 use crate::value::{Config, SettingsError};
 
@@ -209,7 +209,7 @@ impl<E: Environment> Bind<E> {
                 component: self.context.path.clone(),
                 kind,
                 local: local.to_owned(),
-                hint: did_you_mean(
+                hint: did_you_mean_or_list(
                     local,
                     self.context
                         .names
