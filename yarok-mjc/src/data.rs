@@ -335,6 +335,47 @@ impl Data {
         }
     }
 
+    /// The index of a joint's first degree of freedom among the model's `nv` (its column in
+    /// [`Data::point_jacobian`]).
+    ///
+    /// # Panics
+    ///
+    /// When `joint` was resolved in a different model.
+    #[track_caller]
+    pub fn dof(&self, joint: JointId) -> usize {
+        self.joint_range(joint, Coordinates::Velocity).start
+    }
+
+    /// How a point fixed to `body`, at `point` in world coordinates now, moves with each degree
+    /// of freedom (MuJoCo's `mj_jac`): per degree of freedom, the point's velocity per unit of
+    /// its velocity. A force `f` at the point is, on degree of freedom `i`, the generalised
+    /// force `jacobian[i] · f`. As of the last step or [`Data::forward`].
+    ///
+    /// # Panics
+    ///
+    /// When `body` was resolved in a different model.
+    #[track_caller]
+    pub fn point_jacobian(&self, body: BodyId, point: [f64; 3]) -> Vec<[f64; 3]> {
+        let index = self.model.index_of(body);
+        let nv = self.model.nv();
+        let mut rows = vec![0.0; 3 * nv];
+        // SAFETY: model and data belong together; `rows` holds the 3·nv numbers mj_jac writes,
+        // jacr may be null, `point` holds 3 and `index` < nbody.
+        unsafe {
+            self.model.mj().mj_jac(
+                self.model.raw(),
+                self.raw(),
+                rows.as_mut_ptr(),
+                std::ptr::null_mut(),
+                point.as_ptr(),
+                index as i32,
+            );
+        }
+        (0..nv)
+            .map(|dof| [rows[dof], rows[nv + dof], rows[2 * nv + dof]])
+            .collect()
+    }
+
     /// Where a hinge or slide joint is in world coordinates: a point on its axis (its anchor)
     /// and the axis's unit direction, as computed by the last [`Data::step`] or
     /// [`Data::forward`]; see [`Data::body_pose`].

@@ -147,6 +147,21 @@ impl Site {
     pub fn pose(&self) -> Pose {
         self.data.borrow().site_pose(self.id)
     }
+
+    /// The generalised force on each of `joints` of a force `force` (world coordinates) at
+    /// `point` (world coordinates) fixed to the site's body: reversed, what each joint must
+    /// give to hold it. As of the last step (see [`Data::point_jacobian`]).
+    pub fn forces_on(&self, joints: &[Joint], point: [f64; 3], force: [f64; 3]) -> Vec<f64> {
+        let data = self.data.borrow();
+        let jacobian = data.point_jacobian(data.model().site_body(self.id), point);
+        joints
+            .iter()
+            .map(|joint| {
+                let column = jacobian[data.dof(joint.id)];
+                (0..3).map(|axis| column[axis] * force[axis]).sum()
+            })
+            .collect()
+    }
 }
 
 handle! {

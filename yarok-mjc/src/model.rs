@@ -215,6 +215,23 @@ impl Model {
         }
     }
 
+    /// The body a site is on.
+    ///
+    /// # Panics
+    ///
+    /// When `site` was resolved in a different model.
+    #[track_caller]
+    pub fn site_body(&self, site: SiteId) -> BodyId {
+        let index = self.index_of(site);
+        // SAFETY: site_bodyid holds nsite entries and `index` < nsite.
+        let body =
+            unsafe { self.array(self.raw().site_bodyid, self.count(ObjectKind::Site)) }[index];
+        BodyId {
+            index: to_usize(body),
+            signature: self.signature(),
+        }
+    }
+
     /// A geom's size parameters (their meaning depends on its type: radius, half-lengths, …).
     ///
     /// # Panics

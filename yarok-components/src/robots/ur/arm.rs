@@ -11,6 +11,7 @@ use super::config::ArmConfig;
 use super::controller::{ARRIVED_RAD, Controller, Drive, Goal, Servos, within};
 use super::kinematics::{Joints, Kinematics, pose_from_vector};
 use super::motion::Move;
+use super::payload::Payload;
 
 /// How close (metres) counts as arrived for a pose ([`Arm::is_at_pose`]); its rotation within
 /// [`ARRIVED_RAD`].
@@ -72,6 +73,8 @@ impl Arm {
             joints,
             servos,
             gains,
+            flange: bind.site(names.flange)?,
+            gravity: bind.backend().model().ffi().opt.gravity,
         }));
         Ok(Self::with_drive(bind, config.kinematics, drive, start))
     }
@@ -149,6 +152,19 @@ impl Arm {
         let at = self.tcp_pose();
         (at.translation.vector - pose.translation.vector).norm() < ARRIVED_M
             && at.rotation.angle_to(&pose.rotation) < ARRIVED_RAD
+    }
+
+    /// Sets what the arm carries at its flange (URScript `set_payload`): `mass` kilograms centred
+    /// at `centre` (metres, flange frame). A real arm's controller is told; in `sim` the servos
+    /// hold its weight as they hold the arm's own, so a heavy tool or grasped object does not
+    /// make the arm sag.
+    ///
+    /// # Errors
+    ///
+    /// When the mass is negative or a number is not finite.
+    pub fn set_payload(&self, mass: f64, centre: [f64; 3]) -> Result<(), String> {
+        self.controller.set_payload(Payload::new(mass, centre)?);
+        Ok(())
     }
 
     /// Whether a motion is under way.

@@ -2,13 +2,15 @@
 
 use super::kinematics::{DhParameters, Joints, Kinematics};
 
-/// The joint and actuator names of a UR model, base to wrist 3.
+/// The joint and actuator names of a UR model, base to wrist 3, and its flange site.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ArmNames {
     /// The hinge joints.
     pub joints: [&'static str; 6],
     /// The position servos driving them.
     pub actuators: [&'static str; 6],
+    /// The site at the flange (the real arm's `tool0`, where tools attach).
+    pub flange: &'static str,
 }
 
 impl ArmNames {
@@ -16,6 +18,7 @@ impl ArmNames {
     pub const YAROK: Self = Self {
         joints: JOINTS,
         actuators: JOINTS,
+        flange: "flange",
     };
 
     /// The names in MuJoCo Menagerie's `universal_robots_ur5e/ur5e.xml`.
@@ -29,6 +32,7 @@ impl ArmNames {
             "wrist_3_joint",
         ],
         actuators: JOINTS,
+        flange: "attachment_site",
     };
 }
 

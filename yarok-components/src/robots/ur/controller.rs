@@ -5,15 +5,16 @@
 use std::cell::RefCell;
 use std::rc::Rc;
 
-use nalgebra::Isometry3;
+use nalgebra::{Isometry3, Quaternion, UnitQuaternion, Vector3};
 use yarok_core::time::Clock;
-use yarok_mjc::{Actuator, Joint, ServoGains};
+use yarok_mjc::{Actuator, Joint, ServoGains, Site};
 
 use super::error::MotionError;
 use super::kinematics::{IkError, Joints, Kinematics, pose_to_vector};
 use super::path::Path;
+use super::payload::Payload;
 use super::profile::Profile;
-use super::real::{RealLink, movej, movel};
+use super::real::{RealLink, movej, movel, set_payload};
 
 /// How close (radians, every joint) counts as arrived.
 pub const ARRIVED_RAD: f64 = 1e-3;
@@ -54,11 +55,25 @@ pub(super) enum Drive {
 }
 
 /// The joints and position servos of an arm in `sim`, with the servos' gains as the model
-/// states them.
+/// states them, its flange site and the world's gravity (for the payload).
 pub(super) struct Servos {
     pub(super) joints: [Joint; 6],
     pub(super) servos: [Actuator; 6],
     pub(super) gains: [ServoGains; 6],
+    pub(super) flange: Site,
+    pub(super) gravity: [f64; 3],
+}
+
+impl Servos {
+    /// What each joint must give to hold `payload` against gravity.
+    fn holding(&self, payload: &Payload) -> Vec<f64> {
+        let flange = self.flange.pose();
+        let [w, x, y, z] = flange.quat;
+        let rotation = UnitQuaternion::from_quaternion(Quaternion::new(w, x, y, z));
+        let centre = Vector3::from(flange.pos) + rotation * Vector3::from(payload.centre);
+        let weight = self.gravity.map(|g| -g * payload.mass);
+        self.flange.forces_on(&self.joints, centre.into(), weight)
+    }
 }
 
 struct State {
@@ -67,6 +82,8 @@ struct State {
     speed: Joints,
     acceleration: Joints,
     motion: Option<Motion>,
+    /// What the arm carries, as set with [`Controller::set_payload`].
+    payload: Option<Payload>,
     next_id: u64,
     /// How the last motion that ended, ended.
     ended: Option<(u64, Result<(), MotionError>)>,
@@ -112,6 +129,7 @@ impl Controller {
                 speed: [0.0; 6],
                 acceleration: [0.0; 6],
                 motion: None,
+                payload: None,
                 next_id: 0,
                 ended: None,
             }),
@@ -253,13 +271,18 @@ impl Controller {
     /// Sets the servos to the reference, with what the arm's controller adds as a real one
     /// does: the force that the reference's speed and acceleration take and that gravity,
     /// Coriolis and centrifugal forces ask of each joint (those the model does not compensate
-    /// itself), so that the joints track without lag or sag.
+    /// itself), and the payload's weight, so that the joints track without lag or sag.
     pub(super) fn command(&self) {
         if let Drive::Sim(sim) = &self.drive {
             let state = self.state.borrow();
+            let payload = match &state.payload {
+                Some(payload) if payload.mass > 0.0 => sim.holding(payload),
+                _ => vec![0.0; 6],
+            };
             for (i, gains) in sim.gains.iter().enumerate() {
                 let joint = &sim.joints[i];
-                let torque = joint.inertia() * state.acceleration[i] + joint.bias_force();
+                let torque =
+                    joint.inertia() * state.acceleration[i] + joint.bias_force() + payload[i];
                 // The servo's force is gain·ctrl − kp·gear·q − kv·gear·q̇; the joint feels gear
                 // times it.
                 let force = gains.gear
@@ -268,6 +291,15 @@ impl Controller {
                 sim.servos[i].set(force / gains.gain);
             }
         }
+    }
+
+    /// Sets what the arm carries: fed forward in `sim`, sent as `set_payload` to a real arm.
+    pub(super) fn set_payload(&self, payload: Payload) {
+        self.state.borrow_mut().payload = Some(payload);
+        if let Drive::Real(link) = &self.drive {
+            link.send_script(set_payload(&payload));
+        }
+        self.command();
     }
 
     /// Starts a motion to `to`, after checking the whole path; its id.

@@ -80,20 +80,20 @@ impl MeasuredKinematics {
         Ok(measured)
     }
 
-    /// [`MeasuredKinematics::measure`] on the model being bound: the joints of `names` and the
-    /// site `flange`, as the component's template names them.
+    /// [`MeasuredKinematics::measure`] on the model being bound: the joints and flange site of
+    /// `names`, as the component's template names them.
     ///
     /// # Errors
     ///
     /// [`BindError`] when a name is missing or the measure fails.
-    pub fn of(bind: &Bind<Sim>, names: &ArmNames, flange: &str) -> Result<Self, BindError> {
+    pub fn of(bind: &Bind<Sim>, names: &ArmNames) -> Result<Self, BindError> {
         use yarok_mjc::SimBind;
         let mut joints = Vec::with_capacity(6);
         for name in names.joints {
             joints.push(bind.joint(name)?.id());
         }
         let joints: [JointId; 6] = joints.try_into().map_err(|_| bind.error("six joints"))?;
-        let flange = bind.site(flange)?.id();
+        let flange = bind.site(names.flange)?.id();
         Self::measure(bind.backend().model(), &joints, flange)
             .map_err(|reason| bind.error(format!("its kinematics: {reason}")))
     }

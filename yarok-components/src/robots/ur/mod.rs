@@ -10,6 +10,7 @@ mod measured;
 mod model;
 mod motion;
 mod path;
+mod payload;
 mod profile;
 mod real;
 
@@ -27,6 +28,7 @@ pub use kinematics::{
 pub use measured::MeasuredKinematics;
 pub use motion::Move;
 pub use path::PathError;
+pub use payload::Payload;
 
 use model::ArmModel;
 

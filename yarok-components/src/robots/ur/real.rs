@@ -17,6 +17,7 @@ use yarok_hw::ur::rtde::{Rtde, RtdeSettings, Value};
 use yarok_hw::ur::secondary::{KinematicsInfo, Secondary, send_script};
 
 use super::kinematics::{DhParameters, Joints, Kinematics};
+use super::payload::Payload;
 
 const RTDE_PORT: u16 = 30004;
 const SECONDARY_PORT: u16 = 30002;
@@ -129,6 +130,12 @@ impl RealLink {
             .await
             .unwrap_or_else(|_| Err("the arm's driver has stopped".into()))
     }
+}
+
+/// `set_payload` of `payload`.
+pub(super) fn set_payload(payload: &Payload) -> String {
+    let [x, y, z] = payload.centre;
+    format!("set_payload({}, [{x}, {y}, {z}])", payload.mass)
 }
 
 /// `movej` to `target` at `speed` rad/s and `acceleration` rad/s².
@@ -278,12 +285,9 @@ pub(super) async fn connect(
     let first = rtde.receive().await.map_err(|e| bind.error(e))?;
     let first = measured(&first).ok_or_else(|| bind.error("RTDE sent other values"))?;
     if let Some([mass, x, y, z]) = settings.payload {
-        if !(mass >= 0.0 && [mass, x, y, z].iter().all(|v| v.is_finite())) {
-            return Err(bind.error(format!("payload mass {mass} kg must be a number ≥ 0")));
-        }
-        let script = format!("set_payload({mass}, [{x}, {y}, {z}])");
+        let payload = Payload::new(mass, [x, y, z]).map_err(|e| bind.error(e))?;
         secondary
-            .send_script(&script)
+            .send_script(&set_payload(&payload))
             .await
             .map_err(|e| bind.error(e))?;
     }
