@@ -176,6 +176,9 @@ fn a_cb3_ur5_moves_and_takes_its_payload() {
             let q = [-0.4, -1.4, 1.3, -1.5, -1.57, 0.1];
             arm.move_j(q).speed(2.0).acceleration(4.0).await?;
             assert!(arm.is_at(&q), "{:?}", arm.q());
+            // A grasped object changes it while running.
+            arm.set_payload(2.5, [0.0, 0.01, 0.1])?;
+            arm.move_j(START).speed(2.0).acceleration(4.0).await?;
             Ok(())
         })
         .run()
@@ -184,6 +187,10 @@ fn a_cb3_ur5_moves_and_takes_its_payload() {
     assert_eq!(
         scripts.first().map(String::as_str),
         Some("set_payload(1.2, [0, 0, 0.05])")
+    );
+    assert!(
+        scripts.contains(&"set_payload(2.5, [0, 0.01, 0.1])".to_owned()),
+        "{scripts:?}"
     );
 }
 
