@@ -148,3 +148,51 @@ fn two_recorders_on_one_file_are_refused_before_the_run() {
         );
     }
 }
+
+/// `model_cache` takes true, false or a folder: `~/` is the home folder, and an empty path, a
+/// quoted yes/true or a number are errors that say what it takes — never folders named
+/// literally in the current directory.
+#[test]
+fn the_model_cache_setting_takes_true_false_or_a_folder() {
+    let home = tempfile::tempdir().unwrap();
+    let here = tempfile::tempdir().unwrap();
+    let run = |value: &str| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_yarok"))
+            .args(["run", "pick_and_place_world", "--set"])
+            .arg(format!("platform/model_cache={value}"))
+            .env("HOME", home.path())
+            .current_dir(here.path())
+            .stdout(std::process::Stdio::null())
+            .output()
+            .unwrap()
+    };
+    for (value, expected) in [
+        ("\"\"", "an empty path"),
+        ("\"yes\"", "without them"),
+        ("\"true\"", "without them"),
+        ("3", "expected true, false or a folder's path"),
+    ] {
+        let output = run(value);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{value}: {stderr}");
+        assert!(
+            stderr.contains(expected) && stderr.contains("model_cache"),
+            "{value}: {stderr}"
+        );
+    }
+    let output = run("\"~/models\"");
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let cached = std::fs::read_dir(home.path().join("models"))
+        .unwrap()
+        .count();
+    assert_eq!(cached, 1, "one compiled model in ~/models");
+    assert_eq!(
+        std::fs::read_dir(here.path()).unwrap().count(),
+        0,
+        "nothing in the current folder"
+    );
+}

@@ -301,9 +301,9 @@ impl TryFrom<String> for Shard {
 
 /// Where compiled models are kept between runs (`[platform] model_cache`): `true` (the default)
 /// in the user's cache folder — `$YAROK_CACHE_DIR/models`, else `$XDG_CACHE_HOME/yarok/models`,
-/// else `~/.cache/yarok/models` — `false` nowhere, or a folder's path.
-#[derive(Debug, Clone, PartialEq, serde::Deserialize)]
-#[serde(untagged)]
+/// else `~/.cache/yarok/models` — `false` nowhere, or a folder's path (`~/` is the home folder).
+/// An empty path, or `"true"`/`"yes"`-like words in quotes, are errors, not folders.
+#[derive(Debug, Clone, PartialEq)]
 pub enum ModelCache {
     /// In the user's cache folder, or nowhere.
     Enabled(bool),
@@ -311,7 +311,54 @@ pub enum ModelCache {
     Folder(std::path::PathBuf),
 }
 
+impl<'de> serde::Deserialize<'de> for ModelCache {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl serde::de::Visitor<'_> for Visitor {
+            type Value = ModelCache;
+
+            fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str("true, false or a folder's path")
+            }
+
+            fn visit_bool<E: serde::de::Error>(self, enabled: bool) -> Result<ModelCache, E> {
+                Ok(ModelCache::Enabled(enabled))
+            }
+
+            fn visit_str<E: serde::de::Error>(self, path: &str) -> Result<ModelCache, E> {
+                ModelCache::folder_named(path).map_err(E::custom)
+            }
+        }
+        deserializer.deserialize_any(Visitor)
+    }
+}
+
 impl ModelCache {
+    /// The cache in the folder `path` names (`~/` expanded).
+    fn folder_named(path: &str) -> Result<Self, String> {
+        let word = path.trim().to_ascii_lowercase();
+        if word.is_empty() {
+            return Err("an empty path: give a folder, or true or false".into());
+        }
+        if ["true", "false", "yes", "no", "on", "off"].contains(&word.as_str()) {
+            return Err(format!(
+                "{path:?} is a word in quotes: write true or false without them, or a folder's \
+                 path"
+            ));
+        }
+        let home = || {
+            std::env::var_os("HOME")
+                .filter(|home| !home.is_empty())
+                .map(std::path::PathBuf::from)
+                .ok_or_else(|| format!("{path:?} starts with ~, but HOME is not set"))
+        };
+        Ok(ModelCache::Folder(match path.strip_prefix('~') {
+            Some("") => home()?,
+            Some(rest) if rest.starts_with('/') => home()?.join(&rest[1..]),
+            _ => std::path::PathBuf::from(path),
+        }))
+    }
+
     /// The folder, if models are kept.
     pub fn folder(&self) -> Option<std::path::PathBuf> {
         match self {
