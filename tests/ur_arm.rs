@@ -1,7 +1,7 @@
 //! The UR arms in MuJoCo: the model's flange is the kinematics' tool0, the servos hold a pose
 //! under gravity, `move_j` keeps to its speed and acceleration, `move_l` keeps the TCP on its
 //! line, runs repeat bit for bit, bad targets fail before anything moves, a dropped motion
-//! stops the arm, and `mock` follows its motions. (MuJoCo Menagerie's UR5e: `tests/menagerie.rs`.)
+//! stops the arm, and `mock` follows its motions. (MuJoCo Menagerie's UR5e: `tests/third_party_robots.rs`.)
 
 use std::cell::RefCell;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};

