@@ -196,3 +196,24 @@ fn the_model_cache_setting_takes_true_false_or_a_folder() {
         "nothing in the current folder"
     );
 }
+
+/// Built without the `camera` feature, a world whose sensors need it for `real` is refused
+/// naming the feature, not only the environments the sensors have.
+#[cfg(not(feature = "camera"))]
+#[test]
+fn a_real_run_that_needs_the_camera_feature_says_so() {
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_yarok"))
+        .args(["run", "digit_world", "--env", "real"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    for digit in ["/arm/gripper/left_digit", "/arm/gripper/right_digit"] {
+        assert!(
+            stderr.contains(&format!(
+                "{digit} (Digit) supports sim, mock — build yarok with the `camera` feature"
+            )),
+            "{stderr}"
+        );
+    }
+}

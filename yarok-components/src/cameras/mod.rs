@@ -128,6 +128,8 @@ impl Component for Cam {
         interfaces.add::<Sim>().add::<Mock>();
         #[cfg(feature = "camera")]
         interfaces.add::<yarok_hw::Real>();
+        #[cfg(not(feature = "camera"))]
+        interfaces.unavailable::<yarok_hw::Real>("the `camera` feature");
     }
 }
 

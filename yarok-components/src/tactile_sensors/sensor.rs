@@ -626,6 +626,8 @@ macro_rules! tactile_sensor_component {
                 interfaces.add::<yarok_mjc::Sim>().add::<yarok_core::component::Mock>();
                 #[cfg(feature = "camera")]
                 interfaces.add::<yarok_hw::Real>();
+                #[cfg(not(feature = "camera"))]
+                interfaces.unavailable::<yarok_hw::Real>("the `camera` feature");
             }
         }
 

@@ -35,13 +35,22 @@ pub(crate) type BindFn = fn(BindContext) -> Binding;
 /// The environments a component runs in; filled in [`Component::interfaces`].
 pub struct Interfaces<C> {
     entries: Vec<(&'static str, BindFn)>,
+    unavailable: Vec<(&'static str, &'static str)>,
     component: PhantomData<fn() -> C>,
+}
+
+/// What [`Interfaces`] holds once filled: the interfaces, and why some environments' are not in
+/// this build.
+pub(crate) struct Filled {
+    pub(crate) entries: Vec<(&'static str, BindFn)>,
+    pub(crate) unavailable: Vec<(&'static str, &'static str)>,
 }
 
 impl<C: Component> Interfaces<C> {
     pub(crate) fn new() -> Self {
         Self {
             entries: Vec::new(),
+            unavailable: Vec::new(),
             component: PhantomData,
         }
     }
@@ -55,8 +64,36 @@ impl<C: Component> Interfaces<C> {
         self
     }
 
-    pub(crate) fn into_entries(self) -> Vec<(&'static str, BindFn)> {
-        self.entries
+    /// Says what would add the interface for environment `E` that this build leaves out (a
+    /// cargo feature): a run in `E` is then refused with it, not only with the environments
+    /// the component has.
+    ///
+    /// ```
+    /// use yarok_core::component::{Component, Declaration, Interfaces, Mock};
+    ///
+    /// struct Camera;
+    ///
+    /// impl Component for Camera {
+    ///     fn declaration() -> Declaration {
+    ///         Declaration::new("camera")
+    ///     }
+    ///
+    ///     fn interfaces(interfaces: &mut Interfaces<Self>) {
+    ///         #[cfg(not(feature = "camera"))]
+    ///         interfaces.unavailable::<Mock>("the `camera` feature");
+    ///     }
+    /// }
+    /// ```
+    pub fn unavailable<E: Environment>(&mut self, what_adds_it: &'static str) -> &mut Self {
+        self.unavailable.push((E::NAME, what_adds_it));
+        self
+    }
+
+    pub(crate) fn filled(self) -> Filled {
+        Filled {
+            entries: self.entries,
+            unavailable: self.unavailable,
+        }
     }
 }
 

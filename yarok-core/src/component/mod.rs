@@ -131,7 +131,7 @@ pub struct ComponentType {
     type_id: TypeId,
     type_name: &'static str,
     declaration: fn() -> Declaration,
-    interfaces: fn() -> Vec<(&'static str, BindFn)>,
+    interfaces: fn() -> interface::Filled,
 }
 
 impl ComponentType {
@@ -144,7 +144,7 @@ impl ComponentType {
             interfaces: || {
                 let mut interfaces = Interfaces::<C>::new();
                 C::interfaces(&mut interfaces);
-                interfaces.into_entries()
+                interfaces.filled()
             },
         }
     }
@@ -167,14 +167,26 @@ impl ComponentType {
     /// The names of the environments it has an interface for, in the order it lists them.
     pub fn environments(&self) -> Vec<&'static str> {
         (self.interfaces)()
+            .entries
             .into_iter()
             .map(|(name, _)| name)
             .collect()
     }
 
+    /// What would add its interface for `environment` if this build leaves it out (see
+    /// [`Interfaces::unavailable`]).
+    pub fn unavailable(&self, environment: &str) -> Option<&'static str> {
+        (self.interfaces)()
+            .unavailable
+            .into_iter()
+            .find(|(name, _)| *name == environment)
+            .map(|(_, what)| what)
+    }
+
     /// Its interface for `environment`.
     pub(crate) fn binder(&self, environment: &str) -> Option<BindFn> {
         (self.interfaces)()
+            .entries
             .into_iter()
             .find(|(name, _)| *name == environment)
             .map(|(_, bind)| bind)

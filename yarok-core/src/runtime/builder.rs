@@ -335,6 +335,7 @@ fn check_support(composition: &Composition, environment: &str) -> Result<(), Run
                 path: instance.path.clone(),
                 type_name: instance.component.type_name(),
                 supports,
+                added_by: instance.component.unavailable(environment),
             })
         })
         .collect();

@@ -179,6 +179,9 @@ pub struct Unsupported {
     pub type_name: &'static str,
     /// The environments it supports.
     pub supports: Vec<&'static str>,
+    /// What would add its interface for the selected environment, if this build leaves it out
+    /// (a cargo feature).
+    pub added_by: Option<&'static str>,
 }
 
 fn unsupported(components: &[Unsupported]) -> String {
@@ -186,7 +189,15 @@ fn unsupported(components: &[Unsupported]) -> String {
         .iter()
         .map(|c| {
             let short = c.type_name.rsplit("::").next().unwrap_or(c.type_name);
-            format!("{} ({short}) supports {}", c.path, c.supports.join(", "))
+            let added = c
+                .added_by
+                .map(|what| format!(" — build yarok with {what} to run it here"))
+                .unwrap_or_default();
+            format!(
+                "{} ({short}) supports {}{added}",
+                c.path,
+                c.supports.join(", ")
+            )
         })
         .collect::<Vec<_>>()
         .join("; ")
