@@ -135,6 +135,10 @@ component!(
     "<mujoco><worldbody><for each=\"range(2)\"><geom/></for></worldbody></mujoco>"
 );
 component!(
+    BadLoopName,
+    "<mujoco><worldbody><for each=\"range(2)\" as=\"1x\"><geom/></for></worldbody></mujoco>"
+);
+component!(
     NotIterable,
     "<mujoco><worldbody><for each=\"n\" as=\"i\"><geom/></for></worldbody></mujoco>"
 );
@@ -164,6 +168,11 @@ fn structural_mistakes_are_explained() {
         ),
         (error_of::<Loop>(), "<for> needs a `as` attribute"),
         (error_of::<NotIterable>(), "cannot loop over 2"),
+        (
+            error_of::<BadLoopName>(),
+            "`as` names the loop's variable: \"1x\" is not a name (letters, digits and _, not \
+             starting with a digit, not true or false)",
+        ),
         (
             error_of::<BadKey>(),
             "no config key `m` (it has n); did you mean `n`?",

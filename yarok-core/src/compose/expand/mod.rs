@@ -319,6 +319,18 @@ impl<'o> Composer<'o> {
                         .map_err(|m| self.error(&element, None, None, m))?;
                     let name = required(&element, "as")
                         .map_err(|m| self.error(&element, None, None, m))?;
+                    if !is_variable_name(&name.value) {
+                        return Err(self.error(
+                            &element,
+                            Some(&name),
+                            Some(&name.value),
+                            format!(
+                                "`as` names the loop's variable: {:?} is not a name (letters, \
+                                 digits and _, not starting with a digit, not true or false)",
+                                name.value
+                            ),
+                        ));
+                    }
                     let value = self.eval(&each.value, &element, Some(&each), scope)?;
                     let items = match (value.to_list(), value.as_str()) {
                         (Some(items), _) => items,
@@ -598,6 +610,16 @@ fn set_missing_class(elements: &mut [Element], in_worldbody: bool) {
             element.set_attribute(attribute, "main");
         }
     }
+}
+
+/// Whether `name` can name a variable in the template's expressions.
+fn is_variable_name(name: &str) -> bool {
+    let mut chars = name.chars();
+    chars
+        .next()
+        .is_some_and(|first| first.is_alphabetic() || first == '_')
+        && chars.all(|c| c.is_alphanumeric() || c == '_')
+        && !["true", "false"].contains(&name)
 }
 
 fn required(element: &Element, name: &str) -> Result<Attribute, String> {
