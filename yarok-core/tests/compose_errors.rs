@@ -139,6 +139,10 @@ component!(
     "<mujoco><worldbody><for each=\"range(2)\" as=\"1x\"><geom/></for></worldbody></mujoco>"
 );
 component!(
+    BadAngleUnit,
+    "<mujoco><compiler angle=\"Degree\"/><worldbody><geom size=\"1\"/></worldbody></mujoco>"
+);
+component!(
     NotIterable,
     "<mujoco><worldbody><for each=\"n\" as=\"i\"><geom/></for></worldbody></mujoco>"
 );
@@ -168,6 +172,10 @@ fn structural_mistakes_are_explained() {
         ),
         (error_of::<Loop>(), "<for> needs a `as` attribute"),
         (error_of::<NotIterable>(), "cannot loop over 2"),
+        (
+            error_of::<BadAngleUnit>(),
+            "angle must be \"degree\" or \"radian\", as MuJoCo reads it, not \"Degree\"",
+        ),
         (
             error_of::<BadLoopName>(),
             "`as` names the loop's variable: \"1x\" is not a name (letters, digits and _, not \

@@ -10,6 +10,9 @@ use std::collections::HashMap;
 
 use crate::template::xml::Element;
 
+/// The units `compiler/@angle` may name.
+pub(super) const UNITS: [&str; 2] = ["degree", "radian"];
+
 /// MuJoCo's unit when `compiler/@angle` is not given.
 pub(super) const DEFAULT_UNIT: &str = "degree";
 

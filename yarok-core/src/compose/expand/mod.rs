@@ -235,6 +235,21 @@ impl<'o> Composer<'o> {
             .map_err(|e| self.located(&e))?;
         super::sections::merge_top_level_defaults(&mut sections);
         let has_defaults = sections.iter().any(|s| s.name == "default");
+        for compiler in sections.iter().filter(|s| s.name == "compiler") {
+            if let Some(angle) = compiler.attribute_entry("angle")
+                && !angles::UNITS.contains(&angle.value.as_str())
+            {
+                return Err(self.error(
+                    compiler,
+                    Some(angle),
+                    None,
+                    format!(
+                        "angle must be \"degree\" or \"radian\", as MuJoCo reads it, not {:?}",
+                        angle.value
+                    ),
+                ));
+            }
+        }
         let unit = angles::unit_of(&sections)
             .unwrap_or(angles::DEFAULT_UNIT)
             .to_owned();
