@@ -217,3 +217,30 @@ fn a_real_run_that_needs_the_camera_feature_says_so() {
         );
     }
 }
+
+/// Interface settings the selected environment's interface never reads are warned about, naming
+/// the component, the keys and where they were set.
+#[test]
+fn interface_settings_nothing_reads_are_warned_about() {
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_yarok"))
+        .args([
+            "run",
+            "pick_and_place_world",
+            "--behaviour",
+            "idle",
+            "--env",
+            "mock",
+        ])
+        .args(["--set", "interfaces/arm/hots=\"x\""])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    assert!(
+        stderr.contains(
+            "component /arm: its `mock` interface takes no settings; hots \
+             (--set interfaces/arm/hots=\"x\") changed nothing"
+        ),
+        "{stderr}"
+    );
+}

@@ -106,6 +106,8 @@ pub(crate) struct BindContext {
 pub struct Bind<E: Environment> {
     context: BindContext,
     backend: Rc<E::Backend>,
+    /// Whether the interface has read its settings.
+    settings_read: std::cell::Cell<bool>,
 }
 
 impl<E: Environment> std::fmt::Debug for Bind<E> {
@@ -131,7 +133,35 @@ impl<E: Environment> Bind<E> {
                 )
                 .into(),
             })?;
-        Ok(Self { context, backend })
+        Ok(Self {
+            context,
+            backend,
+            settings_read: std::cell::Cell::new(false),
+        })
+    }
+
+    /// Warns when the run configuration gave this component's interface settings that it never
+    /// read (they would change nothing): once it is bound.
+    pub(crate) fn warn_unread_settings(&self) {
+        if self.settings_read.get() || self.context.settings.is_empty() {
+            return;
+        }
+        let keys: Vec<&str> = self.context.settings.keys().collect();
+        let origins: Vec<String> = keys
+            .iter()
+            .map(|key| {
+                self.context
+                    .origins
+                    .describe("interfaces", &self.context.path, key)
+            })
+            .collect();
+        tracing::warn!(
+            "component {}: its `{}` interface takes no settings; {} ({}) changed nothing",
+            self.context.path,
+            self.context.environment,
+            keys.join(", "),
+            origins.join(", ")
+        );
     }
 
     /// The environment's backend.
@@ -172,6 +202,7 @@ impl<E: Environment> Bind<E> {
     /// [`BindError::Settings`] naming where the bad value was set: an unknown key (with the
     /// nearest one), or a value of the wrong type.
     pub fn settings<T: DeserializeOwned>(&self) -> Result<T, BindError> {
+        self.settings_read.set(true);
         self.context
             .settings
             .deserialize()

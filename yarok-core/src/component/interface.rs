@@ -110,6 +110,7 @@ fn bind_erased<C: Interface<E>, E: Environment>(context: BindContext) -> Binding
         let mut bind = Bind::<E>::new(context)?;
         let span = tracing::info_span!("component", path = %bind.path());
         let handle = tracing::Instrument::instrument(C::bind(&mut bind), span).await?;
+        bind.warn_unread_settings();
         Ok(Box::new(handle) as Box<dyn Any>)
     })
 }
