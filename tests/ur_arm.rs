@@ -10,13 +10,13 @@ use std::sync::Arc;
 
 use yarok::components::robots::ur::{
     Arm, ArmNames, DhParameters, Joints, MOVE_J_DEFAULTS, MOVE_L_DEFAULTS, MotionError, Ur5, Ur5e,
-    pose_from_vector,
+    isometry_of, pose_from_vector,
 };
 use yarok::components::tactile::noise::SplitMix64;
 use yarok::components::worlds::EmptyWorld;
 use yarok::core::compose::compose;
 use yarok::mjc::{Data, Model};
-use yarok::nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
+use yarok::nalgebra::{Isometry3, Translation3, Vector3};
 use yarok::prelude::*;
 
 const HOME: Joints = [0.0, -FRAC_PI_2, FRAC_PI_2, -FRAC_PI_2, -FRAC_PI_2, 0.0];
@@ -54,12 +54,10 @@ fn the_flange_site_is_tool0_of_the_kinematics() {
                 data.qpos_mut(*joint)[0] = angle;
             }
             data.forward();
-            let site = data.site_pose(flange);
+            let site = isometry_of(&data.site_pose(flange));
             let expected = dh.forward(&q);
-            let [w, x, y, z] = site.quat;
-            let rotation = UnitQuaternion::from_quaternion(Quaternion::new(w, x, y, z));
-            let position = (Vector3::from(site.pos) - expected.translation.vector).norm();
-            let angle = rotation.angle_to(&expected.rotation);
+            let position = (site.translation.vector - expected.translation.vector).norm();
+            let angle = site.rotation.angle_to(&expected.rotation);
             assert!(
                 position < 1e-6 && angle < 1e-6,
                 "{dh:?} at {q:?}: {position} m, {angle} rad"

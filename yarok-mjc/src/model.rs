@@ -192,10 +192,7 @@ impl Model {
         // SAFETY: body_parentid holds nbody entries and `index` < nbody.
         let parent =
             unsafe { self.array(self.raw().body_parentid, self.count(ObjectKind::Body)) }[index];
-        BodyId {
-            index: to_usize(parent),
-            signature: self.signature(),
-        }
+        self.body_at(parent)
     }
 
     /// The body a joint moves.
@@ -209,10 +206,7 @@ impl Model {
         // SAFETY: jnt_bodyid holds njnt entries and `index` < njnt.
         let body =
             unsafe { self.array(self.raw().jnt_bodyid, self.count(ObjectKind::Joint)) }[index];
-        BodyId {
-            index: to_usize(body),
-            signature: self.signature(),
-        }
+        self.body_at(body)
     }
 
     /// The body a site is on.
@@ -226,8 +220,13 @@ impl Model {
         // SAFETY: site_bodyid holds nsite entries and `index` < nsite.
         let body =
             unsafe { self.array(self.raw().site_bodyid, self.count(ObjectKind::Site)) }[index];
+        self.body_at(body)
+    }
+
+    /// The id of the body at `index` in this model's arrays (as its `*_bodyid` arrays hold).
+    fn body_at(&self, index: std::os::raw::c_int) -> BodyId {
         BodyId {
-            index: to_usize(body),
+            index: to_usize(index),
             signature: self.signature(),
         }
     }

@@ -5,12 +5,13 @@
 use std::cell::RefCell;
 use std::rc::Rc;
 
-use nalgebra::{Isometry3, Quaternion, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Point3};
 use yarok_core::time::Clock;
 use yarok_mjc::{Actuator, Joint, ServoGains, Site};
 
 use super::error::MotionError;
 use super::kinematics::{IkError, Joints, Kinematics, pose_to_vector};
+use super::measured::isometry_of;
 use super::path::Path;
 use super::payload::Payload;
 use super::profile::Profile;
@@ -67,12 +68,10 @@ pub(super) struct Servos {
 impl Servos {
     /// What each joint must give to hold `payload` against gravity.
     fn holding(&self, payload: &Payload) -> Vec<f64> {
-        let flange = self.flange.pose();
-        let [w, x, y, z] = flange.quat;
-        let rotation = UnitQuaternion::from_quaternion(Quaternion::new(w, x, y, z));
-        let centre = Vector3::from(flange.pos) + rotation * Vector3::from(payload.centre);
+        let centre = isometry_of(&self.flange.pose()) * Point3::from(payload.centre);
         let weight = self.gravity.map(|g| -g * payload.mass);
-        self.flange.forces_on(&self.joints, centre.into(), weight)
+        self.flange
+            .forces_on(&self.joints, centre.coords.into(), weight)
     }
 }
 

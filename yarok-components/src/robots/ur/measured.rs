@@ -65,7 +65,7 @@ impl MeasuredKinematics {
             (Point3::from(anchor), Vector3::from(axis).normalize())
         });
         let carrier = data.body_pose(model.body_parent(model.joint_body(joints[0])));
-        let site = isometry(&data.site_pose(flange));
+        let site = isometry_of(&data.site_pose(flange));
         let (dh, base) = chain(
             &axes,
             Point3::from(carrier.pos),
@@ -108,7 +108,7 @@ impl MeasuredKinematics {
         ];
         for q in configurations {
             set(data, joints, &q);
-            let site = isometry(&data.site_pose(flange));
+            let site = isometry_of(&data.site_pose(flange));
             let ours = self.base * self.kinematics.forward(&q);
             let position = (site.translation.vector - ours.translation.vector).norm();
             let angle = site.rotation.angle_to(&ours.rotation);
@@ -132,7 +132,16 @@ fn set(data: &mut Data, joints: &[JointId; 6], q: &Joints) {
     data.forward();
 }
 
-fn isometry(pose: &Pose) -> Isometry3<f64> {
+/// A pose MuJoCo reports ([`Pose`]) as an isometry, in the frame MuJoCo gives it in.
+///
+/// ```
+/// use yarok_components::robots::ur::isometry_of;
+/// use yarok_mjc::Pose;
+///
+/// let pose = Pose { pos: [0.1, 0.2, 0.3], quat: [1.0, 0.0, 0.0, 0.0] };
+/// assert_eq!(isometry_of(&pose).translation.vector.z, 0.3);
+/// ```
+pub fn isometry_of(pose: &Pose) -> Isometry3<f64> {
     let [w, x, y, z] = pose.quat;
     Isometry3::from_parts(
         Translation3::from(Vector3::from(pose.pos)),

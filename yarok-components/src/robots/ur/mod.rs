@@ -25,7 +25,7 @@ pub use kinematics::{
     DhParameters, IkError, JointLimits, Joints, Kinematics, Solutions, pose_from_vector,
     pose_to_vector,
 };
-pub use measured::MeasuredKinematics;
+pub use measured::{MeasuredKinematics, isometry_of};
 pub use motion::Move;
 pub use path::PathError;
 pub use payload::Payload;
