@@ -179,7 +179,7 @@ fn structural_mistakes_are_explained() {
         (
             error_of::<BadLoopName>(),
             "`as` names the loop's variable: \"1x\" is not a name (letters, digits and _, not \
-             starting with a digit, not true or false)",
+             starting with a digit, not a keyword)",
         ),
         (
             error_of::<BadKey>(),

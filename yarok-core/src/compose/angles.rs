@@ -8,20 +8,27 @@
 
 use std::collections::HashMap;
 
-use crate::template::xml::Element;
+use crate::template::xml::{Attribute, Element};
 
 /// The units `compiler/@angle` may name.
-pub(super) const UNITS: [&str; 2] = ["degree", "radian"];
+const UNITS: [&str; 2] = ["degree", "radian"];
 
 /// MuJoCo's unit when `compiler/@angle` is not given.
 pub(super) const DEFAULT_UNIT: &str = "degree";
 
-/// The unit the `compiler` among `sections` sets, if any.
-pub(super) fn unit_of(sections: &[Element]) -> Option<&str> {
-    sections
-        .iter()
-        .filter(|s| s.name == "compiler")
-        .find_map(|c| c.attribute("angle"))
+/// The unit the `compiler` among `sections` sets, or MuJoCo's default; the `compiler` and its
+/// attribute when one names a unit MuJoCo does not know.
+pub(super) fn unit_of(sections: &[Element]) -> Result<&str, (&Element, &Attribute)> {
+    let mut unit = None;
+    for compiler in sections.iter().filter(|s| s.name == "compiler") {
+        if let Some(angle) = compiler.attribute_entry("angle") {
+            if !UNITS.contains(&angle.value.as_str()) {
+                return Err((compiler, angle));
+            }
+            unit.get_or_insert(angle.value.as_str());
+        }
+    }
+    Ok(unit.unwrap_or(DEFAULT_UNIT))
 }
 
 /// How to turn a number in `from` into `to` (`None` when the units are the same).

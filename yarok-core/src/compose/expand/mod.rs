@@ -235,11 +235,9 @@ impl<'o> Composer<'o> {
             .map_err(|e| self.located(&e))?;
         super::sections::merge_top_level_defaults(&mut sections);
         let has_defaults = sections.iter().any(|s| s.name == "default");
-        for compiler in sections.iter().filter(|s| s.name == "compiler") {
-            if let Some(angle) = compiler.attribute_entry("angle")
-                && !angles::UNITS.contains(&angle.value.as_str())
-            {
-                return Err(self.error(
+        let unit = angles::unit_of(&sections)
+            .map_err(|(compiler, angle)| {
+                self.error(
                     compiler,
                     Some(angle),
                     None,
@@ -247,11 +245,8 @@ impl<'o> Composer<'o> {
                         "angle must be \"degree\" or \"radian\", as MuJoCo reads it, not {:?}",
                         angle.value
                     ),
-                ));
-            }
-        }
-        let unit = angles::unit_of(&sections)
-            .unwrap_or(angles::DEFAULT_UNIT)
+                )
+            })?
             .to_owned();
         let conversion = if id == 0 {
             self.angle_unit = unit;
@@ -334,14 +329,14 @@ impl<'o> Composer<'o> {
                         .map_err(|m| self.error(&element, None, None, m))?;
                     let name = required(&element, "as")
                         .map_err(|m| self.error(&element, None, None, m))?;
-                    if !is_variable_name(&name.value) {
+                    if !crate::template::expr::is_variable_name(&name.value) {
                         return Err(self.error(
                             &element,
                             Some(&name),
                             Some(&name.value),
                             format!(
                                 "`as` names the loop's variable: {:?} is not a name (letters, \
-                                 digits and _, not starting with a digit, not true or false)",
+                                 digits and _, not starting with a digit, not a keyword)",
                                 name.value
                             ),
                         ));
@@ -625,16 +620,6 @@ fn set_missing_class(elements: &mut [Element], in_worldbody: bool) {
             element.set_attribute(attribute, "main");
         }
     }
-}
-
-/// Whether `name` can name a variable in the template's expressions.
-fn is_variable_name(name: &str) -> bool {
-    let mut chars = name.chars();
-    chars
-        .next()
-        .is_some_and(|first| first.is_alphabetic() || first == '_')
-        && chars.all(|c| c.is_alphanumeric() || c == '_')
-        && !["true", "false"].contains(&name)
 }
 
 fn required(element: &Element, name: &str) -> Result<Attribute, String> {

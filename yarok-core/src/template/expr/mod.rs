@@ -92,6 +92,15 @@ struct Conditional {
     otherwise: Plan,
 }
 
+/// Whether `name` can name a variable in an expression (a loop's `as`): a single name, not a
+/// keyword or constant.
+pub(crate) fn is_variable_name(name: &str) -> bool {
+    matches!(
+        lexer::tokenize(name).as_deref(),
+        Ok([(lexer::Token::Name(word), _)]) if !parser::KEYWORDS.contains(&word.as_str())
+    )
+}
+
 impl Expr {
     /// Parses a Python expression.
     ///

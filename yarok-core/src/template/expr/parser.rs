@@ -37,6 +37,11 @@ pub(super) enum Ast {
     Slice(Box<Ast>, Option<Box<Ast>>, Option<Box<Ast>>),
 }
 
+/// The words that cannot name a variable: the constants and the keywords.
+pub(super) const KEYWORDS: [&str; 12] = [
+    "True", "False", "None", "if", "else", "and", "or", "not", "in", "lambda", "for", "import",
+];
+
 pub(super) fn parse(tokens: &[Spanned], source_len: usize) -> Result<Ast, ExprError> {
     let mut parser = Parser {
         tokens,
@@ -346,7 +351,7 @@ impl Parser<'_> {
             "True" => Ast::Bool(true),
             "False" => Ast::Bool(false),
             "None" => Ast::None,
-            "if" | "else" | "and" | "or" | "not" | "in" | "lambda" | "for" | "import" => {
+            _ if KEYWORDS.contains(&name) => {
                 return Err(ExprError::at(
                     offset,
                     format!("unexpected keyword `{name}`"),

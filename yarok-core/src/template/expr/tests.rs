@@ -177,3 +177,13 @@ fn long_flat_chains_evaluate_without_deep_recursion() {
     assert_eq!(eval("0 or '' or 7 or 8"), Value::Int(7));
     assert_eq!(eval("0 or ''"), Value::String(String::new()));
 }
+
+#[test]
+fn loop_variables_are_names_that_are_not_keywords() {
+    for name in ["leg", "_b2", "true", "größe"] {
+        assert!(super::is_variable_name(name), "{name}");
+    }
+    for name in ["1x", "True", "None", "if", "a b", "a.b", "", "x+1"] {
+        assert!(!super::is_variable_name(name), "{name}");
+    }
+}
