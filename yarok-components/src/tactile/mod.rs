@@ -69,7 +69,7 @@ fn image_height(len: usize, width: usize) -> Result<usize, SizeError> {
 }
 
 /// Checks that `what` holds `channels` values per pixel of a `width × height` image.
-fn expect_len(
+pub(crate) fn expect_len(
     what: &'static str,
     actual: usize,
     channels: usize,

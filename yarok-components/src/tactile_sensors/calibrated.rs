@@ -1,9 +1,9 @@
 //! [`CalibratedModel`]: a flat gel's image by a [`Calibration`] fitted to a real sensor.
 
 use super::flat_gel::FlatGelModel;
-use crate::tactile::SizeError;
 use crate::tactile::calibration::Calibration;
 use crate::tactile::noise::SplitMix64;
+use crate::tactile::{SizeError, expect_len};
 
 /// A calibration's model of a flat gel `gel_face` metres from the camera, `pixel` metres a
 /// pixel there. It draws its own untouched gel (the calibration's), not the sensor's background,
@@ -79,22 +79,13 @@ impl FlatGelModel for CalibratedModel {
         _background: &[u8],
         out: &mut [u8],
     ) -> Result<(), SizeError> {
+        expect_len("image", out.len(), 3, self.calibration.size())?;
         self.indentation.clear();
         self.indentation
             .extend(depth.iter().map(|d| (self.gel_face - d).max(0.0)));
         let image = self
             .calibration
             .render_indentation(&self.indentation, self.pixel)?;
-        let (width, height) = self.calibration.size();
-        if out.len() != image.as_raw().len() {
-            return Err(SizeError::Mismatch {
-                what: "image",
-                actual: out.len(),
-                width,
-                height,
-                expected: image.as_raw().len(),
-            });
-        }
         out.copy_from_slice(image.as_raw());
         if let Some(noise) = &self.noise {
             noise.add(out);

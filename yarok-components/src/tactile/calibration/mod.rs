@@ -236,15 +236,7 @@ impl Calibration {
         metres_per_pixel: f64,
     ) -> Result<RgbImage, SizeError> {
         let (width, height) = self.size();
-        if indentation.len() != width * height {
-            return Err(SizeError::Mismatch {
-                what: "indentation map",
-                actual: indentation.len(),
-                width,
-                height,
-                expected: width * height,
-            });
-        }
+        super::expect_len("indentation map", indentation.len(), 1, (width, height))?;
         if !indentation.iter().any(|m| *m > 0.0) {
             return Ok(self.background.clone());
         }
