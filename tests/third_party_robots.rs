@@ -12,12 +12,14 @@ use std::sync::Arc;
 
 use yarok::components::demos::stack_with;
 use yarok::components::grippers::{GripperNames, Robotiq2f85};
-use yarok::components::robots::ur::{Arm, ArmConfig, ArmNames, Joints, MeasuredKinematics};
+use yarok::components::robots::ur::{
+    Arm, ArmConfig, ArmNames, Joints, MeasuredKinematics, isometry_of,
+};
 use yarok::components::tactile::noise::SplitMix64;
 use yarok::components::toys::{Block, Spot};
 use yarok::core::compose::compose;
 use yarok::mjc::{Data, Model, Sim, Site};
-use yarok::nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
+use yarok::nalgebra::{Isometry3, Vector3};
 use yarok::prelude::*;
 
 #[path = "../yarok-hw/tests/support/peers.rs"]
@@ -64,14 +66,6 @@ impl Interface<Sim> for MenagerieUr5e {
     }
 }
 
-fn isometry(pose: &yarok::mjc::Pose) -> Isometry3<f64> {
-    let [w, x, y, z] = pose.quat;
-    Isometry3::from_parts(
-        Translation3::from(Vector3::from(pose.pos)),
-        UnitQuaternion::from_quaternion(Quaternion::new(w, x, y, z)),
-    )
-}
-
 /// The worst distance and angle between MuJoCo's `site` and the measured kinematics' TCP over
 /// 1 000 random configurations within the joints' ranges; and the DH lengths measured.
 fn measured_against_mujoco(model: &Arc<Model>, names: &ArmNames) -> (f64, f64, [f64; 6]) {
@@ -91,7 +85,7 @@ fn measured_against_mujoco(model: &Arc<Model>, names: &ArmNames) -> (f64, f64, [
             data.qpos_mut(*joint)[0] = angle;
         }
         data.forward();
-        let mujoco = isometry(&data.site_pose(site));
+        let mujoco = isometry_of(&data.site_pose(site));
         let ours = measured.base * measured.kinematics.forward(&q);
         worst_position =
             worst_position.max((mujoco.translation.vector - ours.translation.vector).norm());
@@ -257,7 +251,7 @@ struct PickingUr5e(Arm);
 
 impl Component for PickingUr5e {
     fn declaration() -> Declaration {
-        Declaration::new("picking_ur5e").mjcf_file(menagerie("universal_robots_ur5e/ur5e.xml"))
+        MenagerieUr5e::declaration()
     }
 
     fn interfaces(interfaces: &mut Interfaces<Self>) {
@@ -299,9 +293,9 @@ impl Component for MenagerieWorld {
                     <geom name="stand" type="box" size="0.12 0.12 0.2" pos="0 0 0.2"/>
                     <geom name="table" type="box" size="0.4 0.6 0.02" pos="0.52 0 0.38"/>
                     <body name="mount" pos="0 0 0.4">
-                      <picking_ur5e name="arm">
+                      <menagerie_ur5e name="arm">
                         <menagerie_2f85 name="gripper" parent="attachment_site"/>
-                      </picking_ur5e>
+                      </menagerie_ur5e>
                     </body>
                     <block name="large" size="0.05" pos="{[0.5, -0.25, 0.425]}"/>
                     <block name="medium" size="0.04" pos="{[0.62, 0.02, 0.42]}"/>
@@ -346,7 +340,7 @@ struct MisnamedGripper;
 
 impl Component for MisnamedGripper {
     fn declaration() -> Declaration {
-        Declaration::new("misnamed_gripper").mjcf_file(menagerie("robotiq_2f85/2f85.xml"))
+        Menagerie2f85::declaration()
     }
 
     fn interfaces(interfaces: &mut Interfaces<Self>) {
