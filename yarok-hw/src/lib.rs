@@ -12,9 +12,11 @@ mod backend;
 pub mod camera;
 pub mod marlin;
 mod reading;
+mod reopen;
 pub mod robotiq;
 mod serial;
 pub mod ur;
 
 pub use backend::{DEFAULT_TICK_HZ, HardwareBackend, InvalidTickRate, Real};
+pub use reopen::{FIRST_RETRY, reopen};
 pub use serial::{SerialError, SerialPort};

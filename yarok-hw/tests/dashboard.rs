@@ -81,6 +81,23 @@ async fn power_brakes_protective_stops_and_programs_in_both_profiles() {
     }
 }
 
+#[tokio::test]
+async fn remote_control_is_asked_of_an_e_series_controller_only() {
+    let e_series = FakeController::start(Profile::ESeries);
+    let mut dashboard = connect(&e_series).await;
+    assert!(dashboard.is_in_remote_control().await.unwrap());
+    e_series.set_remote_control(false);
+    assert!(!dashboard.is_in_remote_control().await.unwrap());
+
+    // A CB3 controller has no local mode (and does not understand the question).
+    let cb3 = FakeController::start(Profile::Cb3);
+    cb3.set_remote_control(false);
+    let mut dashboard = connect(&cb3).await;
+    assert!(dashboard.is_in_remote_control().await.unwrap());
+    let asked = dashboard.command("is in remote control").await.unwrap();
+    assert!(asked.starts_with("Could not understand"), "{asked}");
+}
+
 /// A dashboard server that sends `welcome` (if any), then closes or stays silent.
 async fn scripted(welcome: Option<&'static str>, close: bool) -> DashboardError {
     let (ours, mut theirs) = tokio::io::duplex(1024);

@@ -290,6 +290,29 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Dashboard<T> {
         })
     }
 
+    /// Whether the controller takes commands from the network (`is in remote control`): an
+    /// e-Series controller in local control runs no script sent to it and refuses `play`. A CB3
+    /// controller (3.x) has no local mode and is not asked.
+    ///
+    /// # Errors
+    ///
+    /// [`DashboardError::Failed`] for a reply that is neither `true` nor `false`.
+    pub async fn is_in_remote_control(&mut self) -> Result<bool, DashboardError> {
+        if self.version.is_none() {
+            self.polyscope_version().await?;
+        }
+        if self.version.is_some_and(|major| major < 5) {
+            return Ok(true);
+        }
+        let command = "is in remote control";
+        let reply = self.command(command).await?;
+        match reply.trim() {
+            "true" => Ok(true),
+            "false" => Ok(false),
+            _ => Err(self.failed(command, reply)),
+        }
+    }
+
     /// Sends `command`; its reply must start with `success`.
     async fn expect(&mut self, command: &str, success: &str) -> Result<(), DashboardError> {
         let reply = self.command(command).await?;

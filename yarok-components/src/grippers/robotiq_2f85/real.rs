@@ -10,8 +10,8 @@ use serde::Deserialize;
 use tokio::net::TcpStream;
 use tokio::sync::watch;
 use yarok_core::component::{Bind, BindError, Interface};
-use yarok_hw::Real;
-use yarok_hw::robotiq::{Gripper, GripperState, Motion};
+use yarok_hw::robotiq::{Gripper, GripperError, GripperState, Motion};
+use yarok_hw::{Real, reopen};
 
 use super::{Drive, Robotiq2f85};
 
@@ -78,18 +78,8 @@ impl RealFingers {
 impl Interface<Real> for Robotiq2f85 {
     async fn bind(bind: &mut Bind<Real>) -> Result<Self, BindError> {
         let settings: Settings = bind.settings()?;
-        let seconds = |value: f64| Duration::try_from_secs_f64(value).unwrap_or_default();
-        let address = (settings.host.as_str(), settings.port);
-        let name = format!("{}:{}", settings.host, settings.port);
-        let stream = bind
-            .within(
-                settings.reply_seconds,
-                "the gripper's connection",
-                TcpStream::connect(address),
-            )
-            .await?
-            .map_err(|e| bind.error(format!("gripper {name}: {e}")))?;
-        let mut gripper = Gripper::new(stream, name, seconds(settings.reply_seconds));
+        let socket = Socket::new(&settings);
+        let mut gripper = socket.open().await.map_err(|e| bind.error(e))?;
         gripper
             .activate(seconds(settings.activation_seconds))
             .await
@@ -99,15 +89,94 @@ impl Interface<Real> for Robotiq2f85 {
             status: Cell::new(status),
             requests: watch::Sender::new(None),
         });
-        bind.spawn(drive(Rc::clone(&fingers), gripper));
+        bind.spawn(drive(Rc::clone(&fingers), socket, gripper));
         Ok(Self::with_drive(bind, Drive::Real(fingers)))
     }
 }
 
-/// Sends each new request and reads the status every [`POLL`]; a fault ends the run with the
-/// gripper's error.
+fn seconds(value: f64) -> Duration {
+    Duration::try_from_secs_f64(value).unwrap_or_default()
+}
+
+/// Where the gripper's socket is, and how long its replies may take.
+struct Socket {
+    host: String,
+    port: u16,
+    name: String,
+    reply: Duration,
+}
+
+impl Socket {
+    fn new(settings: &Settings) -> Self {
+        Self {
+            host: settings.host.clone(),
+            port: settings.port,
+            name: format!("{}:{}", settings.host, settings.port),
+            reply: seconds(settings.reply_seconds),
+        }
+    }
+
+    /// A connection to the gripper, made within the reply time.
+    async fn open(&self) -> Result<Gripper<TcpStream>, String> {
+        let connecting = TcpStream::connect((self.host.as_str(), self.port));
+        match tokio::time::timeout(self.reply, connecting).await {
+            Ok(Ok(stream)) => Ok(Gripper::new(stream, self.name.clone(), self.reply)),
+            Ok(Err(error)) => Err(format!("gripper {}: {error}", self.name)),
+            Err(_) => Err(format!(
+                "gripper {}: no connection within {} s",
+                self.name,
+                self.reply.as_secs_f64()
+            )),
+        }
+    }
+
+    /// The gripper reconnected after `dropped` (attempts within the reply time, waits doubling
+    /// between them), still active; one that lost its activation is not activated again, since
+    /// activating moves the fingers through their whole stroke.
+    async fn reopen(
+        &self,
+        dropped: &GripperError,
+    ) -> Result<Gripper<TcpStream>, yarok_core::BoxError> {
+        tracing::warn!(gripper = %self.name, "connection lost ({dropped}); reconnecting");
+        let reopened = reopen(self.reply, async || {
+            let mut gripper = self.open().await?;
+            let active = gripper.get("STA").await.map_err(|e| e.to_string())?;
+            Ok::<_, String>((gripper, active))
+        })
+        .await;
+        match reopened {
+            Ok((gripper, 3)) => {
+                tracing::info!(gripper = %self.name, "reconnected");
+                Ok(gripper)
+            }
+            Ok((_, status)) => Err(format!(
+                "{dropped}; reconnected, but the gripper is no longer active (STA {status}): it \
+                 was reset, activate it again"
+            )
+            .into()),
+            Err(failed) => Err(format!(
+                "{dropped}; not back within {} s: {failed}",
+                self.reply.as_secs_f64()
+            )
+            .into()),
+        }
+    }
+}
+
+/// Whether `error` is the connection failing (not the gripper answering with a fault).
+fn is_connection_lost(error: &GripperError) -> bool {
+    matches!(
+        error,
+        GripperError::Closed { .. } | GripperError::Io { .. } | GripperError::Timeout { .. }
+    )
+}
+
+/// Sends each new request and reads the status every [`POLL`], reconnecting a dropped socket:
+/// a request the connection dropped under is sent again only when the gripper shows it did not
+/// take it. A fault ends the run with the gripper's error.
 async fn drive(
     fingers: Rc<RealFingers>,
+    socket: Socket,
     mut gripper: Gripper<TcpStream>,
 ) -> Result<(), yarok_core::BoxError> {
     let mut requests = fingers.requests.subscribe();
@@ -120,12 +189,34 @@ async fn drive(
                 }
                 let request = *requests.borrow_and_update();
                 if let Some([position, speed, force]) = request {
-                    gripper.go_to(position, speed, force).await?;
+                    match gripper.go_to(position, speed, force).await {
+                        Err(lost) if is_connection_lost(&lost) => {
+                            gripper = socket.reopen(&lost).await?;
+                            let taken = gripper.get("PRE").await? == position;
+                            if !taken {
+                                tracing::warn!(
+                                    gripper = %socket.name,
+                                    "the move to {position} was lost with the connection; sending it again"
+                                );
+                                gripper.go_to(position, speed, force).await?;
+                            }
+                        }
+                        other => other?,
+                    }
                 }
             }
             _ = poll.tick() => {
-                gripper.check_fault().await?;
-                fingers.status.set(gripper.state().await?);
+                let status = async {
+                    gripper.check_fault().await?;
+                    gripper.state().await
+                };
+                match status.await {
+                    Ok(status) => fingers.status.set(status),
+                    Err(lost) if is_connection_lost(&lost) => {
+                        gripper = socket.reopen(&lost).await?;
+                    }
+                    Err(fault) => return Err(fault.into()),
+                }
             }
         }
     }

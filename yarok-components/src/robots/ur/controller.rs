@@ -191,12 +191,12 @@ impl Controller {
         };
         let dt = self.clock.timestep();
         let t = now + dt - motion.started;
-        let safety_stop = match &self.drive {
-            Drive::Real(link) => link.safety_stop(),
+        let halt = match &self.drive {
+            Drive::Real(link) => link.halt(),
             _ => None,
         };
-        let reference = match safety_stop {
-            Some(mode) => Err(MotionError::SafetyStop { mode }),
+        let reference = match halt {
+            Some(error) => Err(error),
             None => motion
                 .reference(t, dt, &self.kinematics, &state.reference)
                 .map_err(MotionError::from),
@@ -229,7 +229,10 @@ impl Controller {
     /// How a motion whose profile is over ends: `None` while the arm settles.
     fn settled(&self, motion: &Motion, now: f64, state: &State) -> Option<Result<(), MotionError>> {
         let at = self.measured(state);
-        if motion.stopping {
+        if matches!(&self.drive, Drive::Real(link) if link.is_stale()) {
+            // RTDE is being reconnected: where the arm is will be known again, or the run ends.
+            None
+        } else if motion.stopping {
             Some(Err(MotionError::Stopped))
         } else if within(&at, &motion.target) {
             Some(Ok(()))

@@ -52,6 +52,13 @@ pub enum MotionError {
         /// The controller's safety mode (`PROTECTIVE_STOP`, `ROBOT_EMERGENCY_STOP`, …).
         mode: &'static str,
     },
+    /// A real arm is not running (its robot mode is `POWER_OFF`, `IDLE` with its brakes
+    /// locked, …): power it on and release its brakes on the teach pendant.
+    #[error("the arm is not running (robot mode {mode}): power it on and release its brakes")]
+    NotRunning {
+        /// The controller's robot mode.
+        mode: &'static str,
+    },
     /// The platform stopped, or a timeout passed.
     #[error(transparent)]
     Wait(#[from] WaitError),

@@ -10,12 +10,14 @@ use std::time::Duration;
 use serde::Deserialize;
 use tokio::net::TcpStream;
 use tokio::sync::{Notify, oneshot};
+use tokio::time::Instant;
 use yarok_core::component::{Bind, BindError};
-use yarok_hw::Real;
-use yarok_hw::ur::dashboard::Dashboard;
+use yarok_hw::ur::dashboard::{Dashboard, RobotMode, SafetyStatus};
 use yarok_hw::ur::rtde::{Rtde, RtdeSettings, Value};
 use yarok_hw::ur::secondary::{KinematicsInfo, Secondary, send_script};
+use yarok_hw::{Real, reopen};
 
+use super::error::MotionError;
 use super::kinematics::{DhParameters, Joints, Kinematics};
 use super::payload::Payload;
 
@@ -24,7 +26,11 @@ const SECONDARY_PORT: u16 = 30002;
 const DASHBOARD_PORT: u16 = 29999;
 
 /// What the arm streams over RTDE, in this order.
-const OUTPUTS: [&str; 3] = ["actual_q", "actual_qd", "safety_mode"];
+const OUTPUTS: [&str; 4] = ["actual_q", "actual_qd", "robot_mode", "safety_mode"];
+
+/// How long after RTDE's last data package the joints are taken as stale: a stream at 125 Hz
+/// or more sends one every 8 ms.
+const STALE_AFTER: Duration = Duration::from_millis(100);
 
 /// How far (metres) a DH length may differ from the configured one: calibration moves them by
 /// well under this, another model by centimetres.
@@ -75,11 +81,29 @@ fn safety_mode_name(mode: i32) -> &'static str {
     }
 }
 
+/// Robot modes as RTDE numbers them; 7 lets the arm move.
+fn robot_mode_name(mode: i32) -> &'static str {
+    match mode {
+        -1 => "NO_CONTROLLER",
+        0 => "DISCONNECTED",
+        1 => "CONFIRM_SAFETY",
+        2 => "BOOTING",
+        3 => "POWER_OFF",
+        4 => "POWER_ON",
+        5 => "IDLE",
+        6 => "BACKDRIVE",
+        7 => "RUNNING",
+        8 => "UPDATING_FIRMWARE",
+        _ => "UNKNOWN",
+    }
+}
+
 /// The arm as RTDE last reported it.
 #[derive(Debug, Clone, Copy)]
 struct Measured {
     q: Joints,
     qd: Joints,
+    robot_mode: i32,
     safety_mode: i32,
 }
 
@@ -92,6 +116,7 @@ enum Request {
 /// The link between the controller's motions and the driver's task.
 pub(super) struct RealLink {
     measured: Cell<Measured>,
+    received_at: Cell<Instant>,
     requests: RefCell<VecDeque<Request>>,
     wake: Notify,
 }
@@ -109,6 +134,29 @@ impl RealLink {
     pub(super) fn safety_stop(&self) -> Option<&'static str> {
         let mode = self.measured.get().safety_mode;
         (mode > 2).then(|| safety_mode_name(mode))
+    }
+
+    /// Why the arm cannot move, if it cannot: its safety system stopped it, or it is not
+    /// running (powered off, brakes locked, …).
+    pub(super) fn halt(&self) -> Option<MotionError> {
+        let robot_mode = self.measured.get().robot_mode;
+        match self.safety_stop() {
+            Some(mode) => Some(MotionError::SafetyStop { mode }),
+            None => (robot_mode != 7).then(|| MotionError::NotRunning {
+                mode: robot_mode_name(robot_mode),
+            }),
+        }
+    }
+
+    /// Whether RTDE has been silent for a while (a dropped stream being reconnected): the
+    /// joints are not where the arm is now.
+    pub(super) fn is_stale(&self) -> bool {
+        self.received_at.get().elapsed() > STALE_AFTER
+    }
+
+    fn update(&self, now: Measured) {
+        self.measured.set(now);
+        self.received_at.set(Instant::now());
     }
 
     /// Sends `script` to the controller, which runs it at once.
@@ -217,12 +265,13 @@ fn check_kinematics(
     )))
 }
 
-/// Connects to RTDE at `host`, sets up the arm's outputs and starts them.
+/// Connects to RTDE at `host`, sets up the arm's outputs, starts them and reads the first
+/// package: a stream that answers but sends no data is refused, naming it.
 async fn rtde_stream(
     host: &str,
     hz: Option<f64>,
     reply: Duration,
-) -> Result<Rtde<TcpStream>, Box<dyn std::error::Error + Send + Sync>> {
+) -> Result<(Rtde<TcpStream>, Measured), yarok_core::BoxError> {
     let stream = tokio::time::timeout(reply, TcpStream::connect((host, RTDE_PORT))).await??;
     let mut settings = RtdeSettings::new(host);
     settings.reply_timeout = reply;
@@ -235,7 +284,13 @@ async fn rtde_stream(
     rtde.setup_outputs(hz.unwrap_or(most).min(most), &OUTPUTS)
         .await?;
     rtde.start().await?;
-    Ok(rtde)
+    let first = rtde.receive().await.map_err(|error| {
+        format!(
+            "RTDE connected and started, but sent no data package (the service is mute): {error}"
+        )
+    })?;
+    let first = measured(&first).ok_or("RTDE sent other values than asked for")?;
+    Ok((rtde, first))
 }
 
 /// Connects to the secondary interface at `host`, which has sent its first robot state.
@@ -253,8 +308,14 @@ fn measured(values: &[Value]) -> Option<Measured> {
         [
             Value::Vector6d(q),
             Value::Vector6d(qd),
+            Value::Int32(robot_mode),
             Value::Int32(safety_mode),
-        ] => Some(Measured { q, qd, safety_mode }),
+        ] => Some(Measured {
+            q,
+            qd,
+            robot_mode,
+            safety_mode,
+        }),
         _ => None,
     }
 }
@@ -271,9 +332,10 @@ pub(super) async fn connect(
     let connecting = async {
         let secondary = secondary_stream(&host, reply).await?;
         let rtde = rtde_stream(&host, settings.rtde_hz, reply).await?;
+        check_ready(&host, reply).await?;
         Ok::<_, yarok_core::BoxError>((secondary, rtde))
     };
-    let (mut secondary, mut rtde) = bind
+    let (mut secondary, (rtde, first)) = bind
         .within(settings.connect_seconds, "the arm's controller", connecting)
         .await?
         .map_err(|e| bind.error(format!("controller {host}: {e}")))?;
@@ -282,8 +344,6 @@ pub(super) async fn connect(
         .kinematics
         .ok_or_else(|| bind.error(format!("controller {host} sent no kinematics")))?;
     check_kinematics(bind, &kinematics.dh, &reported)?;
-    let first = rtde.receive().await.map_err(|e| bind.error(e))?;
-    let first = measured(&first).ok_or_else(|| bind.error("RTDE sent other values"))?;
     if let Some([mass, x, y, z]) = settings.payload {
         let payload = Payload::new(mass, [x, y, z]).map_err(|e| bind.error(e))?;
         secondary
@@ -293,6 +353,7 @@ pub(super) async fn connect(
     }
     let link = Rc::new(RealLink {
         measured: Cell::new(first),
+        received_at: Cell::new(Instant::now()),
         requests: RefCell::new(VecDeque::new()),
         wake: Notify::new(),
     });
@@ -328,15 +389,18 @@ async fn drive(
             values = rtde.receive() => match values {
                 Ok(values) => {
                     if let Some(now) = measured(&values) {
-                        link.measured.set(now);
+                        report_a_halt(&link, &now, host, reply).await;
+                        link.update(now);
                     }
                 }
                 Err(error) => {
                     tracing::warn!(controller = %host, "RTDE dropped ({error}); reconnecting");
-                    rtde = reconnect("RTDE", host, reply, error, async || {
+                    let first;
+                    (rtde, first) = reconnect("RTDE", host, reply, error, async || {
                         rtde_stream(host, settings.rtde_hz, reply).await
                     })
                     .await?;
+                    link.update(first);
                 }
             },
             state = secondary.next_state() => {
@@ -370,24 +434,78 @@ async fn drive(
     }
 }
 
-/// The `what` connection to `host` made again with `open` within `reply`, or the error that
-/// dropped the old one.
+/// The `what` connection to `host` made again with `open` ([`reopen`] within `reply` of the
+/// drop), or the error that dropped the old one and the last attempt's.
 async fn reconnect<T>(
     what: &str,
     host: &str,
     reply: Duration,
     dropped: impl std::fmt::Display,
-    mut open: impl AsyncFnMut() -> Result<T, yarok_core::BoxError>,
+    open: impl AsyncFnMut() -> Result<T, yarok_core::BoxError>,
 ) -> Result<T, yarok_core::BoxError> {
-    let until = tokio::time::Instant::now() + reply;
-    while tokio::time::Instant::now() < until {
-        if let Ok(Ok(connection)) = tokio::time::timeout_at(until, open()).await {
+    match reopen(reply, open).await {
+        Ok(connection) => {
             tracing::info!(controller = %host, "{what} reconnected");
-            return Ok(connection);
+            Ok(connection)
         }
-        tokio::time::sleep(Duration::from_millis(100)).await;
+        Err(failed) => Err(format!(
+            "{dropped}; {what} not back within {} s: {failed}",
+            reply.as_secs_f64()
+        )
+        .into()),
     }
-    Err(format!("{dropped}; not back within {} s", reply.as_secs_f64()).into())
+}
+
+/// Refuses a controller that cannot move the arm, saying why in words: in local control, the
+/// arm powered off or its brakes locked, or its safety system holding it.
+async fn check_ready(host: &str, reply: Duration) -> Result<(), yarok_core::BoxError> {
+    let stream = tokio::time::timeout(reply, TcpStream::connect((host, DASHBOARD_PORT))).await??;
+    let mut dashboard = Dashboard::connect(stream, host, reply).await?;
+    if !dashboard.is_in_remote_control().await? {
+        return Err(
+            "the controller is in local control and runs no script sent to it: switch it \
+                    to remote control on the teach pendant"
+                .into(),
+        );
+    }
+    match dashboard.robot_mode().await? {
+        RobotMode::Running => {}
+        RobotMode::PowerOff => {
+            return Err(
+                "the arm is powered off: power it on and release its brakes (on the \
+                        teach pendant, or the dashboard's `power on` and `brake release`)"
+                    .into(),
+            );
+        }
+        RobotMode::PowerOn | RobotMode::Idle => {
+            return Err(
+                "the arm's brakes are locked: release them (on the teach pendant, or \
+                        the dashboard's `brake release`)"
+                    .into(),
+            );
+        }
+        other => return Err(format!("the arm is not running: its mode is {other:?}").into()),
+    }
+    match dashboard.safety_status().await? {
+        SafetyStatus::Normal | SafetyStatus::Reduced => Ok(()),
+        status => Err(format!(
+            "the arm's safety system holds it ({status:?}): inspect the cause, then clear it \
+             (unlock a protective stop, release an emergency stop)"
+        )
+        .into()),
+    }
+}
+
+/// Warns, in the dashboard's words, when RTDE says the arm has just stopped being able to move
+/// (RTDE's packages wait in the socket meanwhile).
+async fn report_a_halt(link: &RealLink, now: &Measured, host: &str, reply: Duration) {
+    let halted = |m: &Measured| m.robot_mode != 7 || m.safety_mode > 2;
+    if halted(now) && !halted(&link.measured.get()) {
+        match check_ready(host, reply).await {
+            Ok(()) => {}
+            Err(state) => tracing::warn!(controller = %host, "the arm stopped: {state}"),
+        }
+    }
 }
 
 /// `unlock protective stop` on the dashboard of `host`.

@@ -16,7 +16,7 @@ impl Shared {
         match command {
             "PolyscopeVersion" => self.profile.polyscope(),
             "get serial number" => "20185500020".into(),
-            "is in remote control" if e_series => "true".into(),
+            "is in remote control" if e_series => arm.remote_control.to_string(),
             "robotmode" => format!("Robotmode: {}", arm.robot_mode),
             "safetystatus" if e_series => format!("Safetystatus: {}", arm.safety),
             "safetymode" => format!("Safetymode: {}", arm.safety),

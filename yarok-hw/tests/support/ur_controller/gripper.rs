@@ -1,6 +1,7 @@
 //! The fake controller's Robotiq URCap gripper socket.
 
 use std::sync::Arc;
+use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
 
 use tokio::io::{AsyncBufReadExt, AsyncWriteExt};
@@ -163,13 +164,26 @@ impl Shared {
 }
 
 /// One client's gripper socket session.
+/// It ends when the fake is asked to drop its connections (checked every 20 ms).
 pub(super) async fn serve_gripper(stream: TcpStream, shared: Arc<Shared>) {
+    let drops = shared.drops.load(Ordering::Relaxed);
     let (reader, mut writer) = stream.into_split();
     let mut lines = tokio::io::BufReader::new(reader).lines();
-    while let Ok(Some(command)) = lines.next_line().await {
-        let reply = format!("{}\n", shared.gripper(command.trim()));
-        if writer.write_all(reply.as_bytes()).await.is_err() {
-            return;
+    let mut check = tokio::time::interval(Duration::from_millis(20));
+    loop {
+        tokio::select! {
+            line = lines.next_line() => {
+                let Ok(Some(command)) = line else { return };
+                let reply = format!("{}\n", shared.gripper(command.trim()));
+                if writer.write_all(reply.as_bytes()).await.is_err() {
+                    return;
+                }
+            }
+            _ = check.tick() => {
+                if shared.drops.load(Ordering::Relaxed) != drops {
+                    return;
+                }
+            }
         }
     }
 }

@@ -109,8 +109,12 @@ struct Shared {
     scripts: Mutex<Vec<String>>,
     /// The TCP the last `set_tcp` set.
     tcp: Mutex<[f64; 6]>,
-    /// Bumped to drop every RTDE and secondary connection.
+    /// Bumped to drop every RTDE, secondary and gripper connection.
     drops: AtomicU32,
+    /// RTDE connections accepted so far.
+    rtde_connections: AtomicU32,
+    /// Set while RTDE sends no data package (its connections stay open and answer requests).
+    rtde_mute: std::sync::atomic::AtomicBool,
     /// Set while the secondary interface sends no robot state (its connections stay open).
     secondary_mute: std::sync::atomic::AtomicBool,
     /// Set when the fake is dropped: its sessions end.
@@ -137,6 +141,8 @@ pub(crate) struct Arm {
     pub(crate) stopped_at: Option<Instant>,
     pub(crate) program: Option<String>,
     pub(crate) playing: bool,
+    /// False in local control (e-Series): scripts from the network are not run.
+    pub(crate) remote_control: bool,
 }
 
 /// A fake controller serving RTDE on `host`, on a thread of its own until dropped.
@@ -179,6 +185,8 @@ impl FakeController {
             inputs: Mutex::new(HashMap::new()),
             asked: Mutex::new(Vec::new()),
             drops: AtomicU32::new(0),
+            rtde_connections: AtomicU32::new(0),
+            rtde_mute: std::sync::atomic::AtomicBool::new(false),
             secondary_mute: std::sync::atomic::AtomicBool::new(false),
             closed: std::sync::atomic::AtomicBool::new(false),
             arm: Mutex::new(Arm {
@@ -187,6 +195,7 @@ impl FakeController {
                 stopped_at: None,
                 program: None,
                 playing: false,
+                remote_control: true,
             }),
             fingers: Mutex::new(Fingers::new()),
         });
@@ -225,6 +234,7 @@ impl FakeController {
                     loop {
                         tokio::select! {
                             Ok((stream, _)) = rtde.accept() => {
+                                serving.rtde_connections.fetch_add(1, Ordering::Relaxed);
                                 let serving = Arc::clone(&serving);
                                 if let Ok(stream) = stream.into_std() {
                                     let _ = stream.set_nonblocking(false);
@@ -323,7 +333,24 @@ impl FakeController {
         self.shared.secondary_mute.store(true, Ordering::Relaxed);
     }
 
-    /// Drops every RTDE and secondary connection, as a network hiccup does.
+    /// Stops RTDE's data packages, its connections (and new ones) left open and answering
+    /// requests (a controller whose RTDE service hangs); `false` lets them flow again.
+    pub(crate) fn mute_rtde(&self, mute: bool) {
+        self.shared.rtde_mute.store(mute, Ordering::Relaxed);
+    }
+
+    /// How many RTDE connections were accepted so far.
+    pub(crate) fn rtde_connections(&self) -> u32 {
+        self.shared.rtde_connections.load(Ordering::Relaxed)
+    }
+
+    /// Puts the controller in local (`false`) or remote (`true`) control, as its teach
+    /// pendant does: in local control it runs no script from the network.
+    pub(crate) fn set_remote_control(&self, remote: bool) {
+        self.shared.arm.lock().unwrap().remote_control = remote;
+    }
+
+    /// Drops every RTDE, secondary and gripper connection, as a network hiccup does.
     pub(crate) fn drop_streams(&self) {
         self.shared.drops.fetch_add(1, Ordering::Relaxed);
     }

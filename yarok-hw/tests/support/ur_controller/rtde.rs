@@ -238,9 +238,9 @@ fn stream_outputs(session: &Session, shared: &Shared) {
     let mut due = Instant::now();
     while !session.ended.load(Ordering::Relaxed) {
         let outputs = session.outputs.lock().unwrap().clone();
-        let (Some((id, variables, period)), true) =
-            (outputs, session.streaming.load(Ordering::Relaxed))
-        else {
+        let streaming =
+            session.streaming.load(Ordering::Relaxed) && !shared.rtde_mute.load(Ordering::Relaxed);
+        let (Some((id, variables, period)), true) = (outputs, streaming) else {
             std::thread::sleep(Duration::from_millis(1));
             due = Instant::now();
             continue;

@@ -26,10 +26,12 @@ fn call(line: &str, name: &str) -> Option<Vec<f64>> {
 impl Shared {
     /// Runs one line of URScript — `movej([q…], a=…, v=…)`, `set_tcp(p[…])`,
     /// `movel(p[pose…], a=…, v=…)`, `stopj(…)`, `stopl(…)` — unless a safety stop holds the
-    /// arm; other lines (`def`, `end`, …) are kept only.
+    /// arm, it is not running (powered off, brakes locked) or the controller is in local
+    /// control; other lines (`def`, `end`, …) are kept only.
     pub(super) fn run_script(&self, line: &str) {
         self.scripts.lock().unwrap().push(line.to_owned());
-        if self.arm.lock().unwrap().safety != "NORMAL" {
+        let arm = self.arm.lock().unwrap().clone();
+        if arm.safety != "NORMAL" || arm.robot_mode != "RUNNING" || !arm.remote_control {
             return;
         }
         let six = |numbers: &[f64]| -> [f64; 6] { std::array::from_fn(|i| numbers[i]) };
