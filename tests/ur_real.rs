@@ -3,7 +3,10 @@
 //! UR5 configured on a UR5e is refused, naming both; a protective stop mid-move fails the motion
 //! saying so, and after unlocking it the arm moves again; dropped RTDE and secondary connections
 //! are reconnected while the behaviour waits; a CB3 UR5 moves too and takes its payload; dropping a
-//! motion's future stops the arm; the arm is stopped when the run ends.
+//! motion's future stops the arm; the arm is stopped when the run ends; a controller in local
+//! control, or an arm powered off, is refused at connect in words; an arm powered off mid-motion
+//! fails the motion at once; an RTDE service that answers but sends no data is named, without a
+//! tight loop of reconnections.
 
 use std::time::Duration;
 
@@ -276,6 +279,94 @@ fn a_silent_secondary_interface_ends_the_run_and_the_arm_is_still_stopped() {
         error.contains("secondary interface") || error.contains("robot state"),
         "{error}"
     );
+    let stopped = |scripts: &[String]| scripts.iter().any(|s| s == "stopj(2.0)");
+    let asked = std::time::Instant::now();
+    while !stopped(&fake.scripts()) && asked.elapsed() < Duration::from_secs(2) {
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    assert!(stopped(&fake.scripts()), "no stopj: {:?}", fake.scripts());
+}
+
+#[test]
+fn a_controller_in_local_control_or_powered_off_is_refused_in_words() {
+    let local = fake_ur5e();
+    local.set_remote_control(false);
+    let error = real::<Ur5eAlone>(&local).run().unwrap_err().to_string();
+    assert!(
+        error.contains("/arm") && error.contains("local control") && error.contains("remote"),
+        "{error}"
+    );
+
+    let off = fake_ur5e();
+    off.power_off();
+    let error = real::<Ur5eAlone>(&off).run().unwrap_err().to_string();
+    assert!(
+        error.contains("/arm") && error.contains("powered off"),
+        "{error}"
+    );
+    assert!(off.scripts().iter().all(|s| !s.starts_with("move")));
+}
+
+/// Powered off during a 2-second motion, the arm's motion fails at once, naming the mode,
+/// instead of "did not reach" after the motion's whole time.
+#[test]
+fn an_arm_powered_off_mid_motion_fails_the_motion_at_once() {
+    let fake = std::sync::Arc::new(fake_ur5e());
+    let switching = std::sync::Arc::clone(&fake);
+    real::<Ur5eAlone>(&fake)
+        .behaviour(move |pl| async move {
+            let arm: Ur5e = pl.get("/arm")?;
+            let far = [1.5, -1.3, 1.2, -1.5, -1.57, 0.0];
+            let moving = arm.move_j(far).speed(0.75);
+            let started = std::time::Instant::now();
+            let (failed, ()) = tokio::join!(moving, async {
+                pl.wait_seconds(0.3).await.unwrap();
+                switching.power_off();
+            });
+            assert_eq!(failed, Err(MotionError::NotRunning { mode: "POWER_OFF" }));
+            assert!(
+                started.elapsed() < Duration::from_secs(1),
+                "{:?}",
+                started.elapsed()
+            );
+            Ok(())
+        })
+        .run()
+        .unwrap();
+}
+
+/// RTDE answers its requests but sends no data package: the run ends within a few reply times
+/// with an error naming RTDE as mute (not a motion "not reached" on stale joints), reconnecting
+/// it a few times with growing waits rather than in a tight loop, and the arm is stopped.
+#[test]
+fn a_mute_rtde_is_named_without_a_tight_loop_of_reconnections() {
+    let fake = std::sync::Arc::new(fake_ur5e());
+    let muting = std::sync::Arc::clone(&fake);
+    let started = std::time::Instant::now();
+    let error = real::<Ur5eAlone>(&fake)
+        .behaviour(move |pl| async move {
+            let arm: Ur5e = pl.get("/arm")?;
+            muting.mute_rtde(true);
+            arm.move_j([0.2, -1.3, 1.2, -1.5, -1.57, 0.0])
+                .speed(2.0)
+                .await?;
+            pl.wait_seconds(30.0).await?;
+            Ok(())
+        })
+        .run()
+        .unwrap_err()
+        .to_string();
+    let took = started.elapsed();
+    assert!(error.contains("RTDE") && error.contains("mute"), "{error}");
+    assert!(!error.contains("did not reach"), "{error}");
+    assert!(took < Duration::from_secs(10), "{took:?}");
+    // Waits doubling from 0.1 s within the 2 s reply time leave room for five attempts.
+    let reconnections = fake.rtde_connections() - 1;
+    assert!(
+        (1..=5).contains(&reconnections),
+        "{reconnections} reconnections"
+    );
+    println!("{error}\n{reconnections} reconnections, ended after {took:?}");
     let stopped = |scripts: &[String]| scripts.iter().any(|s| s == "stopj(2.0)");
     let asked = std::time::Instant::now();
     while !stopped(&fake.scripts()) && asked.elapsed() < Duration::from_secs(2) {

@@ -13,7 +13,7 @@ use tokio::sync::{Notify, oneshot};
 use tokio::time::Instant;
 use yarok_core::component::{Bind, BindError};
 use yarok_hw::ur::dashboard::{Dashboard, RobotMode, SafetyStatus};
-use yarok_hw::ur::rtde::{Rtde, RtdeSettings, Value};
+use yarok_hw::ur::rtde::{Rtde, RtdeError, RtdeSettings, Value};
 use yarok_hw::ur::secondary::{KinematicsInfo, Secondary, send_script};
 use yarok_hw::{Real, reopen};
 
@@ -284,10 +284,13 @@ async fn rtde_stream(
     rtde.setup_outputs(hz.unwrap_or(most).min(most), &OUTPUTS)
         .await?;
     rtde.start().await?;
-    let first = rtde.receive().await.map_err(|error| {
-        format!(
-            "RTDE connected and started, but sent no data package (the service is mute): {error}"
+    let first = rtde.receive().await.map_err(|error| match error {
+        RtdeError::Timeout { seconds, .. } => format!(
+            "RTDE answered, but sent no data package within {seconds} s of starting its stream: \
+             the RTDE service is mute"
         )
+        .into(),
+        other => yarok_core::BoxError::from(other),
     })?;
     let first = measured(&first).ok_or("RTDE sent other values than asked for")?;
     Ok((rtde, first))
