@@ -2,7 +2,8 @@
 //! simulated UR5e with a 2F-85 on its URCap socket, an object between the fingers at every grasp):
 //! the same behaviour that stacks the blocks in `sim` completes every motion and grasp and exits 0;
 //! when every connection to the controller drops at once (a network blip), arm and gripper are
-//! reconnected and the behaviour carries on.
+//! reconnected and the behaviour carries on; a typo in the arm's settings is reported before the
+//! gripper (bound first, as the arm's child) is touched.
 
 use std::process::Command;
 use std::sync::Arc;
@@ -128,5 +129,35 @@ fn arm_and_gripper_come_back_after_every_connection_drops() {
             == 1,
         "the close was sent once, or again only because it was lost: {:?}",
         fake.fingers().commands
+    );
+}
+
+#[test]
+fn a_typo_in_the_arms_settings_is_reported_before_the_gripper_is_touched() {
+    let fake = FakeController::start(Profile::ESeries);
+    let host = format!("\"{}\"", fake.host);
+    let error = yarok::platform()
+        .world::<PickAndPlaceWorld>()
+        .args([
+            "--env".to_owned(),
+            "real".to_owned(),
+            "--set".to_owned(),
+            format!("interfaces/arm/hots={host}"),
+            "--set".to_owned(),
+            format!("interfaces/arm/gripper/host={host}"),
+        ])
+        .unwrap()
+        .run()
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("/arm") && error.contains("hots") && error.contains("host"),
+        "{error}"
+    );
+    let fingers = fake.fingers();
+    assert!(
+        fingers.commands.is_empty() && fingers.sta == 0,
+        "the gripper was activated: {:?}",
+        fingers.commands
     );
 }

@@ -192,7 +192,16 @@ async fn open(
     }
 }
 
+/// Reads the settings of a real camera's feed, touching no device.
+pub(crate) fn check_settings(bind: &Bind<Real>) -> Result<(), BindError> {
+    bind.settings::<Settings>().map(drop)
+}
+
 impl Interface<Real> for Cam {
+    fn check(bind: &Bind<Real>) -> Result<(), BindError> {
+        check_settings(bind)
+    }
+
     async fn bind(bind: &mut Bind<Real>) -> Result<Self, BindError> {
         let (width, height) = size(bind)?;
         let frames = bind_frames(bind, width, height, 30).await?;

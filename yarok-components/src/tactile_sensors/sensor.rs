@@ -633,6 +633,12 @@ macro_rules! tactile_sensor_component {
 
         #[cfg(feature = "camera")]
         impl yarok_core::component::Interface<yarok_hw::Real> for $name {
+            fn check(
+                bind: &yarok_core::component::Bind<yarok_hw::Real>,
+            ) -> Result<(), yarok_core::component::BindError> {
+                crate::cameras::real::check_settings(bind)
+            }
+
             async fn bind(
                 bind: &mut yarok_core::component::Bind<yarok_hw::Real>,
             ) -> Result<Self, yarok_core::component::BindError> {

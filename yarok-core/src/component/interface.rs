@@ -24,17 +24,72 @@ pub trait Interface<E: Environment>: Component {
     /// [`BindError`] naming the component: an unknown name in its template, bad settings, a
     /// device that does not answer; the platform then stops without running behaviours.
     fn bind(bind: &mut Bind<E>) -> impl Future<Output = Result<Self, BindError>>;
+
+    /// Finds what `bind` would refuse without touching any device: its settings. The platform
+    /// checks every component before it binds the first, so that a typo in one device's
+    /// settings is reported before another device is connected, activated or moved. Checks
+    /// nothing unless overridden.
+    ///
+    /// ```
+    /// use serde::Deserialize;
+    /// use yarok_core::component::{Bind, BindError, Component, Declaration, Interface, Mock};
+    ///
+    /// #[derive(Deserialize, Default)]
+    /// #[serde(default, deny_unknown_fields)]
+    /// struct Settings {
+    ///     port: String,
+    /// }
+    ///
+    /// struct Printer;
+    ///
+    /// impl Component for Printer {
+    ///     fn declaration() -> Declaration {
+    ///         Declaration::new("printer")
+    ///     }
+    /// }
+    ///
+    /// impl Interface<Mock> for Printer {
+    ///     async fn bind(bind: &mut Bind<Mock>) -> Result<Self, BindError> {
+    ///         let _settings: Settings = bind.settings()?;
+    ///         Ok(Printer)
+    ///     }
+    ///
+    ///     fn check(bind: &Bind<Mock>) -> Result<(), BindError> {
+    ///         bind.settings::<Settings>().map(drop)
+    ///     }
+    /// }
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`BindError`] naming the component and the setting.
+    fn check(bind: &Bind<E>) -> Result<(), BindError> {
+        let _ = bind;
+        Ok(())
+    }
 }
 
 /// What a type-erased [`Interface::bind`] returns: the component's handle, boxed.
 type Binding = Pin<Box<dyn Future<Output = Result<Box<dyn Any>, BindError>>>>;
 
 /// A type-erased [`Interface::bind`].
-pub(crate) type BindFn = fn(BindContext) -> Binding;
+type BindFn = fn(BindContext) -> Binding;
+
+/// A type-erased [`Interface::check`].
+type CheckFn = fn(BindContext) -> Result<(), BindError>;
+
+/// A component's interface for one environment, type-erased.
+#[derive(Clone, Copy)]
+pub(crate) struct Binder {
+    /// Binds it.
+    pub(crate) bind: BindFn,
+    /// Checks it without binding.
+    pub(crate) check: CheckFn,
+}
 
 /// The environments a component runs in; filled in [`Component::interfaces`].
 pub struct Interfaces<C> {
-    entries: Vec<(&'static str, BindFn)>,
+    entries: Vec<(&'static str, Binder)>,
     unavailable: Vec<(&'static str, &'static str)>,
     component: PhantomData<fn() -> C>,
 }
@@ -42,7 +97,7 @@ pub struct Interfaces<C> {
 /// What [`Interfaces`] holds once filled: the interfaces, and why some environments' are not in
 /// this build.
 pub(crate) struct Filled {
-    pub(crate) entries: Vec<(&'static str, BindFn)>,
+    pub(crate) entries: Vec<(&'static str, Binder)>,
     pub(crate) unavailable: Vec<(&'static str, &'static str)>,
 }
 
@@ -60,7 +115,13 @@ impl<C: Component> Interfaces<C> {
     where
         C: Interface<E>,
     {
-        self.entries.push((E::NAME, bind_erased::<C, E>));
+        self.entries.push((
+            E::NAME,
+            Binder {
+                bind: bind_erased::<C, E>,
+                check: check_erased::<C, E>,
+            },
+        ));
         self
     }
 
@@ -103,6 +164,10 @@ impl<C> std::fmt::Debug for Interfaces<C> {
             .entries(self.entries.iter().map(|(name, _)| name))
             .finish()
     }
+}
+
+fn check_erased<C: Interface<E>, E: Environment>(context: BindContext) -> Result<(), BindError> {
+    C::check(&Bind::<E>::new(context)?)
 }
 
 fn bind_erased<C: Interface<E>, E: Environment>(context: BindContext) -> Binding {

@@ -72,7 +72,7 @@ pub(crate) use declaration::Source;
 pub use environment::{Environment, Mock};
 pub use handles::HandleError;
 pub(crate) use handles::Handles;
-pub(crate) use interface::BindFn;
+pub(crate) use interface::Binder;
 pub use interface::{Interface, Interfaces};
 pub(crate) use lifecycle::{Lifecycle, LocalFuture, StopAction, TickStep};
 pub use names::{NameKind, NameMap};
@@ -184,7 +184,7 @@ impl ComponentType {
     }
 
     /// Its interface for `environment`.
-    pub(crate) fn binder(&self, environment: &str) -> Option<BindFn> {
+    pub(crate) fn binder(&self, environment: &str) -> Option<Binder> {
         (self.interfaces)()
             .entries
             .into_iter()

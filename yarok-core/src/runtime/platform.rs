@@ -14,9 +14,11 @@ use super::executor::{Executor, Owner};
 use super::interrupt::Interrupt;
 use super::pl::PlParts;
 use super::{BehaviourResult, Pl, PlatformBuilder, Plugin, RuntimeError, World};
-use crate::component::{Backend, BindContext, Handles, Lifecycle, Probe, StopAction, TickStep};
-use crate::compose::Composition;
-use crate::config::{PlatformSettings, Settings};
+use crate::component::{
+    Backend, BindContext, Binder, Handles, Lifecycle, Probe, StopAction, TickStep,
+};
+use crate::compose::{Composition, Instance};
+use crate::config::{ConfigOrigins, PlatformSettings, Settings};
 use crate::time::Clock;
 use crate::value::Config;
 
@@ -289,33 +291,45 @@ impl Platform {
         result
     }
 
-    /// Binds every component (children first), then starts plugins and behaviours.
+    /// What `instance`'s interface is bound with.
+    fn bind_context(&self, instance: &Instance, origins: &Rc<ConfigOrigins>) -> BindContext {
+        BindContext {
+            environment: self.environment,
+            path: instance.path.clone(),
+            config: instance.config.clone(),
+            names: instance.names.clone(),
+            settings: self
+                .settings
+                .interfaces
+                .get(&instance.path)
+                .cloned()
+                .unwrap_or_default(),
+            origins: Rc::clone(origins),
+            backend: Rc::clone(&self.backend),
+            handles: Rc::clone(&self.handles),
+            clock: self.clock.clone(),
+            seed: self.platform.seed_for(&instance.path),
+            lifecycle: Rc::clone(&self.lifecycle),
+        }
+    }
+
+    /// Checks every component's interface, binds them (children first), then starts plugins
+    /// and behaviours.
     async fn start(&mut self) -> Result<(), RuntimeError> {
         self.phase = Phase::Running;
         let origins = Rc::new(self.settings.origins.clone());
-        for instance in self.composition.instances.iter().rev() {
-            let Some(bind) = instance.component.binder(self.environment) else {
-                continue;
-            };
-            let context = BindContext {
-                environment: self.environment,
-                path: instance.path.clone(),
-                config: instance.config.clone(),
-                names: instance.names.clone(),
-                settings: self
-                    .settings
-                    .interfaces
-                    .get(&instance.path)
-                    .cloned()
-                    .unwrap_or_default(),
-                origins: Rc::clone(&origins),
-                backend: Rc::clone(&self.backend),
-                handles: Rc::clone(&self.handles),
-                clock: self.clock.clone(),
-                seed: self.platform.seed_for(&instance.path),
-                lifecycle: Rc::clone(&self.lifecycle),
-            };
-            let handle = bind(context).await?;
+        let binders: Vec<(&Instance, Binder)> = self
+            .composition
+            .instances
+            .iter()
+            .rev()
+            .filter_map(|instance| Some((instance, instance.component.binder(self.environment)?)))
+            .collect();
+        for (instance, binder) in &binders {
+            (binder.check)(self.bind_context(instance, &origins))?;
+        }
+        for (instance, binder) in binders {
+            let handle = (binder.bind)(self.bind_context(instance, &origins)).await?;
             self.handles.borrow_mut().insert(&instance.path, handle);
         }
         let (ticks, tasks, probes) = {

@@ -76,6 +76,10 @@ impl RealFingers {
 }
 
 impl Interface<Real> for Robotiq2f85 {
+    fn check(bind: &Bind<Real>) -> Result<(), BindError> {
+        bind.settings::<Settings>().map(drop)
+    }
+
     async fn bind(bind: &mut Bind<Real>) -> Result<Self, BindError> {
         let settings: Settings = bind.settings()?;
         let socket = Socket::new(&settings);

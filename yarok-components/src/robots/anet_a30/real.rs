@@ -62,15 +62,25 @@ impl RealAxes {
     }
 }
 
+/// The printer's interface settings, checked.
+fn settings(bind: &Bind<Real>) -> Result<Settings, BindError> {
+    let settings: Settings = bind.settings()?;
+    if !(settings.feed > 0.0 && settings.feed.is_finite()) {
+        return Err(bind.error(format!(
+            "feed must be a positive speed, not {}",
+            settings.feed
+        )));
+    }
+    Ok(settings)
+}
+
 impl Interface<Real> for AnetA30 {
+    fn check(bind: &Bind<Real>) -> Result<(), BindError> {
+        settings(bind).map(drop)
+    }
+
     async fn bind(bind: &mut Bind<Real>) -> Result<Self, BindError> {
-        let settings: Settings = bind.settings()?;
-        if !(settings.feed > 0.0 && settings.feed.is_finite()) {
-            return Err(bind.error(format!(
-                "feed must be a positive speed, not {}",
-                settings.feed
-            )));
-        }
+        let settings = settings(bind)?;
         let mut marlin_settings = MarlinSettings::new(settings.port.clone());
         let seconds = |value: f64| Duration::try_from_secs_f64(value).unwrap_or_default();
         marlin_settings.boot_timeout = seconds(settings.boot_seconds);

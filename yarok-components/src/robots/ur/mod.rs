@@ -83,6 +83,11 @@ macro_rules! arm_component {
         }
 
         impl Interface<yarok_hw::Real> for $name {
+            fn check(bind: &Bind<yarok_hw::Real>) -> Result<(), BindError> {
+                config(bind, &$model)?;
+                real::settings(bind).map(drop)
+            }
+
             async fn bind(bind: &mut Bind<yarok_hw::Real>) -> Result<Self, BindError> {
                 let config = config(bind, &$model)?;
                 Arm::bind_real(bind, config.kinematics).await.map($name)

@@ -53,6 +53,23 @@ struct Settings {
     payload: Option<[f64; 4]>,
 }
 
+/// A real arm's interface settings, read and checked.
+pub(super) struct CheckedSettings {
+    settings: Settings,
+    payload: Option<Payload>,
+}
+
+/// The arm's interface settings, checked without touching the controller.
+pub(super) fn settings(bind: &Bind<Real>) -> Result<CheckedSettings, BindError> {
+    let settings: Settings = bind.settings()?;
+    let payload = settings
+        .payload
+        .map(|[mass, x, y, z]| Payload::new(mass, [x, y, z]))
+        .transpose()
+        .map_err(|e| bind.error(e))?;
+    Ok(CheckedSettings { settings, payload })
+}
+
 impl Default for Settings {
     fn default() -> Self {
         Self {
@@ -329,7 +346,7 @@ pub(super) async fn connect(
     bind: &mut Bind<Real>,
     kinematics: &Kinematics,
 ) -> Result<(Rc<RealLink>, Joints), BindError> {
-    let settings: Settings = bind.settings()?;
+    let CheckedSettings { settings, payload } = settings(bind)?;
     let host = settings.host.clone();
     let reply = Duration::try_from_secs_f64(settings.reply_seconds).unwrap_or_default();
     let connecting = async {
@@ -347,8 +364,7 @@ pub(super) async fn connect(
         .kinematics
         .ok_or_else(|| bind.error(format!("controller {host} sent no kinematics")))?;
     check_kinematics(bind, &kinematics.dh, &reported)?;
-    if let Some([mass, x, y, z]) = settings.payload {
-        let payload = Payload::new(mass, [x, y, z]).map_err(|e| bind.error(e))?;
+    if let Some(payload) = &payload {
         secondary
             .send_script(&set_payload(&payload))
             .await
