@@ -1,12 +1,73 @@
 //! SIGTERM, as Slurm and Kubernetes stop a job, ends `yarok run` as Ctrl-C does: the recordings
 //! are whole (the MCAP file has its summary for the third-party `mcap` reader, the joints CSV
-//! only whole rows), and the exit status is the conventional 143.
+//! only whole rows, the MP4 plays to its last frame in `ffprobe` even when the signal reached
+//! the encoder too, as a scheduler signals the whole job), a real arm on the fake controller
+//! gets its `stopj`, and the exit status is the conventional 143.
 
-use std::process::{Command, Stdio};
+use std::os::unix::process::CommandExt;
+use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
 #[path = "../yarok-hw/tests/support/peers.rs"]
 mod peers;
+#[path = "../yarok-hw/tests/support/ur_controller/mod.rs"]
+mod ur_controller;
+
+use ur_controller::{FakeController, Profile};
+
+/// `yarok run` with `arguments`, in a process group of its own (as a scheduler's job is).
+fn yarok_run(arguments: &[&str]) -> Child {
+    Command::new(env!("CARGO_BIN_EXE_yarok"))
+        .arg("run")
+        .args(arguments)
+        .process_group(0)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap()
+}
+
+/// Waits until `ready` holds, failing if the run ends first or a minute passes.
+fn wait_until(child: &mut Child, mut ready: impl FnMut() -> bool) {
+    let started = Instant::now();
+    while !ready() {
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "the run ended before the signal"
+        );
+        assert!(
+            started.elapsed() < Duration::from_secs(60),
+            "the run never got under way"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+/// Sends SIGTERM to `target` (a pid, or `-pgid` for a whole group) and returns the run's exit
+/// code, its standard error and how long it took to exit.
+fn terminate(mut child: Child, target: &str) -> (Option<i32>, String, Duration) {
+    let status = Command::new("kill")
+        .args(["-TERM", "--", target])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let signalled = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        if signalled.elapsed() > Duration::from_secs(10) {
+            child.kill().unwrap();
+            panic!("SIGTERM did not end the run");
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    };
+    let took = signalled.elapsed();
+    let mut stderr = String::new();
+    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut stderr).unwrap();
+    (status.code(), stderr, took)
+}
 
 #[test]
 fn sigterm_ends_a_recorded_run_with_its_files_whole() {
@@ -86,4 +147,100 @@ fn sigterm_ends_a_recorded_run_with_its_files_whole() {
         assert_eq!(fields.len(), columns, "a cut row: {row:?}");
         assert!(fields.iter().all(|f| f.parse::<f64>().is_ok()), "{row:?}");
     }
+}
+
+/// Slurm's `scancel` signals every process of the job: the encoder gets SIGTERM with yarok.
+/// The MP4 still plays, every frame decoding, and the run reports the signal.
+#[test]
+fn sigterm_to_a_filmed_runs_whole_job_leaves_a_playable_mp4() {
+    let folder = tempfile::tempdir().unwrap();
+    let video = folder.path().join("run.mp4");
+    let mut child = yarok_run(&[
+        "pick_and_place_world",
+        "--behaviour",
+        "idle",
+        "--video",
+        video.to_str().unwrap(),
+        "--set",
+        "plugins/video/size=[160, 120]",
+        "--set",
+        "behaviour/seconds=600",
+    ]);
+    // The encoder has the file open; frames are being sent to it.
+    wait_until(&mut child, || video.exists());
+    std::thread::sleep(Duration::from_millis(1500));
+    let group = format!("-{}", child.id());
+    let (code, stderr, took) = terminate(child, &group);
+    assert_eq!(code, Some(143), "{stderr}");
+    println!("from SIGTERM to exit, video closed: {took:?}");
+    let probe = Command::new("ffprobe")
+        .args(["-v", "error", "-count_frames", "-select_streams", "v:0"])
+        .args(["-show_entries", "stream=nb_read_frames,codec_name"])
+        .args(["-of", "default=nw=1"])
+        .arg(&video)
+        .output()
+        .unwrap();
+    let probed = String::from_utf8_lossy(&probe.stdout);
+    assert!(
+        probe.status.success() && probe.stderr.is_empty(),
+        "{probed}{}",
+        String::from_utf8_lossy(&probe.stderr)
+    );
+    assert!(probed.contains("codec_name=h264"), "{probed}");
+    let frames: u32 = probed
+        .lines()
+        .find_map(|line| line.strip_prefix("nb_read_frames="))
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no frame count: {probed}"));
+    assert!(frames > 0, "{probed}");
+}
+
+/// A real-environment run (a UR5e and its 2F-85 on the fake controller, recording) stopped by
+/// SIGTERM: the arm gets its stopj, the recording is whole, and the exit status is 143.
+#[test]
+fn sigterm_stops_a_real_arm_and_closes_its_recording() {
+    let fake = FakeController::start(Profile::ESeries);
+    let folder = tempfile::tempdir().unwrap();
+    let mcap = folder.path().join("real.mcap");
+    let host = format!("\"{}\"", fake.host);
+    let mut child = yarok_run(&[
+        "pick_and_place_world",
+        "--env",
+        "real",
+        "--behaviour",
+        "idle",
+        "--record",
+        mcap.to_str().unwrap(),
+        "--set",
+        &format!("interfaces/arm/host={host}"),
+        "--set",
+        &format!("interfaces/arm/gripper/host={host}"),
+        "--set",
+        "behaviour/seconds=600",
+    ]);
+    wait_until(&mut child, || {
+        fake.rtde_connections() > 0 && fake.asked().len() >= 4
+    });
+    std::thread::sleep(Duration::from_millis(500));
+    assert!(fake.scripts().iter().all(|s| !s.starts_with("stopj")));
+    let pid = child.id().to_string();
+    let (code, stderr, took) = terminate(child, &pid);
+    assert_eq!(code, Some(143), "{stderr}");
+    assert!(stderr.contains("SIGTERM"), "{stderr}");
+    println!("from SIGTERM to exit, arm stopped: {took:?}");
+    assert!(
+        fake.scripts().iter().any(|s| s == "stopj(2.0)"),
+        "no stopj: {:?}",
+        fake.scripts()
+    );
+    let summary = peers::run("mcap_summary.py", &[mcap.to_str().unwrap()]);
+    // In `real` the recorder has the run's log channel (joints and bodies are recorded in
+    // `sim`); what matters here is that the file ends with its summary.
+    let line = peers::field(&summary, "summary");
+    let channels: usize = line
+        .split(' ')
+        .next()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no summary: {summary}"));
+    assert!(channels > 0, "{summary}");
 }

@@ -8,7 +8,9 @@
 //! its real-time interface (port 30003) streams the 1116-byte packet at 125 or 500 Hz and runs
 //! script lines too; its Robotiq gripper socket (port 63352) activates a 2F-85 whose fingers
 //! move in time at the speed asked for and stop on an object the test places, or fault when
-//! told to. The arm moves as its [`ArmMotion`] does: the project's simulated UR model in the
+//! told to. Faults a test can cause: every connection dropped at once, a mute RTDE or secondary
+//! interface (connections open, nothing sent), local control, power off, a protective stop.
+//! The arm moves as its [`ArmMotion`] does: the project's simulated UR model in the
 //! workspace's tests, a linear stand-in in yarok-hw's protocol tests. Shared by yarok-hw's
 //! tests and the workspace's.
 #![allow(dead_code)]
