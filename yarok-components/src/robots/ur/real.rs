@@ -366,7 +366,7 @@ pub(super) async fn connect(
     check_kinematics(bind, &kinematics.dh, &reported)?;
     if let Some(payload) = &payload {
         secondary
-            .send_script(&set_payload(&payload))
+            .send_script(&set_payload(payload))
             .await
             .map_err(|e| bind.error(e))?;
     }
