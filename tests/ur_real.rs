@@ -4,7 +4,7 @@
 //! saying so, and after unlocking it the arm moves again; dropped RTDE and secondary connections
 //! are reconnected while the behaviour waits; a CB3 UR5 moves too and takes its payload; dropping a
 //! motion's future stops the arm; the arm is stopped when the run ends; a controller in local
-//! control, or an arm powered off, is refused at connect in words; an arm powered off mid-motion
+//! control, an arm powered off or in a protective stop, is refused at connect in words; an arm powered off mid-motion
 //! fails the motion at once; an RTDE service that answers but sends no data is named, without a
 //! tight loop of reconnections.
 
@@ -288,7 +288,7 @@ fn a_silent_secondary_interface_ends_the_run_and_the_arm_is_still_stopped() {
 }
 
 #[test]
-fn a_controller_in_local_control_or_powered_off_is_refused_in_words() {
+fn a_controller_in_local_control_powered_off_or_stopped_is_refused_in_words() {
     let local = fake_ur5e();
     local.set_remote_control(false);
     let error = real::<Ur5eAlone>(&local).run().unwrap_err().to_string();
@@ -305,6 +305,14 @@ fn a_controller_in_local_control_or_powered_off_is_refused_in_words() {
         "{error}"
     );
     assert!(off.scripts().iter().all(|s| !s.starts_with("move")));
+
+    let stopped = fake_ur5e();
+    stopped.protective_stop(Duration::from_secs(1));
+    let error = real::<Ur5eAlone>(&stopped).run().unwrap_err().to_string();
+    assert!(
+        error.contains("safety system holds it (PROTECTIVE_STOP)"),
+        "{error}"
+    );
 }
 
 /// Powered off during a 2-second motion, the arm's motion fails at once, naming the mode,

@@ -505,14 +505,17 @@ async fn check_ready(host: &str, reply: Duration) -> Result<(), yarok_core::BoxE
         }
         other => return Err(format!("the arm is not running: its mode is {other:?}").into()),
     }
-    match dashboard.safety_status().await? {
-        SafetyStatus::Normal | SafetyStatus::Reduced => Ok(()),
-        status => Err(format!(
-            "the arm's safety system holds it ({status:?}): inspect the cause, then clear it \
-             (unlock a protective stop, release an emergency stop)"
-        )
-        .into()),
-    }
+    let holding = match dashboard.safety_status().await? {
+        SafetyStatus::Normal | SafetyStatus::Reduced => return Ok(()),
+        SafetyStatus::ProtectiveStop => "PROTECTIVE_STOP".to_owned(),
+        SafetyStatus::Other(status) => status,
+        other => format!("{other:?}"),
+    };
+    Err(format!(
+        "the arm's safety system holds it ({holding}): inspect the cause, then clear it (unlock \
+         a protective stop, release an emergency stop)"
+    )
+    .into())
 }
 
 /// Warns, in the dashboard's words, when RTDE says the arm has just stopped being able to move
