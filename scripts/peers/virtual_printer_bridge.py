@@ -15,7 +15,11 @@ Each line written to its standard input goes to the printer as if it came down t
 fault injected through the `!!DEBUG:` channel while the client waits on a move). It ends when
 standard input closes (the test ends), the client closes the device, or the printer drops the
 connection and is not replugged.
-JSON_SETTINGS overrides the plugin's default settings, e.g. '{"sendWait": false}'.
+  ~ LINE      a line the printer ignored while it booted.
+JSON_SETTINGS overrides the plugin's default settings, e.g. '{"sendWait": false}'; its key
+"bootSeconds" (the bridge's own) makes the board boot that long after the device is first
+opened, as a bootloader or a slow SD card does: what it is sent meanwhile is lost, and what the
+printer says (its start banner) comes only after.
 """
 
 import json
@@ -110,11 +114,13 @@ class Device:
         os.close(self.master)
 
 
-def serve(printer, device, ended):
+def serve(printer, device, ended, boot_seconds):
     """Shuttles bytes until the test ends, the client closes the device, or the printer drops
-    the connection; returns which."""
+    the connection; returns which. For the first boot_seconds the board boots: it takes no line
+    and says nothing."""
     outcome = []
     done = threading.Event()
+    booted_at = time.monotonic() + boot_seconds
 
     def finish(why):
         outcome.append(why)
@@ -145,12 +151,18 @@ def serve(printer, device, ended):
             *lines, pending = pending.split(b"\n")
             try:
                 for line in lines:
-                    report("> " + line.decode(errors="replace").strip())
+                    text = line.decode(errors="replace").strip()
+                    if time.monotonic() < booted_at:
+                        report("~ " + text)
+                        continue
+                    report("> " + text)
                     write_all(line + b"\n")
             except Exception:
                 return finish("dropped")
 
     def from_printer():
+        while time.monotonic() < booted_at and not done.is_set():
+            time.sleep(0.01)
         while not done.is_set():
             try:
                 line = printer.readline()
@@ -174,6 +186,7 @@ def main():
     values = VirtualPrinterPlugin().get_settings_defaults()
     if len(sys.argv) > 1:
         values.update(json.loads(sys.argv[1]))
+    boot_seconds = float(values.pop("bootSeconds", 0.0))
     replug = float(sys.argv[2]) if len(sys.argv) > 2 else None
     folder = tempfile.mkdtemp(prefix="yarok-virtual-printer-")
     link = os.path.join(folder, "printer")
@@ -201,7 +214,7 @@ def main():
         if not printed:
             threading.Thread(target=until_stdin_closes, daemon=True).start()
         printed = True
-        outcome = serve(printer, device, ended)
+        outcome = serve(printer, device, ended, boot_seconds)
         device.unplug()
         if outcome != "ended":
             report(outcome)

@@ -5,12 +5,14 @@
 //! channel and settings: a resend survived; a resend storm, a printer that stops answering, a
 //! fatal error and a dropped connection each an error naming the printer, none a hang; a
 //! printer unplugged mid-move and plugged back in reconnected, the move reported as failed and
-//! the next one completing; the bridge process is stopped whatever the test's outcome.
+//! the next one completing; an `ok` lost after `M400` found within seconds; a board that boots
+//! for 3 s (deaf and silent, its banner late) connected with the default quiet time; the bridge
+//! process is stopped whatever the test's outcome.
 
 use std::time::Duration;
 
 use yarok_hw::SerialPort;
-use yarok_hw::marlin::{MarlinError, Reconnecting};
+use yarok_hw::marlin::{Marlin, MarlinError, MarlinSettings, Reconnecting};
 
 #[path = "support/virtual_printer.rs"]
 mod support;
@@ -198,4 +200,31 @@ async fn a_lost_ok_after_m400_is_found_while_the_printer_waits() {
     );
     // The line is still good.
     marlin.finish_moves().await.unwrap();
+}
+
+/// A board that boots for 3 s after its port opens (a bootloader, a slow SD card): silent,
+/// deaf to what it is sent, its start banner late. With the driver's default quiet time (1.5 s)
+/// the handshake keeps trying within `boot_timeout` and the printer then moves.
+#[tokio::test]
+async fn a_board_that_boots_for_3_s_is_connected_with_the_default_quiet_time() {
+    let printer = VirtualPrinter::start(r#"{"bootSeconds": 3.0}"#);
+    let port = SerialPort::open(&printer.path, 250_000).unwrap();
+    let mut settings = MarlinSettings::new(printer.path.clone());
+    settings.boot_timeout = Duration::from_secs(10);
+    let started = std::time::Instant::now();
+    let mut marlin = Marlin::connect(port, settings).await.unwrap();
+    assert!(started.elapsed() >= Duration::from_secs(3));
+    let ignored = printer.ignored();
+    assert!(
+        ignored.iter().any(|line| line.contains("M110")),
+        "the driver spoke while the board booted: {ignored:?}"
+    );
+    marlin.home().await.unwrap();
+    marlin.move_to([10.0, 20.0, 5.0], 50.0).await.unwrap();
+    marlin.finish_moves().await.unwrap();
+    let at = marlin.position().await.unwrap();
+    assert!(
+        (at.x - 10.0).abs() < 0.01 && (at.y - 20.0).abs() < 0.01,
+        "{at:?}"
+    );
 }

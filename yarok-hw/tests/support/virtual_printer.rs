@@ -73,6 +73,15 @@ impl VirtualPrinter {
         input.flush().expect("the bridge takes the line");
     }
 
+    /// The lines the printer ignored while it booted.
+    pub(crate) fn ignored(&self) -> Vec<String> {
+        let reports = self.reports.lock().unwrap();
+        let lines = reports
+            .iter()
+            .filter_map(|report| report.strip_prefix("~ "));
+        lines.map(str::to_owned).collect()
+    }
+
     /// The lines the printer has received so far.
     pub(crate) fn received(&self) -> Vec<String> {
         let reports = self.reports.lock().unwrap();
