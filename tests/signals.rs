@@ -2,7 +2,8 @@
 //! are whole (the MCAP file has its summary for the third-party `mcap` reader, the joints CSV
 //! only whole rows, the MP4 plays to its last frame in `ffprobe` even when the signal reached
 //! the encoder too, as a scheduler signals the whole job), a real arm on the fake controller
-//! gets its `stopj`, and the exit status is the conventional 143.
+//! gets its `stopj`, and the exit status is the conventional 143. An encoder that stops reading
+//! frames neither blocks the run nor a Ctrl-C, and is not left running.
 
 use std::os::unix::process::CommandExt;
 use std::process::{Child, Command, Stdio};
@@ -243,4 +244,82 @@ fn sigterm_stops_a_real_arm_and_closes_its_recording() {
         .and_then(|n| n.parse().ok())
         .unwrap_or_else(|| panic!("no summary: {summary}"));
     assert!(channels > 0, "{summary}");
+}
+
+/// An encoder that takes no frame (here a stand-in `ffmpeg` on the `PATH` that only sleeps):
+/// the run, and a Ctrl-C sent while it waits, end within seconds with an error that says the
+/// encoder stalled, and the encoder is stopped, not left running.
+#[test]
+fn an_encoder_that_stops_reading_neither_blocks_the_run_nor_outlives_it() {
+    let folder = tempfile::tempdir().unwrap();
+    let pid_file = folder.path().join("encoder.pid");
+    let stand_in = folder.path().join("ffmpeg");
+    std::fs::write(
+        &stand_in,
+        format!(
+            "#!/bin/sh\necho $$ > '{}'\nexec sleep 600\n",
+            pid_file.display()
+        ),
+    )
+    .unwrap();
+    std::fs::set_permissions(
+        &stand_in,
+        std::os::unix::fs::PermissionsExt::from_mode(0o755),
+    )
+    .unwrap();
+    let path = format!(
+        "{}:{}",
+        folder.path().display(),
+        std::env::var("PATH").unwrap_or_default()
+    );
+    let video = folder.path().join("run.mp4");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_yarok"))
+        .args([
+            "run",
+            "pick_and_place_world",
+            "--behaviour",
+            "idle",
+            "--video",
+        ])
+        .arg(&video)
+        .args(["--set", "plugins/video/size=[160, 120]"])
+        .args(["--set", "behaviour/seconds=600"])
+        .env("PATH", path)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    wait_until(&mut child, || pid_file.exists());
+    std::thread::sleep(Duration::from_millis(500));
+    let encoder = std::fs::read_to_string(&pid_file)
+        .unwrap()
+        .trim()
+        .to_owned();
+    let pid = child.id().to_string();
+    let started = Instant::now();
+    let status = Command::new("kill").args(["-INT", &pid]).status().unwrap();
+    assert!(status.success());
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        if started.elapsed() > Duration::from_secs(30) {
+            child.kill().unwrap();
+            let _ = Command::new("kill").args(["-KILL", &encoder]).status();
+            panic!("the stalled encoder blocked the run");
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    };
+    let mut stderr = String::new();
+    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut stderr).unwrap();
+    assert!(!status.success(), "{stderr}");
+    assert!(stderr.contains("encoder took no frame"), "{stderr}");
+    println!("ended {:?} after Ctrl-C: {stderr}", started.elapsed());
+    let alive = Command::new("kill")
+        .args(["-0", &encoder])
+        .stderr(Stdio::null())
+        .status()
+        .unwrap();
+    assert!(!alive.success(), "the encoder {encoder} still runs");
 }

@@ -1,5 +1,6 @@
 //! Plugins: code that runs beside the behaviours and sees the world.
 
+mod encoder;
 mod foxglove;
 #[cfg(feature = "viewer")]
 mod inspector;

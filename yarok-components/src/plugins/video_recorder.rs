@@ -1,13 +1,13 @@
 //! [`VideoRecorder`]: a camera of the model filmed to an MP4 file through `ffmpeg`.
 
-use std::io::Write;
 use std::path::PathBuf;
-use std::process::{Child, ChildStdin, Command, Stdio};
+use std::process::Command;
 
 use yarok_core::BoxError;
 use yarok_core::runtime::{Plugin, World};
 use yarok_mjc::{CameraId, Renderer, SimBackend};
 
+use super::encoder::Encoder;
 use super::preset;
 
 /// What a [`VideoRecorder`] films (`[plugins.video]`).
@@ -41,7 +41,8 @@ impl Default for VideoRecorderSettings {
 
 /// Films a camera of the model in `sim` to an H.264 MP4 file for sharing, a frame every
 /// `1 / fps` seconds of platform time, through an `ffmpeg` process it starts (found on the
-/// `PATH`) and waits for at the end.
+/// `PATH`) and waits for at the end. An encoder that stops taking frames for 5 s ends the run
+/// with an error, and is stopped; it is never left running.
 ///
 /// Registered by `yarok::platform()` as `video`:
 ///
@@ -58,20 +59,11 @@ pub struct VideoRecorder {
 }
 
 /// The camera, its renderer and the encoder being fed.
+#[derive(Debug)]
 struct Filming {
     camera: CameraId,
     renderer: Renderer,
-    ffmpeg: Child,
-    frames: ChildStdin,
-}
-
-impl std::fmt::Debug for Filming {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Filming")
-            .field("camera", &self.camera)
-            .field("ffmpeg", &self.ffmpeg.id())
-            .finish()
-    }
+    encoder: Encoder,
 }
 
 impl VideoRecorder {
@@ -94,9 +86,11 @@ impl VideoRecorder {
         })
     }
 
-    fn ffmpeg(&self) -> Result<Child, BoxError> {
+    /// `ffmpeg` encoding raw RGB frames of the settings' size and rate to the video file.
+    fn ffmpeg(&self) -> Command {
         let [width, height] = self.settings.size;
-        Command::new("ffmpeg")
+        let mut command = Command::new("ffmpeg");
+        command
             .args([
                 "-loglevel",
                 "error",
@@ -116,33 +110,16 @@ impl VideoRecorder {
                 "-movflags",
                 "+faststart",
             ])
-            .arg(&self.settings.path)
-            .stdin(Stdio::piped())
-            .stdout(Stdio::null())
-            .stderr(Stdio::piped())
-            .spawn()
-            .map_err(|e| {
-                format!("cannot start ffmpeg ({e}): install it (Debian: apt-get install ffmpeg)")
-                    .into()
-            })
+            .arg(&self.settings.path);
+        command
     }
 
     /// Ends the video: the encoder reads to the end of its input and writes the file.
     fn finish(&mut self) -> Result<(), BoxError> {
-        let Some(Filming { ffmpeg, frames, .. }) = self.filming.take() else {
-            return Ok(());
-        };
-        drop(frames);
-        let output = ffmpeg.wait_with_output()?;
-        if !output.status.success() {
-            return Err(format!(
-                "ffmpeg could not write {}: {}",
-                self.settings.path.display(),
-                String::from_utf8_lossy(&output.stderr).trim()
-            )
-            .into());
+        match self.filming.take() {
+            Some(filming) => filming.encoder.finish(),
+            None => Ok(()),
         }
-        Ok(())
     }
 }
 
@@ -171,13 +148,11 @@ impl Plugin for VideoRecorder {
             .size(width, height)
             .preset(preset(self.settings.quality))
             .build(sim.model())?;
-        let mut ffmpeg = self.ffmpeg()?;
-        let frames = ffmpeg.stdin.take().ok_or("ffmpeg has no input")?;
+        let encoder = Encoder::start(self.ffmpeg(), self.settings.path.clone())?;
         self.filming = Some(Filming {
             camera,
             renderer,
-            ffmpeg,
-            frames,
+            encoder,
         });
         Ok(())
     }
@@ -194,24 +169,14 @@ impl Plugin for VideoRecorder {
         let frame = filming
             .renderer
             .render_rgb(&mut sim.data_mut(), filming.camera)?;
-        if filming.frames.write_all(frame.as_raw()).is_err() {
-            // ffmpeg ended early: say why.
-            self.finish()?;
-            return Err("ffmpeg stopped reading frames".into());
+        let sent = filming.encoder.send(frame.into_raw());
+        if sent.is_err() {
+            self.filming = None;
         }
-        Ok(())
+        sent
     }
 
     fn end(&mut self, _: &World<'_>) -> Result<(), BoxError> {
         self.finish()
-    }
-}
-
-impl Drop for VideoRecorder {
-    fn drop(&mut self) {
-        if let Some(filming) = &mut self.filming {
-            let _already_ended = filming.ffmpeg.kill();
-            let _reaped = filming.ffmpeg.wait();
-        }
     }
 }
