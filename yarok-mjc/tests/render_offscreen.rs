@@ -251,6 +251,10 @@ fn buffers_beyond_the_gl_limits_are_refused() {
         ("", (1_000_000, 64)),
         ("", (64, 1_000_000)),
         (r#"<quality offsamples="1000"/>"#, (32, 32)),
+        // Within the size and sample limits, but past llvmpipe's 1 GiB a buffer (MuJoCo
+        // would abort the process on the incomplete framebuffer).
+        ("", (8200, 8200)),
+        ("", (16384, 16384)),
     ] {
         let model = Arc::new(
             Model::from_xml_str(&format!(

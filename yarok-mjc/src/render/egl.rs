@@ -22,10 +22,85 @@ type QueryDevices =
 type GetPlatformDisplay =
     unsafe extern "system" fn(egl::Enum, *mut c_void, *const egl::Int) -> egl::EGLDisplay;
 type GetIntegerv = unsafe extern "system" fn(u32, *mut i32);
+type GenObjects = unsafe extern "system" fn(i32, *mut u32);
+type DeleteObjects = unsafe extern "system" fn(i32, *const u32);
+type BindObject = unsafe extern "system" fn(u32, u32);
+type RenderbufferStorageMultisample = unsafe extern "system" fn(u32, i32, u32, i32, i32);
+type FramebufferRenderbuffer = unsafe extern "system" fn(u32, u32, u32, u32);
+type CheckFramebufferStatus = unsafe extern "system" fn(u32) -> u32;
+
+/// The OpenGL 3.0 functions that query limits and make and check a framebuffer.
+struct GlFunctions {
+    get_integer: GetIntegerv,
+    gen_framebuffers: GenObjects,
+    delete_framebuffers: DeleteObjects,
+    bind_framebuffer: BindObject,
+    gen_renderbuffers: GenObjects,
+    delete_renderbuffers: DeleteObjects,
+    bind_renderbuffer: BindObject,
+    renderbuffer_storage: RenderbufferStorageMultisample,
+    framebuffer_renderbuffer: FramebufferRenderbuffer,
+    check_framebuffer_status: CheckFramebufferStatus,
+}
+
+impl GlFunctions {
+    fn load(egl: &Egl) -> Result<Self, RenderError> {
+        let find = |name: &'static str| {
+            egl.get_proc_address(name)
+                .ok_or_else(|| egl_error(name, "no such GL function"))
+        };
+        // SAFETY: each function has the signature OpenGL 3.0 gives it under that name.
+        unsafe {
+            Ok(Self {
+                get_integer: std::mem::transmute::<extern "system" fn(), GetIntegerv>(find(
+                    "glGetIntegerv",
+                )?),
+                gen_framebuffers: std::mem::transmute::<extern "system" fn(), GenObjects>(find(
+                    "glGenFramebuffers",
+                )?),
+                delete_framebuffers: std::mem::transmute::<extern "system" fn(), DeleteObjects>(
+                    find("glDeleteFramebuffers")?,
+                ),
+                bind_framebuffer: std::mem::transmute::<extern "system" fn(), BindObject>(find(
+                    "glBindFramebuffer",
+                )?),
+                gen_renderbuffers: std::mem::transmute::<extern "system" fn(), GenObjects>(find(
+                    "glGenRenderbuffers",
+                )?),
+                delete_renderbuffers: std::mem::transmute::<extern "system" fn(), DeleteObjects>(
+                    find("glDeleteRenderbuffers")?,
+                ),
+                bind_renderbuffer: std::mem::transmute::<extern "system" fn(), BindObject>(find(
+                    "glBindRenderbuffer",
+                )?),
+                renderbuffer_storage: std::mem::transmute::<
+                    extern "system" fn(),
+                    RenderbufferStorageMultisample,
+                >(find("glRenderbufferStorageMultisample")?),
+                framebuffer_renderbuffer: std::mem::transmute::<
+                    extern "system" fn(),
+                    FramebufferRenderbuffer,
+                >(find("glFramebufferRenderbuffer")?),
+                check_framebuffer_status: std::mem::transmute::<
+                    extern "system" fn(),
+                    CheckFramebufferStatus,
+                >(find("glCheckFramebufferStatus")?),
+            })
+        }
+    }
+}
 
 const GL_MAX_VIEWPORT_DIMS: u32 = 0x0D3A;
 const GL_MAX_RENDERBUFFER_SIZE: u32 = 0x84E8;
 const GL_MAX_SAMPLES: u32 = 0x8D57;
+const GL_RENDERBUFFER: u32 = 0x8D41;
+const GL_FRAMEBUFFER: u32 = 0x8D40;
+const GL_FRAMEBUFFER_BINDING: u32 = 0x8CA6;
+const GL_FRAMEBUFFER_COMPLETE: u32 = 0x8CD5;
+const GL_COLOR_ATTACHMENT0: u32 = 0x8CE0;
+const GL_DEPTH_STENCIL_ATTACHMENT: u32 = 0x821A;
+const GL_RGBA8: u32 = 0x8058;
+const GL_DEPTH32F_STENCIL8: u32 = 0x8CAD;
 
 /// What the OpenGL implementation can allocate for an offscreen framebuffer.
 #[derive(Debug, Clone, Copy)]
@@ -112,17 +187,12 @@ impl GlContext {
 
     /// The implementation's framebuffer limits, queried through this (current) context.
     pub(super) fn limits(&self) -> Result<GlLimits, RenderError> {
-        let get = self
-            .egl
-            .get_proc_address("glGetIntegerv")
-            // SAFETY: glGetIntegerv has the GetIntegerv signature (OpenGL 1.0).
-            .map(|f| unsafe { std::mem::transmute::<extern "system" fn(), GetIntegerv>(f) })
-            .ok_or_else(|| egl_error("find glGetIntegerv", "no such GL function"))?;
+        let gl = GlFunctions::load(self.egl)?;
         self.make_current()?;
         let query = |name: u32| {
             let mut values = [0i32; 2];
             // SAFETY: this context is current; every queried name writes at most two integers.
-            unsafe { get(name, values.as_mut_ptr()) };
+            unsafe { (gl.get_integer)(name, values.as_mut_ptr()) };
             values.map(|v| u32::try_from(v).unwrap_or(0))
         };
         let renderbuffer = query(GL_MAX_RENDERBUFFER_SIZE)[0];
@@ -134,6 +204,51 @@ impl GlContext {
             ),
             max_samples: query(GL_MAX_SAMPLES)[0],
         })
+    }
+
+    /// Whether the implementation completes an offscreen framebuffer of `width` by `height`
+    /// with `samples` samples, colour and depth-stencil, as MuJoCo makes it: some refuse buffers
+    /// past a size in bytes that the size and sample limits do not tell (Mesa's llvmpipe: 1 GiB
+    /// a buffer), and MuJoCo aborts the process on an incomplete framebuffer. The framebuffer
+    /// is made, checked and deleted, and the one bound before is bound again.
+    pub(super) fn completes(
+        &self,
+        width: u32,
+        height: u32,
+        samples: u32,
+    ) -> Result<bool, RenderError> {
+        self.make_current()?;
+        let gl = GlFunctions::load(self.egl)?;
+        let [width, height, samples] =
+            [width, height, samples].map(|v| i32::try_from(v).unwrap_or(i32::MAX));
+        let mut buffers = [0u32; 2];
+        let mut framebuffer = 0u32;
+        let mut bound = 0i32;
+        // SAFETY: this context is current; the framebuffer and its buffers are generated,
+        // bound, given storage, checked and deleted within it, and the framebuffer bound before
+        // (read first) is bound again.
+        let status = unsafe {
+            (gl.get_integer)(GL_FRAMEBUFFER_BINDING, &mut bound);
+            (gl.gen_framebuffers)(1, &mut framebuffer);
+            (gl.bind_framebuffer)(GL_FRAMEBUFFER, framebuffer);
+            (gl.gen_renderbuffers)(2, buffers.as_mut_ptr());
+            let attachments = [
+                (GL_RGBA8, GL_COLOR_ATTACHMENT0),
+                (GL_DEPTH32F_STENCIL8, GL_DEPTH_STENCIL_ATTACHMENT),
+            ];
+            for (buffer, (format, attachment)) in buffers.iter().zip(attachments) {
+                (gl.bind_renderbuffer)(GL_RENDERBUFFER, *buffer);
+                (gl.renderbuffer_storage)(GL_RENDERBUFFER, samples, format, width, height);
+                (gl.framebuffer_renderbuffer)(GL_FRAMEBUFFER, attachment, GL_RENDERBUFFER, *buffer);
+            }
+            let status = (gl.check_framebuffer_status)(GL_FRAMEBUFFER);
+            (gl.bind_renderbuffer)(GL_RENDERBUFFER, 0);
+            (gl.bind_framebuffer)(GL_FRAMEBUFFER, u32::try_from(bound).unwrap_or(0));
+            (gl.delete_renderbuffers)(2, buffers.as_ptr());
+            (gl.delete_framebuffers)(1, &framebuffer);
+            status
+        };
+        Ok(status == GL_FRAMEBUFFER_COMPLETE)
     }
 
     /// Makes this context current on the calling thread (a no-op when it already is).

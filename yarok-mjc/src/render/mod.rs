@@ -49,11 +49,14 @@ pub enum RenderError {
         reason: String,
     },
     /// The image size, or the model's multisampling (`visual/quality/@offsamples`), is beyond
-    /// what this OpenGL implementation can allocate for the renderer's offscreen buffer.
+    /// what this OpenGL implementation can allocate for the renderer's offscreen buffer: past
+    /// its size or sample limits, or its limit on a buffer's bytes (llvmpipe: 1 GiB, so 8192²
+    /// with 4 samples at most).
     #[error(
         "an offscreen buffer of {width}x{height} with {samples} samples is beyond what this \
-         OpenGL implementation supports ({max_width}x{max_height}, {max_samples} samples); \
-         render smaller images or lower <visual><quality offsamples=\"..\"/></visual>"
+         OpenGL implementation allocates (at most {max_width}x{max_height} and {max_samples} \
+         samples, within its limit on a buffer's bytes); render smaller images or lower \
+         <visual><quality offsamples=\"..\"/></visual>"
     )]
     BeyondGl {
         /// Requested width in pixels.
@@ -191,7 +194,11 @@ impl RendererBuilder {
         // so the buffer is checked against the implementation's limits first.
         let samples = to_u32(spec.context_model(model).vis.quality.offsamples);
         let limits = gl.limits()?;
-        if width > limits.max_size.0 || height > limits.max_size.1 || samples > limits.max_samples {
+        if width > limits.max_size.0
+            || height > limits.max_size.1
+            || samples > limits.max_samples
+            || !gl.completes(width, height, samples)?
+        {
             return Err(RenderError::BeyondGl {
                 width,
                 height,
