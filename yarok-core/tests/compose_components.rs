@@ -4,7 +4,7 @@
 #[macro_use]
 mod common;
 
-use yarok_core::component::{ComponentType, Declaration, NameKind};
+use yarok_core::component::{Component, ComponentType, Declaration, NameKind};
 use yarok_core::compose::{compose, compose_with};
 use yarok_core::template::xml::Element;
 use yarok_core::value::{Config, IntoValue, Overrides};
@@ -262,7 +262,7 @@ component!(
 );
 
 component!(Room, Declaration::new("room").uses::<Derived>().template(
-    r#"<mujoco><compiler angle="radian"/><worldbody><derived name="a"/><derived name="b" size="2"/></worldbody></mujoco>"#
+    r#"<mujoco><compiler angle="radian"/><option timestep="0.001"/><worldbody><derived name="a"/><derived name="b" size="2"/></worldbody></mujoco>"#
 ));
 
 #[test]
@@ -293,6 +293,96 @@ fn extends_merges_the_base_with_one_prefix_and_the_child_sees_base_names() {
         Some("0.001"),
         "equal settings merge"
     );
+}
+
+component!(
+    Gravityless,
+    Declaration::new("gravityless").template(
+        r#"<mujoco>
+             <option gravity="0 0 0"/>
+             <worldbody><geom name="g" size="1"/></worldbody>
+           </mujoco>"#
+    )
+);
+component!(
+    Upside,
+    Declaration::new("upside").template(
+        r#"<mujoco>
+             <compiler eulerseq="zyx"/>
+             <worldbody><body name="b" euler="0 0 1"/></worldbody>
+           </mujoco>"#
+    )
+);
+component!(
+    Weighed,
+    Declaration::new("weighed").template(
+        r#"<mujoco>
+             <compiler settotalmass="5"/>
+             <worldbody><body name="b"><geom size="1"/></body></worldbody>
+           </mujoco>"#
+    )
+);
+component!(
+    Unflagged,
+    Declaration::new("unflagged").template(
+        r#"<mujoco>
+             <option><flag gravity="disable"/></option>
+             <worldbody><geom name="g" size="1"/></worldbody>
+           </mujoco>"#
+    )
+);
+component!(
+    Solver,
+    Declaration::new("solver").template(
+        r#"<mujoco><option integrator="implicitfast" cone="elliptic"/><worldbody/></mujoco>"#
+    )
+);
+/// A world holding one `C` named `c`.
+struct Lab<C>(std::marker::PhantomData<C>);
+
+impl<C: Component> Component for Lab<C> {
+    fn declaration() -> Declaration {
+        let tag = C::declaration().tag().to_owned();
+        Declaration::new("lab").uses::<C>().template(format!(
+            r#"<mujoco><worldbody><body name="floor"/><{tag} name="c"/></worldbody></mujoco>"#
+        ))
+    }
+}
+
+/// A wrapped component's settings that MuJoCo applies to every body (gravity, the time step, a
+/// physics flag, how Euler angles are read, a total mass) would silently change the whole
+/// world, the world's own bodies included: each is refused at its attribute, saying why and
+/// what to do. The world may set them, and a component may then agree; a component's solver
+/// choices are taken.
+#[test]
+fn a_component_cannot_change_the_whole_worlds_physics() {
+    for (error, attribute, why) in [
+        (
+            compose::<Lab<Gravityless>>(),
+            "gravity",
+            "physical constants",
+        ),
+        (compose::<Lab<Upside>>(), "eulerseq", "Euler angle"),
+        (
+            compose::<Lab<Weighed>>(),
+            "settotalmass",
+            "masses and inertias",
+        ),
+        (compose::<Lab<Unflagged>>(), "gravity", "flag"),
+    ] {
+        let error = error.unwrap_err();
+        assert_eq!(error.component, "/c", "{error}");
+        assert_eq!(error.attribute.as_deref(), Some(attribute), "{error}");
+        assert!(
+            error.message.contains("would change the whole world")
+                && error.message.contains(why)
+                && error.message.contains("world's template"),
+            "{error}"
+        );
+        assert!(error.position.is_some(), "{error}");
+    }
+    let solver = compose::<Lab<Solver>>().unwrap();
+    assert!(has(&solver.mjcf, "option", "integrator", "implicitfast"));
 }
 
 component!(

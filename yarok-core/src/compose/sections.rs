@@ -9,6 +9,30 @@ use super::error::Problem;
 /// Sections holding global settings, merged attribute by attribute.
 pub(super) const SETTINGS: [&str; 5] = ["compiler", "option", "size", "visual", "statistic"];
 
+/// Why a component may not set the settings attribute `attribute` of `path` (`option`,
+/// `option/flag`, `compiler`) unless the world sets it the same: MuJoCo applies it to the
+/// whole world, the world's own bodies and every other component's included. Solver choices
+/// (`integrator`, `cone`, `impratio`, …) a component may make, as a wrapped model needs them;
+/// two components that disagree are refused as for any setting.
+fn world_level(path: &str, attribute: &str) -> Option<&'static str> {
+    match (path, attribute) {
+        (
+            "option",
+            "timestep" | "gravity" | "wind" | "magnetic" | "density" | "viscosity" | "o_margin"
+            | "o_solref" | "o_solimp" | "o_friction",
+        ) => Some("the world's time step and physical constants"),
+        ("option/flag", _) => Some("a flag that switches a part of the physics for every body"),
+        ("compiler", "eulerseq") => Some("how every Euler angle of every body is read"),
+        (
+            "compiler",
+            "settotalmass" | "boundmass" | "boundinertia" | "balanceinertia" | "inertiafromgeom"
+            | "inertiagrouprange" | "alignfree" | "fusestatic",
+        ) => Some("how the masses and inertias of every body are compiled"),
+        ("compiler", "coordinate") => Some("how every position is read"),
+        _ => None,
+    }
+}
+
 /// The world's sections as components add to them.
 #[derive(Default)]
 pub(super) struct World {
@@ -80,6 +104,17 @@ impl World {
                 }
                 Some(_) => {}
                 None => {
+                    if owner != 0
+                        && let Some(what) = world_level(path, &attribute.name)
+                    {
+                        let message = format!(
+                            "{path}/@{} would change the whole world, not this component: \
+                             MuJoCo applies it to every body ({what}); set it in the world's \
+                             template if the world is to have it",
+                            attribute.name
+                        );
+                        return Err(Box::new((source.clone(), Some(attribute.clone()), message)));
+                    }
                     target.attributes.push(attribute.clone());
                     self.setters.insert(key, owner);
                 }
@@ -87,15 +122,17 @@ impl World {
         }
         for child in source.children {
             let target = walk_mut(&mut self.sections[index], &trail);
-            match target.children.iter().position(|c| c.name == child.name) {
-                Some(position) => {
-                    let mut deeper = trail.clone();
-                    deeper.push(position);
-                    let child_path = format!("{path}/{}", child.name);
-                    self.merge_setting(index, deeper, &child_path, child, owner, paths)?;
+            let position = match target.children.iter().position(|c| c.name == child.name) {
+                Some(position) => position,
+                None => {
+                    target.children.push(Element::new(&child.name));
+                    target.children.len() - 1
                 }
-                None => target.children.push(child),
-            }
+            };
+            let mut deeper = trail.clone();
+            deeper.push(position);
+            let child_path = format!("{path}/{}", child.name);
+            self.merge_setting(index, deeper, &child_path, child, owner, paths)?;
         }
         Ok(())
     }
