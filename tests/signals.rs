@@ -75,57 +75,24 @@ fn sigterm_ends_a_recorded_run_with_its_files_whole() {
     let folder = tempfile::tempdir().unwrap();
     let mcap = folder.path().join("run.mcap");
     let csv = folder.path().join("joints.csv");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_yarok"))
-        .args([
-            "run",
-            "pick_and_place_world",
-            "--behaviour",
-            "idle",
-            "--record",
-        ])
-        .arg(&mcap)
-        .args([
-            "--set",
-            &format!("plugins/joints_csv/path={:?}", csv.display().to_string()),
-        ])
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
+    let mut child = yarok_run(&[
+        "pick_and_place_world",
+        "--behaviour",
+        "idle",
+        "--record",
+        mcap.to_str().unwrap(),
+        "--set",
+        &format!("plugins/joints_csv/path={:?}", csv.display().to_string()),
+        "--set",
+        "behaviour/seconds=600",
+    ]);
     // Until the run is well under way: the CSV holds rows.
-    let started = Instant::now();
-    while std::fs::read_to_string(&csv).map_or(0, |text| text.lines().count()) < 20 {
-        assert!(
-            child.try_wait().unwrap().is_none(),
-            "the run ended before the signal"
-        );
-        assert!(
-            started.elapsed() < Duration::from_secs(60),
-            "the run wrote no rows"
-        );
-        std::thread::sleep(Duration::from_millis(20));
-    }
-    let status = Command::new("kill")
-        .args(["-TERM", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(status.success());
-    let signalled = Instant::now();
-    let status = loop {
-        if let Some(status) = child.try_wait().unwrap() {
-            break status;
-        }
-        if signalled.elapsed() > Duration::from_secs(10) {
-            child.kill().unwrap();
-            panic!("SIGTERM did not end the run");
-        }
-        std::thread::sleep(Duration::from_millis(10));
-    };
-    let took = signalled.elapsed();
-    let mut stderr = String::new();
-    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut stderr).unwrap();
-    assert_eq!(status.code(), Some(143), "{stderr}");
+    wait_until(&mut child, || {
+        std::fs::read_to_string(&csv).map_or(0, |text| text.lines().count()) >= 20
+    });
+    let pid = child.id().to_string();
+    let (code, stderr, took) = terminate(child, &pid);
+    assert_eq!(code, Some(143), "{stderr}");
     assert!(stderr.contains("SIGTERM"), "{stderr}");
     println!("from SIGTERM to exit, files closed: {took:?}");
 
