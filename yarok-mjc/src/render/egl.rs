@@ -146,6 +146,8 @@ pub(super) struct GlContext {
     egl: &'static Egl,
     display: egl::Display,
     context: egl::Context,
+    /// The OpenGL functions it is queried and checked with, looked up once.
+    functions: GlFunctions,
 }
 
 impl GlContext {
@@ -166,6 +168,7 @@ impl GlContext {
 
     fn new() -> Result<Self, RenderError> {
         let egl = egl_library()?;
+        let functions = GlFunctions::load(egl)?;
         let display = open_display(egl)?;
         let config = egl
             .choose_first_config(display, &CONFIG)
@@ -180,6 +183,7 @@ impl GlContext {
             egl,
             display,
             context,
+            functions,
         };
         gl.make_current()?;
         Ok(gl)
@@ -187,7 +191,7 @@ impl GlContext {
 
     /// The implementation's framebuffer limits, queried through this (current) context.
     pub(super) fn limits(&self) -> Result<GlLimits, RenderError> {
-        let gl = GlFunctions::load(self.egl)?;
+        let gl = &self.functions;
         self.make_current()?;
         let query = |name: u32| {
             let mut values = [0i32; 2];
@@ -218,7 +222,7 @@ impl GlContext {
         samples: u32,
     ) -> Result<bool, RenderError> {
         self.make_current()?;
-        let gl = GlFunctions::load(self.egl)?;
+        let gl = &self.functions;
         let [width, height, samples] =
             [width, height, samples].map(|v| i32::try_from(v).unwrap_or(i32::MAX));
         let mut buffers = [0u32; 2];
