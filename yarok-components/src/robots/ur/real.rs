@@ -282,6 +282,24 @@ fn check_kinematics(
     )))
 }
 
+/// A connection to `host`'s `port`, made within `reply`.
+async fn connect_to(
+    host: &str,
+    port: u16,
+    reply: Duration,
+) -> Result<TcpStream, yarok_core::BoxError> {
+    Ok(tokio::time::timeout(reply, TcpStream::connect((host, port))).await??)
+}
+
+/// The dashboard of `host`, connected and its welcome read, each within `reply`.
+async fn dashboard(
+    host: &str,
+    reply: Duration,
+) -> Result<Dashboard<TcpStream>, yarok_core::BoxError> {
+    let stream = connect_to(host, DASHBOARD_PORT, reply).await?;
+    Ok(Dashboard::connect(stream, host, reply).await?)
+}
+
 /// Connects to RTDE at `host`, sets up the arm's outputs, starts them and reads the first
 /// package: a stream that answers but sends no data is refused, naming it.
 async fn rtde_stream(
@@ -289,7 +307,7 @@ async fn rtde_stream(
     hz: Option<f64>,
     reply: Duration,
 ) -> Result<(Rtde<TcpStream>, Measured), yarok_core::BoxError> {
-    let stream = tokio::time::timeout(reply, TcpStream::connect((host, RTDE_PORT))).await??;
+    let stream = connect_to(host, RTDE_PORT, reply).await?;
     let mut settings = RtdeSettings::new(host);
     settings.reply_timeout = reply;
     let mut rtde = Rtde::connect(stream, settings).await?;
@@ -318,7 +336,7 @@ async fn secondary_stream(
     host: &str,
     reply: Duration,
 ) -> Result<Secondary<TcpStream>, yarok_core::BoxError> {
-    let stream = tokio::time::timeout(reply, TcpStream::connect((host, SECONDARY_PORT))).await??;
+    let stream = connect_to(host, SECONDARY_PORT, reply).await?;
     Ok(Secondary::connect(stream, host, reply).await?)
 }
 
@@ -478,8 +496,7 @@ async fn reconnect<T>(
 /// Refuses a controller that cannot move the arm, saying why in words: in local control, the
 /// arm powered off or its brakes locked, or its safety system holding it.
 async fn check_ready(host: &str, reply: Duration) -> Result<(), yarok_core::BoxError> {
-    let stream = tokio::time::timeout(reply, TcpStream::connect((host, DASHBOARD_PORT))).await??;
-    let mut dashboard = Dashboard::connect(stream, host, reply).await?;
+    let mut dashboard = dashboard(host, reply).await?;
     if !dashboard.is_in_remote_control().await? {
         return Err(
             "the controller is in local control and runs no script sent to it: switch it \
@@ -533,10 +550,11 @@ async fn report_a_halt(link: &RealLink, now: &Measured, host: &str, reply: Durat
 /// `unlock protective stop` on the dashboard of `host`.
 async fn unlock(host: &str, reply: Duration) -> Result<(), String> {
     let unlocking = async {
-        let stream = TcpStream::connect((host, DASHBOARD_PORT)).await?;
-        let mut dashboard = Dashboard::connect(stream, host, reply).await?;
-        dashboard.unlock_protective_stop().await?;
-        Ok::<_, Box<dyn std::error::Error + Send + Sync>>(())
+        dashboard(host, reply)
+            .await?
+            .unlock_protective_stop()
+            .await?;
+        Ok::<_, yarok_core::BoxError>(())
     };
     match tokio::time::timeout(reply * 2, unlocking).await {
         Ok(result) => result.map_err(|e| e.to_string()),
