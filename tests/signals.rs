@@ -16,17 +16,23 @@ mod ur_controller;
 
 use ur_controller::{FakeController, Profile};
 
-/// `yarok run` with `arguments`, in a process group of its own (as a scheduler's job is).
-fn yarok_run(arguments: &[&str]) -> Child {
-    Command::new(env!("CARGO_BIN_EXE_yarok"))
+/// `yarok run` with `arguments`, in a process group of its own (as a scheduler's job is), its
+/// standard error kept.
+fn yarok_command(arguments: &[&str]) -> Command {
+    let mut command = Command::new(env!("CARGO_BIN_EXE_yarok"));
+    command
         .arg("run")
         .args(arguments)
         .process_group(0)
         .stdin(Stdio::null())
         .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap()
+        .stderr(Stdio::piped());
+    command
+}
+
+/// [`yarok_command`], started.
+fn yarok_run(arguments: &[&str]) -> Child {
+    yarok_command(arguments).spawn().unwrap()
 }
 
 /// Waits until `ready` holds, failing if the run ends first or a minute passes.
@@ -46,10 +52,21 @@ fn wait_until(child: &mut Child, mut ready: impl FnMut() -> bool) {
 }
 
 /// Sends SIGTERM to `target` (a pid, or `-pgid` for a whole group) and returns the run's exit
-/// code, its standard error and how long it took to exit.
-fn terminate(mut child: Child, target: &str) -> (Option<i32>, String, Duration) {
+/// code, its standard error and how long it took to exit (at most 10 s).
+fn terminate(child: Child, target: &str) -> (Option<i32>, String, Duration) {
+    signal(child, "-TERM", target, Duration::from_secs(10))
+}
+
+/// Sends `signal` (`-TERM`, `-INT`) to `target` and returns the run's exit code, its standard
+/// error and how long it took to exit, failing if that is more than `limit`.
+fn signal(
+    mut child: Child,
+    signal: &str,
+    target: &str,
+    limit: Duration,
+) -> (Option<i32>, String, Duration) {
     let status = Command::new("kill")
-        .args(["-TERM", "--", target])
+        .args([signal, "--", target])
         .status()
         .unwrap();
     assert!(status.success());
@@ -58,9 +75,9 @@ fn terminate(mut child: Child, target: &str) -> (Option<i32>, String, Duration) 
         if let Some(status) = child.try_wait().unwrap() {
             break status;
         }
-        if signalled.elapsed() > Duration::from_secs(10) {
+        if signalled.elapsed() > limit {
             child.kill().unwrap();
-            panic!("SIGTERM did not end the run");
+            panic!("{signal} did not end the run within {limit:?}");
         }
         std::thread::sleep(Duration::from_millis(10));
     };
@@ -240,23 +257,20 @@ fn an_encoder_that_stops_reading_neither_blocks_the_run_nor_outlives_it() {
         std::env::var("PATH").unwrap_or_default()
     );
     let video = folder.path().join("run.mp4");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_yarok"))
-        .args([
-            "run",
-            "pick_and_place_world",
-            "--behaviour",
-            "idle",
-            "--video",
-        ])
-        .arg(&video)
-        .args(["--set", "plugins/video/size=[160, 120]"])
-        .args(["--set", "behaviour/seconds=600"])
-        .env("PATH", path)
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
+    let mut child = yarok_command(&[
+        "pick_and_place_world",
+        "--behaviour",
+        "idle",
+        "--video",
+        video.to_str().unwrap(),
+        "--set",
+        "plugins/video/size=[160, 120]",
+        "--set",
+        "behaviour/seconds=600",
+    ])
+    .env("PATH", path)
+    .spawn()
+    .unwrap();
     wait_until(&mut child, || pid_file.exists());
     std::thread::sleep(Duration::from_millis(500));
     let encoder = std::fs::read_to_string(&pid_file)
@@ -264,25 +278,10 @@ fn an_encoder_that_stops_reading_neither_blocks_the_run_nor_outlives_it() {
         .trim()
         .to_owned();
     let pid = child.id().to_string();
-    let started = Instant::now();
-    let status = Command::new("kill").args(["-INT", &pid]).status().unwrap();
-    assert!(status.success());
-    let status = loop {
-        if let Some(status) = child.try_wait().unwrap() {
-            break status;
-        }
-        if started.elapsed() > Duration::from_secs(30) {
-            child.kill().unwrap();
-            let _ = Command::new("kill").args(["-KILL", &encoder]).status();
-            panic!("the stalled encoder blocked the run");
-        }
-        std::thread::sleep(Duration::from_millis(10));
-    };
-    let mut stderr = String::new();
-    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut stderr).unwrap();
-    assert!(!status.success(), "{stderr}");
+    let (code, stderr, took) = signal(child, "-INT", &pid, Duration::from_secs(30));
+    assert_ne!(code, Some(0), "{stderr}");
     assert!(stderr.contains("encoder took no frame"), "{stderr}");
-    println!("ended {:?} after Ctrl-C: {stderr}", started.elapsed());
+    println!("ended {took:?} after Ctrl-C: {stderr}");
     let alive = Command::new("kill")
         .args(["-0", &encoder])
         .stderr(Stdio::null())

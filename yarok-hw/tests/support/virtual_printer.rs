@@ -75,19 +75,20 @@ impl VirtualPrinter {
 
     /// The lines the printer ignored while it booted.
     pub(crate) fn ignored(&self) -> Vec<String> {
-        let reports = self.reports.lock().unwrap();
-        let lines = reports
-            .iter()
-            .filter_map(|report| report.strip_prefix("~ "));
-        lines.map(str::to_owned).collect()
+        self.lines_reported("~ ")
     }
 
     /// The lines the printer has received so far.
     pub(crate) fn received(&self) -> Vec<String> {
+        self.lines_reported("> ")
+    }
+
+    /// The lines the bridge reported after `prefix`.
+    fn lines_reported(&self, prefix: &str) -> Vec<String> {
         let reports = self.reports.lock().unwrap();
         let lines = reports
             .iter()
-            .filter_map(|report| report.strip_prefix("> "));
+            .filter_map(|report| report.strip_prefix(prefix));
         lines.map(str::to_owned).collect()
     }
 
