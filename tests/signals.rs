@@ -203,8 +203,10 @@ fn sigterm_stops_a_real_arm_and_closes_its_recording() {
         "--set",
         "behaviour/seconds=600",
     ]);
+    // Every component bound (the arm's stop registered): the recorder, started after binding,
+    // has created its file.
     wait_until(&mut child, || {
-        fake.rtde_connections() > 0 && fake.asked().len() >= 4
+        fake.rtde_connections() > 0 && fake.asked().len() >= 4 && mcap.exists()
     });
     std::thread::sleep(Duration::from_millis(500));
     assert!(fake.scripts().iter().all(|s| !s.starts_with("stopj")));
@@ -213,11 +215,13 @@ fn sigterm_stops_a_real_arm_and_closes_its_recording() {
     assert_eq!(code, Some(143), "{stderr}");
     assert!(stderr.contains("SIGTERM"), "{stderr}");
     println!("from SIGTERM to exit, arm stopped: {took:?}");
-    assert!(
-        fake.scripts().iter().any(|s| s == "stopj(2.0)"),
-        "no stopj: {:?}",
-        fake.scripts()
-    );
+    // yarok wrote stopj before it exited; the fake reads it on a task of its own.
+    let stopped = |scripts: &[String]| scripts.iter().any(|s| s == "stopj(2.0)");
+    let exited = Instant::now();
+    while !stopped(&fake.scripts()) && exited.elapsed() < Duration::from_secs(2) {
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    assert!(stopped(&fake.scripts()), "no stopj: {:?}", fake.scripts());
     let summary = peers::run("mcap_summary.py", &[mcap.to_str().unwrap()]);
     // In `real` the recorder has the run's log channel (joints and bodies are recorded in
     // `sim`); what matters here is that the file ends with its summary.
