@@ -103,3 +103,27 @@ fn an_aborting_input_is_refused_with_its_place() {
     );
     assert_eq!(message, "<model> in <asset> needs a `file`");
 }
+
+struct Legacy;
+impl Component for Legacy {
+    fn declaration() -> Declaration {
+        Declaration::new("legacy").template(
+            "<mujoco>\n  <compiler angle=\"radian\"\n            coordinate=\"global\"/>\n  <worldbody>\n    <body><geom size=\"0.1\"/></body>\n  </worldbody>\n</mujoco>",
+        )
+    }
+}
+
+/// The composer merges every component's settings into one element; MuJoCo's error about it
+/// names the template that wrote it, not `<string>` and a composed line.
+#[test]
+fn an_error_in_merged_settings_names_the_template_that_set_them() {
+    let (origin, message) = compile_error::<Legacy>();
+    assert_eq!(
+        origin,
+        "component /, <legacy> (inline template):2:3, <compiler>"
+    );
+    assert!(
+        message.contains("global coordinates no longer supported"),
+        "{message}"
+    );
+}

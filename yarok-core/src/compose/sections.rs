@@ -54,7 +54,13 @@ impl World {
     ) -> Result<(), Problem> {
         if SETTINGS.contains(&section.name.as_str()) {
             let name = section.name.clone();
-            let index = self.section_index(&name);
+            let index = match self.sections.iter().position(|s| s.name == name) {
+                Some(index) => index,
+                None => {
+                    self.sections.push(section.empty_like());
+                    self.sections.len() - 1
+                }
+            };
             return self.merge_setting(index, Vec::new(), &name, section, owner, paths);
         }
         if section.name == "default" && owner != 0 {
@@ -125,7 +131,7 @@ impl World {
             let position = match target.children.iter().position(|c| c.name == child.name) {
                 Some(position) => position,
                 None => {
-                    target.children.push(Element::new(&child.name));
+                    target.children.push(child.empty_like());
                     target.children.len() - 1
                 }
             };

@@ -86,6 +86,15 @@ impl Element {
         }
     }
 
+    /// An element with this one's tag and place (template, owner, position) but no attributes
+    /// or children, for the composer's merged sections, so that errors about them name a place.
+    pub(crate) fn empty_like(&self) -> Self {
+        Self {
+            attributes: Vec::new(),
+            ..self.without_children()
+        }
+    }
+
     /// A copy of this element without its children.
     pub fn without_children(&self) -> Self {
         Self {
