@@ -131,6 +131,16 @@ component!(
     "<mujoco><worldbody><site parent=\"x\"/></worldbody></mujoco>"
 );
 component!(
+    StrayComponent,
+    "<mujoco><worldbody><body name=\"b\"/><fine name=\"f\" parent=\"b\"/></worldbody></mujoco>",
+    Fine
+);
+component!(
+    Astray,
+    "<mujoco><worldbody><fine name=\"h\"><site parent=\"zzz\"/></fine></worldbody></mujoco>",
+    Fine
+);
+component!(
     Loop,
     "<mujoco><worldbody><for each=\"range(2)\"><geom/></for></worldbody></mujoco>"
 );
@@ -168,7 +178,19 @@ fn structural_mistakes_are_explained() {
         ),
         (
             error_of::<Stray>(),
-            "`parent` only places elements written directly inside a component tag",
+            "`parent` places an element written directly inside a component tag \
+             (<arm><site parent=\"wrist\"/></arm>) on that component's body or site; this \
+             <site> is not",
+        ),
+        (
+            error_of::<StrayComponent>(),
+            "`parent` places an element written directly inside a component tag \
+             (<arm><fine parent=\"wrist\"/></arm>) on that component's body or site; this \
+             <fine> is not",
+        ),
+        (
+            error_of::<Astray>(),
+            "/h has no body or site named \"zzz\"; it has `palm2`",
         ),
         (error_of::<Loop>(), "<for> needs a `as` attribute"),
         (error_of::<NotIterable>(), "cannot loop over 2"),

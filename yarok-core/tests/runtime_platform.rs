@@ -194,6 +194,11 @@ fn behaviours_get_typed_handles_by_path_or_name() {
                 missing.to_string(),
                 "no component at /car/lft; did you mean `/car/left`?"
             );
+            let far = pl.get::<Motor>("/bgi").err().unwrap();
+            assert_eq!(
+                far.to_string(),
+                "no component at /bgi; it has `/`, `/car`, `/car/left`, `/car/right`"
+            );
             assert!(matches!(
                 pl.get::<Garage>("/"),
                 Err(yarok_core::component::HandleError::NoHandle { .. })
@@ -488,6 +493,14 @@ fn config_value_errors_name_where_the_value_was_set() {
     assert_eq!(
         error(config),
         "component /car/lft, --set /car/lft/speed=2 attribute `speed`: config names component /car/lft, which the world does not have; did you mean `/car/left`?"
+    );
+    let mut config = RunConfig::default();
+    config.set("/bgi/speed=2").unwrap();
+    assert!(
+        error(config).ends_with(
+            "config names component /bgi, which the world does not have; it has `/`, `/car`, \
+             `/car/left`, `/car/right`"
+        ),
     );
     let mut config = RunConfig::default();
     config.set("behaviour/laps=many").unwrap();

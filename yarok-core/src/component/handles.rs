@@ -4,7 +4,7 @@ use std::any::Any;
 use std::collections::HashMap;
 
 use super::ComponentType;
-use crate::suggest::did_you_mean;
+use crate::suggest::did_you_mean_or_list;
 
 /// A component handle could not be had.
 #[derive(Clone, PartialEq, Eq, thiserror::Error)]
@@ -73,7 +73,7 @@ impl Handles {
         let path = self.resolve(path)?;
         let Some((component, handle)) = self.entries.get(&path) else {
             return Err(HandleError::NoComponent {
-                hint: did_you_mean(&path, self.entries.keys().map(String::as_str)),
+                hint: did_you_mean_or_list(&path, self.entries.keys().map(String::as_str)),
                 path,
             });
         };

@@ -18,7 +18,7 @@ use super::sections::World;
 use super::{ComponentKeyframe, ComposeError, Composition, Instance, layout};
 use crate::component::{ComponentType, NameKind, NameMap};
 use crate::config::ConfigOrigins;
-use crate::suggest::did_you_mean;
+use crate::suggest::{did_you_mean, did_you_mean_or_list};
 use crate::template::expr::{Expr, truthy};
 use crate::template::xml::{Attribute, Element};
 use crate::value::{Config, IntoValue, Overrides};
@@ -99,7 +99,7 @@ impl<'o> Composer<'o> {
             let paths: Vec<&str> = self.instances.iter().map(|i| i.path.as_str()).collect();
             let message = format!(
                 "config names component {unused}, which the world does not have{}",
-                did_you_mean(unused, paths)
+                did_you_mean_or_list(unused, paths)
             );
             let key = self.overrides[unused].keys().next().unwrap_or_default();
             return Err(self.override_error(unused, key, message));
@@ -369,6 +369,15 @@ impl<'o> Composer<'o> {
                         out.extend(self.expand(element.children, ctx, scope)?);
                     }
                 }
+                tag if element.attribute("parent").is_some() => {
+                    let parent = element.attribute_entry("parent").cloned();
+                    let message = format!(
+                        "`parent` places an element written directly inside a component tag \
+                         (<arm><{tag} parent=\"wrist\"/></arm>) on that component's body or \
+                         site; this <{tag}> is not"
+                    );
+                    return Err(self.error(&element, parent.as_ref(), None, message));
+                }
                 tag => match self.component_for(ctx.owner, tag) {
                     Some(component) if ctx.in_worldbody => {
                         out.extend(self.instantiate(component, element, ctx, scope)?)
@@ -385,15 +394,6 @@ impl<'o> Composer<'o> {
                         if !super::elements::is_mjcf_element(tag) {
                             let message = self.unknown_tag(ctx.owner, tag);
                             return Err(self.error(&element, None, None, message));
-                        }
-                        if let Some(parent) = element.attribute_entry("parent") {
-                            let parent = parent.clone();
-                            return Err(self.error(
-                                &element,
-                                Some(&parent),
-                                None,
-                                "`parent` only places elements written directly inside a component tag".into(),
-                            ));
                         }
                         self.produced += 1;
                         if self.produced > MAX_ELEMENTS {
@@ -509,7 +509,7 @@ impl<'o> Composer<'o> {
             if mount(&mut body, sub_id, &parent.value, expanded).is_err() {
                 let mut mounts = Vec::new();
                 collect_mounts(&body, sub_id, &mut mounts);
-                let hint = did_you_mean(&parent.value, mounts.iter().map(String::as_str));
+                let hint = did_you_mean_or_list(&parent.value, mounts.iter().map(String::as_str));
                 let message = format!("{path} has no body or site named {:?}{hint}", parent.value);
                 return Err(self.error(&carrier, Some(&parent), None, message));
             }
