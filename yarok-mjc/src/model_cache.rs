@@ -11,10 +11,11 @@ use yarok_core::compose::Composition;
 use crate::error::ModelError;
 use crate::model::Model;
 
-/// What a cache file starts with, then a format number, the payload's length and its SHA-256.
+/// What a cache file starts with, then a format number, the key it was compiled for, the
+/// payload's length and its SHA-256.
 const MAGIC: &[u8; 8] = b"YAROKMJB";
-const FORMAT: u32 = 1;
-const HEADER: usize = 8 + 4 + 8 + 32;
+const FORMAT: u32 = 2;
+const HEADER: usize = 8 + 4 + 32 + 8 + 32;
 
 /// The most models a cache folder keeps; the least recently written go first.
 const KEPT: usize = 256;
@@ -53,7 +54,8 @@ fn key(composition: &Composition) -> Option<[u8; 32]> {
 impl Model {
     /// The compiled model of `composition`: the one another world of this process already
     /// uses, else the one in `folder` (MuJoCo's binary format; a corrupt, truncated or
-    /// foreign file there is rebuilt, never loaded), else compiled now and written to
+    /// foreign file there, or one compiled for another world, is rebuilt, never loaded), else
+    /// compiled now and written to
     /// `folder`. Worlds share a model safely: it is never changed after compiling.
     ///
     /// # Errors
@@ -79,13 +81,13 @@ impl Model {
             return Ok((model, ModelSource::Shared));
         }
         let file = folder.map(|folder| folder.join(format!("{}.mjb", hex(&key))));
-        let loaded = file.as_deref().and_then(load);
+        let loaded = file.as_deref().and_then(|file| load(file, &key));
         let (model, source) = match loaded {
             Some(model) => (Arc::new(model), ModelSource::Disk),
             None => {
                 let model = Arc::new(Model::from_composition(composition)?);
                 if let Some(file) = &file {
-                    save(&model, file);
+                    save(&model, file, &key);
                 }
                 (model, ModelSource::Compiled)
             }
@@ -130,38 +132,51 @@ fn usable(file: &Path) -> bool {
     }
 }
 
-/// The model in `file`, if the file is whole and ours; a file that is not is removed.
-fn load(file: &Path) -> Option<Model> {
+/// The model in `file`, if the file is whole and was compiled for `key`; a file that is not is
+/// removed.
+fn load(file: &Path, key: &[u8; 32]) -> Option<Model> {
     if !usable(file) {
         return None;
     }
     let bytes = std::fs::read(file).ok()?;
-    let payload = verified(&bytes);
-    let model = payload.and_then(|payload| Model::from_binary(payload).ok());
+    let entry = verified(&bytes);
+    let model = match entry {
+        Some((for_key, payload)) if for_key == key => Model::from_binary(payload).ok(),
+        _ => None,
+    };
     if model.is_none() {
-        tracing::warn!(file = %file.display(), "a corrupt compiled-model cache entry; rebuilding it");
+        let problem = match entry {
+            Some(_) => "a compiled-model cache entry compiled for another world (copied or renamed from another entry)",
+            None => "a corrupt compiled-model cache entry, or one of an older yarok",
+        };
+        tracing::warn!(file = %file.display(), "{problem}; rebuilding it");
         let _ = std::fs::remove_file(file);
     }
     model
 }
 
-/// The payload of a cache file whose header and checksum hold.
-fn verified(bytes: &[u8]) -> Option<&[u8]> {
+/// The key and payload of a cache file whose header and checksum hold.
+fn verified(bytes: &[u8]) -> Option<(&[u8], &[u8])> {
     let (header, payload) = bytes.split_at_checked(HEADER)?;
-    let length = u64::from_le_bytes(header[12..20].try_into().ok()?);
-    let intact = &header[..8] == MAGIC
-        && header[8..12] == FORMAT.to_le_bytes()
-        && length == payload.len() as u64
-        && header[20..] == Sha256::digest(payload)[..];
-    intact.then_some(payload)
+    let (magic, rest) = header.split_at(MAGIC.len());
+    let (format, rest) = rest.split_at(4);
+    let (key, rest) = rest.split_at(32);
+    let (length, checksum) = rest.split_at(8);
+    let intact = magic == MAGIC
+        && format == FORMAT.to_le_bytes()
+        && length == (payload.len() as u64).to_le_bytes()
+        && checksum == &Sha256::digest(payload)[..];
+    intact.then_some((key, payload))
 }
 
-/// Writes `model` to `file` whole or not at all (another process may be reading it).
-fn save(model: &Model, file: &Path) {
+/// Writes `model`, compiled for `key`, to `file` whole or not at all (another process may be
+/// reading it).
+fn save(model: &Model, file: &Path, key: &[u8; 32]) {
     let payload = model.to_binary();
     let mut bytes = Vec::with_capacity(HEADER + payload.len());
     bytes.extend_from_slice(MAGIC);
     bytes.extend_from_slice(&FORMAT.to_le_bytes());
+    bytes.extend_from_slice(key);
     bytes.extend_from_slice(&(payload.len() as u64).to_le_bytes());
     bytes.extend_from_slice(&Sha256::digest(&payload));
     bytes.extend_from_slice(&payload);

@@ -1,6 +1,6 @@
 //! Compiled models shared in a process and kept on disk: a cache hit loads a model identical to
 //! a fresh compile (byte for byte in MuJoCo's binary format); a corrupt, truncated or foreign
-//! entry is rebuilt, never loaded; worlds alive at once share one model; a FIFO where an entry
+//! entry, or another world's, is rebuilt, never loaded; worlds alive at once share one model; a FIFO where an entry
 //! should be does not block start-up; eviction touches only the cache's own files.
 
 use std::sync::Arc;
@@ -114,6 +114,31 @@ fn worlds_alive_at_once_share_one_model() {
 }
 
 world!(FifoWorld, "0.14");
+world!(ThisWorld, "0.16");
+world!(OtherWorld, "0.17");
+
+/// Another world's entry copied under this world's key (whole, its checksum right) is not
+/// loaded: the world would fail to bind on every run, naming no cache. It is rebuilt.
+#[test]
+fn another_worlds_entry_under_this_key_is_rebuilt() {
+    let folder = tempfile::tempdir().unwrap();
+    let this = compose::<ThisWorld>().unwrap();
+    let other_folder = tempfile::tempdir().unwrap();
+    let other = compose::<OtherWorld>().unwrap();
+    let (this_model, _) = cached(&this, folder.path());
+    let (other_model, _) = cached(&other, other_folder.path());
+    let fresh = this_model.to_binary();
+    assert!(other_model.to_binary() != fresh);
+    drop((this_model, other_model));
+    std::fs::copy(entry(other_folder.path()), entry(folder.path())).unwrap();
+    let (model, source) = cached(&this, folder.path());
+    assert_eq!(source, ModelSource::Compiled);
+    assert!(model.to_binary() == fresh, "this world's model, compiled");
+    drop(model);
+    let (model, source) = cached(&this, folder.path());
+    assert_eq!(source, ModelSource::Disk, "loaded once rebuilt");
+    assert!(model.to_binary() == fresh);
+}
 world!(SharedFolderWorld, "0.15");
 
 /// A FIFO (or any file that is not a regular one) where an entry should be: start-up does not
