@@ -496,12 +496,10 @@ fn config_value_errors_name_where_the_value_was_set() {
     );
     let mut config = RunConfig::default();
     config.set("/bgi/speed=2").unwrap();
-    assert!(
-        error(config).ends_with(
-            "config names component /bgi, which the world does not have; it has `/`, `/car`, \
+    assert!(error(config).ends_with(
+        "config names component /bgi, which the world does not have; it has `/`, `/car`, \
              `/car/left`, `/car/right`"
-        ),
-    );
+    ),);
     let mut config = RunConfig::default();
     config.set("behaviour/laps=many").unwrap();
     assert!(

@@ -52,6 +52,7 @@
 #![doc(test(attr(deny(warnings))))]
 
 mod backend;
+mod compile_notice;
 mod composition;
 mod contacts;
 mod data;

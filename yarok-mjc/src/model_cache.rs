@@ -146,7 +146,9 @@ fn load(file: &Path, key: &[u8; 32]) -> Option<Model> {
     };
     if model.is_none() {
         let problem = match entry {
-            Some(_) => "a compiled-model cache entry compiled for another world (copied or renamed from another entry)",
+            Some(_) => {
+                "a compiled-model cache entry compiled for another world (copied or renamed from another entry)"
+            }
             None => "a corrupt compiled-model cache entry, or one of an older yarok",
         };
         tracing::warn!(file = %file.display(), "{problem}; rebuilding it");
