@@ -156,6 +156,22 @@ fn mistakes_are_explained() {
         code == 2 && stderr.contains("unknown sensor \"digits\""),
         "{stderr}"
     );
+    let (code, _, stderr) = yarok(&["tactile", "digits", "missing.npy", "/tmp/x.png"]);
+    assert!(
+        code == 2
+            && stderr.starts_with(
+                "error: unknown sensor \"digits\": digit, gelsight, geltip (or calibrate)"
+            ),
+        "the sensor is named before any file is read: {stderr}"
+    );
+    let (code, _, stderr) = yarok(&["tactile", "digit"]);
+    assert!(
+        code == 2
+            && stderr.starts_with(
+                "error: yarok tactile needs a sensor, a depth map and an output image"
+            ),
+        "{stderr}"
+    );
     let background = golden("digit/background.png");
     let (code, _, stderr) = yarok(&[
         "tactile",

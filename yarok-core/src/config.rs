@@ -62,6 +62,18 @@ impl ConfigOrigins {
             .to_owned()
     }
 
+    /// Where the first key of `section` / `path` (a plugin's name, a component's path) was
+    /// set, or "run configuration" when unknown: for errors about the whole table.
+    pub fn describe_table(&self, section: &str, path: &str) -> String {
+        self.0
+            .iter()
+            .find(|((s, p, _), _)| s == section && p == path)
+            .map_or_else(
+                || "run configuration".to_owned(),
+                |(_, origin)| origin.clone(),
+            )
+    }
+
     fn record(&mut self, section: &str, path: &str, key: &str, origin: String) {
         self.0.insert(
             (section.to_owned(), path.to_owned(), key.to_owned()),

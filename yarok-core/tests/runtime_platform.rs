@@ -353,6 +353,19 @@ fn plugins_are_created_from_the_run_configuration() {
             .contains("[plugins.countr] names no registered plugin; did you mean `counter`?"),
         "{error}"
     );
+    let mut config = RunConfig::default();
+    config.set("plugins/video/fps=30").unwrap();
+    let error = platform()
+        .config(config)
+        .plugin_factory("counter", |_: CounterSettings| {
+            Ok::<_, BoxError>(|_: &World<'_>| Ok(()))
+        })
+        .build()
+        .unwrap_err();
+    assert_eq!(
+        error.to_string(),
+        "--set plugins/video/fps=30: [plugins.video] names no registered plugin; it has `counter`"
+    );
 }
 
 const RUN: &str = r#"
@@ -493,6 +506,13 @@ fn config_value_errors_name_where_the_value_was_set() {
     assert_eq!(
         error(config),
         "component /car/lft, --set /car/lft/speed=2 attribute `speed`: config names component /car/lft, which the world does not have; did you mean `/car/left`?"
+    );
+    let mut config = RunConfig::default();
+    config.set("interfaces/bgi/gain=2").unwrap();
+    assert_eq!(
+        error(config),
+        "--set interfaces/bgi/gain=2: [interfaces.\"/bgi\"] names no component; it has `/`, \
+         `/car`, `/car/left`, `/car/right`"
     );
     let mut config = RunConfig::default();
     config.set("/bgi/speed=2").unwrap();

@@ -20,10 +20,22 @@ struct Options<'a> {
     pixels_per_mm: Option<f64>,
 }
 
+/// The sensors `yarok tactile` renders for.
+const SENSORS: [&str; 3] = ["digit", "gelsight", "geltip"];
+
 fn options(args: &[String]) -> Result<Options<'_>, String> {
     let [sensor, depth, out, rest @ ..] = args else {
-        return Err(super::USAGE.to_owned());
+        return Err(format!(
+            "yarok tactile needs a sensor, a depth map and an output image\n{}",
+            super::USAGE
+        ));
     };
+    if !SENSORS.contains(&sensor.as_str()) {
+        return Err(format!(
+            "unknown sensor {sensor:?}: {} (or calibrate)",
+            SENSORS.join(", ")
+        ));
+    }
     let mut options = Options {
         sensor,
         depth,
@@ -188,18 +200,6 @@ pub(super) fn run(args: &[String]) -> Result<(), String> {
         None => default_background(width, height),
     };
     let image = match options.sensor {
-        "digit" | "gelsight" => {
-            let mut params = match (options.sensor, metric) {
-                ("digit", true) => PhongParams::digit_metric(),
-                ("digit", false) => PhongParams::digit(),
-                _ => PhongParams::gelsight2014(),
-            };
-            params.texture_sigma = options.noise.unwrap_or(params.texture_sigma);
-            params.seed = options.seed;
-            PhongModel::new(params)
-                .render(&depth, width, &background)
-                .map_err(|e| format!("{}: {e}", options.depth))?
-        }
         "geltip" => {
             let dir = options
                 .geltip_params
@@ -215,10 +215,17 @@ pub(super) fn run(args: &[String]) -> Result<(), String> {
                 .render(&depth, &background)
                 .map_err(|e| format!("{}: {e}", options.depth))?
         }
-        other => {
-            return Err(format!(
-                "unknown sensor {other:?}: digit, gelsight or geltip"
-            ));
+        _ => {
+            let mut params = match (options.sensor, metric) {
+                ("digit", true) => PhongParams::digit_metric(),
+                ("digit", false) => PhongParams::digit(),
+                _ => PhongParams::gelsight2014(),
+            };
+            params.texture_sigma = options.noise.unwrap_or(params.texture_sigma);
+            params.seed = options.seed;
+            PhongModel::new(params)
+                .render(&depth, width, &background)
+                .map_err(|e| format!("{}: {e}", options.depth))?
         }
     };
     image::RgbImage::from_raw(width as u32, height as u32, image)

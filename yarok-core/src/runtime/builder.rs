@@ -15,7 +15,7 @@ use crate::BoxError;
 use crate::component::{Backend, ComponentType, Environment};
 use crate::compose::{Composition, compose_configured};
 use crate::config::{ConfigError, RunConfig, Settings};
-use crate::suggest::did_you_mean;
+use crate::suggest::{did_you_mean, did_you_mean_or_list};
 use crate::value::{Config, IntoValue, typed};
 
 type BackendFactory = Box<dyn FnOnce(&Composition, &Settings) -> Result<Rc<dyn Backend>, BoxError>>;
@@ -277,21 +277,26 @@ impl PlatformBuilder {
         let composition = compose_configured(world, &settings)?;
         for path in settings.interfaces.keys() {
             if composition.instance(path).is_none() {
-                let hint =
-                    did_you_mean(path, composition.instances.iter().map(|i| i.path.as_str()));
-                return Err(config_error(format!(
-                    "[interfaces.\"{path}\"] names no component{hint}"
-                )));
+                let paths = composition.instances.iter().map(|i| i.path.as_str());
+                return Err(ConfigError {
+                    origin: settings.origins.describe_table("interfaces", path),
+                    message: format!(
+                        "[interfaces.\"{path}\"] names no component{}",
+                        did_you_mean_or_list(path, paths)
+                    ),
+                }
+                .into());
             }
         }
         check_support(&composition, environment)?;
         let mut plugins = std::mem::take(&mut self.plugins);
         for name in settings.plugins.keys() {
-            let factory = self.plugin_factories.get(name).ok_or_else(|| {
-                config_error(format!(
+            let factory = self.plugin_factories.get(name).ok_or_else(|| ConfigError {
+                origin: settings.origins.describe_table("plugins", name),
+                message: format!(
                     "[plugins.{name}] names no registered plugin{}",
-                    did_you_mean(name, self.plugin_factories.keys().map(String::as_str))
-                ))
+                    did_you_mean_or_list(name, self.plugin_factories.keys().map(String::as_str))
+                ),
             })?;
             plugins.push(factory(&settings, name)?);
         }
