@@ -55,7 +55,8 @@ const USAGE: &str = "usage: yarok run WORLD [--behaviour NAME] [--viewer] [--ins
                      [--hold-out N]
   WORLD  run: a bundled world's tag (see --list); compose: a bundled component's tag, or an
          MJCF template file
-  DEPTH  a 16-bit PNG in millimetres, or a .npy/.npy.gz float array
+  DEPTH  a 16-bit grey PNG in the unit its depth_unit_m text states (millimetres without one),
+         or a .npy/.npy.gz float32/float64 array in metres
   DIR    GelTip geometry: bkg_depth_m.npy.gz (the membrane's depth) and, for --light-fields files
          (the default), light_field_{0,1,2}.npy.gz; linear and plane compute the fields for three
          LEDs on a 12.6 mm ring at the membrane's nearest depth
