@@ -411,14 +411,27 @@ fn one_writer_per_file(plugins: &[Box<dyn Plugin>]) -> Result<(), RuntimeError> 
     Ok(())
 }
 
-/// `file` as one path for every way of writing it: absolute, its folder's links resolved.
+/// `file` as one path for every way of writing it: absolute, the links of its longest existing
+/// part resolved, and the `.` and `..` of the rest (folders a recorder will make) applied.
 fn same_file_key(file: &std::path::Path) -> std::path::PathBuf {
+    use std::path::Component;
     let absolute = std::path::absolute(file).unwrap_or_else(|_| file.to_owned());
-    match (absolute.parent(), absolute.file_name()) {
-        (Some(folder), Some(name)) => folder
-            .canonicalize()
-            .unwrap_or_else(|_| folder.to_owned())
-            .join(name),
-        _ => absolute,
+    let components: Vec<Component<'_>> = absolute.components().collect();
+    for existing in (1..=components.len()).rev() {
+        let prefix: std::path::PathBuf = components[..existing].iter().collect();
+        let Ok(mut key) = prefix.canonicalize() else {
+            continue;
+        };
+        for component in &components[existing..] {
+            match component {
+                Component::ParentDir => {
+                    key.pop();
+                }
+                Component::Normal(name) => key.push(name),
+                Component::CurDir | Component::RootDir | Component::Prefix(_) => {}
+            }
+        }
+        return key;
     }
+    absolute
 }
