@@ -101,6 +101,18 @@ impl Data {
         }
     }
 
+    /// Computes where every body, site and joint axis is from the positions alone (MuJoCo's
+    /// `mj_kinematics` and `mj_comPos`): enough for poses and Jacobians, and much cheaper than
+    /// [`Data::forward`] — for kinematics on a scratch `Data`.
+    pub fn kinematics(&mut self) {
+        // SAFETY: model and data are valid and belong together.
+        unsafe {
+            let (mj, m) = (self.model.mj(), self.model.raw());
+            mj.mj_kinematics(m, self.raw.as_ptr());
+            mj.mj_comPos(m, self.raw.as_ptr());
+        }
+    }
+
     /// Resets the state to the model's initial configuration and time 0.
     pub fn reset(&mut self) {
         // SAFETY: model and data are valid and belong together.
@@ -374,6 +386,83 @@ impl Data {
         (0..nv)
             .map(|dof| [rows[dof], rows[nv + dof], rows[2 * nv + dof]])
             .collect()
+    }
+
+    /// How a site moves with each degree of freedom (MuJoCo's `mj_jacSite`), written into
+    /// `translation` and `rotation` as 3 rows of `nv` numbers each (world coordinates): row `r`,
+    /// degree of freedom `i` is the site's linear (angular) velocity along axis `r` per unit of
+    /// that degree of freedom's velocity. As of the last step, [`Data::forward`] or
+    /// [`Data::kinematics`]. The vectors are resized to 3·nv.
+    ///
+    /// # Panics
+    ///
+    /// When `site` was resolved in a different model.
+    #[track_caller]
+    pub fn site_jacobian(&self, site: SiteId, translation: &mut Vec<f64>, rotation: &mut Vec<f64>) {
+        let index = self.model.index_of(site);
+        let nv = self.model.nv();
+        translation.resize(3 * nv, 0.0);
+        rotation.resize(3 * nv, 0.0);
+        // SAFETY: model and data belong together; both buffers hold the 3·nv numbers mj_jacSite
+        // writes, and `index` < nsite.
+        unsafe {
+            self.model.mj().mj_jacSite(
+                self.model.raw(),
+                self.raw(),
+                translation.as_mut_ptr(),
+                rotation.as_mut_ptr(),
+                index as i32,
+            );
+        }
+    }
+
+    /// As [`Data::site_jacobian`], for the frame of `body` (MuJoCo's `mj_jacBody`).
+    ///
+    /// # Panics
+    ///
+    /// When `body` was resolved in a different model.
+    #[track_caller]
+    pub fn body_jacobian(&self, body: BodyId, translation: &mut Vec<f64>, rotation: &mut Vec<f64>) {
+        let index = self.model.index_of(body);
+        let nv = self.model.nv();
+        translation.resize(3 * nv, 0.0);
+        rotation.resize(3 * nv, 0.0);
+        // SAFETY: model and data belong together; both buffers hold the 3·nv numbers mj_jacBody
+        // writes, and `index` < nbody.
+        unsafe {
+            self.model.mj().mj_jacBody(
+                self.model.raw(),
+                self.raw(),
+                translation.as_mut_ptr(),
+                rotation.as_mut_ptr(),
+                index as i32,
+            );
+        }
+    }
+
+    /// The product of the joint-space inertia matrix and `vector` (MuJoCo's `mj_mulM`), nv
+    /// numbers each: the generalised force that gives the accelerations `vector`, as of the
+    /// last step or [`Data::forward`].
+    ///
+    /// # Panics
+    ///
+    /// When either slice does not hold nv numbers.
+    #[track_caller]
+    pub fn inertia_times(&self, vector: &[f64], result: &mut [f64]) {
+        let nv = self.model.nv();
+        assert!(
+            vector.len() == nv && result.len() == nv,
+            "inertia_times takes nv = {nv} numbers"
+        );
+        // SAFETY: model and data belong together; both slices hold nv numbers.
+        unsafe {
+            self.model.mj().mj_mulM(
+                self.model.raw(),
+                self.raw(),
+                result.as_mut_ptr(),
+                vector.as_ptr(),
+            );
+        }
     }
 
     /// Where a hinge or slide joint is in world coordinates: a point on its axis (its anchor)

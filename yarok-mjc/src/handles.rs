@@ -114,6 +114,37 @@ impl Joint {
         self.data.borrow().dof_bias_force(self.id)
     }
 
+    /// The generalised force each of `joints` (hinge or slide joints) needs to give the
+    /// accelerations `accelerations` (one each; every other degree of freedom unaccelerated),
+    /// through the whole joint-space inertia matrix, couplings included (see
+    /// [`Data::inertia_times`]). As of the last step. Empty when `joints` is.
+    ///
+    /// # Panics
+    ///
+    /// When the slices' lengths differ.
+    pub fn inertial_forces(joints: &[Joint], accelerations: &[f64]) -> Vec<f64> {
+        assert_eq!(
+            joints.len(),
+            accelerations.len(),
+            "one acceleration per joint"
+        );
+        let Some(first) = joints.first() else {
+            return Vec::new();
+        };
+        let data = first.data.borrow();
+        let nv = data.model().nv();
+        let mut vector = vec![0.0; nv];
+        for (joint, acceleration) in joints.iter().zip(accelerations) {
+            vector[data.dof(joint.id)] = *acceleration;
+        }
+        let mut forces = vec![0.0; nv];
+        data.inertia_times(&vector, &mut forces);
+        joints
+            .iter()
+            .map(|joint| forces[data.dof(joint.id)])
+            .collect()
+    }
+
     /// Every position coordinate (7 for a free joint, 4 for a ball).
     pub fn qpos(&self) -> Vec<f64> {
         self.data.borrow().qpos(self.id).to_vec()

@@ -286,6 +286,36 @@ impl Model {
         })
     }
 
+    /// The gear of a motor on a joint — an actuator whose force is gear × control, with no
+    /// bias (`<motor>`, or `<general>` so set) — or `None` for any other actuator.
+    ///
+    /// # Panics
+    ///
+    /// When `actuator` was resolved in a different model.
+    #[track_caller]
+    pub fn motor_gear(&self, actuator: ActuatorId) -> Option<f64> {
+        let index = self.index_of(actuator);
+        let nu = self.count(ObjectKind::Actuator);
+        let gains = sys::mjNGAIN as usize;
+        // SAFETY: the type arrays hold nu entries, gainprm nu·mjNGAIN and gear 6·nu.
+        let (transmission, gain_type, bias_type, gain, gear) = unsafe {
+            let m = self.raw();
+            (
+                self.array(m.actuator_trntype, nu)[index],
+                self.array(m.actuator_gaintype, nu)[index],
+                self.array(m.actuator_biastype, nu)[index],
+                self.array(m.actuator_gainprm, nu * gains)[index * gains],
+                self.array(m.actuator_gear, 6 * nu)[6 * index],
+            )
+        };
+        let motor = transmission as u32 == sys::mjTRN_JOINT
+            && gain_type == sys::mjGAIN_FIXED as i32
+            && bias_type == sys::mjBIAS_NONE as i32
+            && gain == 1.0
+            && gear != 0.0;
+        motor.then_some(gear)
+    }
+
     /// A joint's limits (radians for hinge and ball joints, metres for slide joints), or `None`
     /// when it is not limited.
     ///

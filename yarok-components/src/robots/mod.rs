@@ -1,6 +1,9 @@
-//! Robots: the Anet A30 printer used as a cartesian robot and the Universal Robots arms.
+//! Robots: the Anet A30 printer used as a cartesian robot, the Universal Robots arms, and any
+//! serial arm in MJCF.
 
 mod anet_a30;
+mod profile;
+pub mod serial;
 pub mod ur;
 
 pub use anet_a30::{ARRIVED_MM, AnetA30, WORK_VOLUME_MM};

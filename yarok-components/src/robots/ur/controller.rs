@@ -14,8 +14,8 @@ use super::kinematics::{IkError, Joints, Kinematics, pose_to_vector};
 use super::measured::isometry_of;
 use super::path::Path;
 use super::payload::Payload;
-use super::profile::Profile;
 use super::real::{RealLink, movej, movel, set_payload};
+use crate::robots::profile::Profile;
 
 /// How close (radians, every joint) counts as arrived.
 pub const ARRIVED_RAD: f64 = 1e-3;

@@ -11,7 +11,6 @@ mod model;
 mod motion;
 mod path;
 mod payload;
-mod profile;
 mod real;
 
 use yarok_core::component::{Bind, BindError, Component, Declaration, Interface, Interfaces, Mock};

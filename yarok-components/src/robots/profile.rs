@@ -1,5 +1,5 @@
-//! [`Profile`]: how far along a path a motion is at each moment — a trapezoidal speed profile
-//! from rest to rest, as the UR controller's `movej` and `movel` use, or a stop.
+//! [`Profile`]: how far along a path an arm's motion is at each moment — a trapezoidal speed
+//! profile from rest to rest, as the UR controller's `movej` and `movel` use, or a stop.
 
 /// Piecewise-constant acceleration from a start position and speed along a path: at most three
 /// phases (accelerate, cruise, decelerate), after which it rests.

@@ -1,0 +1,306 @@
+//! [`SerialArm`]: what a behaviour holds of any serial arm — joints, TCP, and motions with the
+//! UR arms' meaning (`move_j`, `move_l`, `stop`) in platform time.
+
+use std::future::{Future, IntoFuture};
+use std::pin::Pin;
+use std::rc::Rc;
+
+use nalgebra::Isometry3;
+use yarok_core::component::{Bind, BindError};
+use yarok_mjc::{Sim, SimBind};
+
+use super::controller::{Actuation, Controller, Goal, SimJoints, within};
+use super::error::SerialMotionError;
+use super::kinematics::{SerialKinematics, TcpFrame};
+use super::names::SerialNames;
+use crate::robots::ur::{ARRIVED_M, ARRIVED_RAD, MOVE_J_DEFAULTS, MOVE_L_DEFAULTS};
+
+/// How stiffly (rad/s, the natural frequency of the tracking error) motor-driven joints follow
+/// their reference unless told otherwise.
+pub const DEFAULT_STIFFNESS: f64 = 40.0;
+
+/// Any serial arm in `sim`, given its joints, actuators and TCP ([`SerialNames`]): the same
+/// motions as the UR arms' [`Arm`](crate::robots::ur::Arm) — trapezoidal profiles in platform
+/// time with URScript's speed and acceleration defaults, the whole path checked before
+/// anything moves, arrival within [`ARRIVED_RAD`], a stop on drop — with inverse kinematics by
+/// damped least squares on MuJoCo's Jacobian ([`SerialKinematics`]). Gravity and the rest of
+/// MuJoCo's bias forces are compensated as a real arm's controller does, whether or not the
+/// file declares `gravcomp`; torque motors (`<motor>`, as robosuite's arms have) track with a
+/// critically damped stiffness, position servos with their own gains. Poses are in the base
+/// frame (of the body that carries the first joint). Cheap to clone.
+#[derive(Clone)]
+pub struct SerialArm {
+    controller: Rc<Controller>,
+    start: Rc<Vec<f64>>,
+}
+
+impl std::fmt::Debug for SerialArm {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SerialArm").field("q", &self.q()).finish()
+    }
+}
+
+impl SerialArm {
+    /// Binds the arm `names` describes in the component's model, starting at `start` (the
+    /// model's initial joints when `None`), motors tracking with `stiffness` (rad/s; see
+    /// [`DEFAULT_STIFFNESS`]).
+    ///
+    /// # Errors
+    ///
+    /// [`BindError`] when a name is missing (listing the names the file has), the joint and
+    /// actuator lists differ in length, an actuator is neither a motor nor a position servo on
+    /// a joint, or `start` is outside the joint limits.
+    pub fn bind_sim(
+        bind: &mut Bind<Sim>,
+        names: &SerialNames,
+        start: Option<&[f64]>,
+        stiffness: f64,
+    ) -> Result<Self, BindError> {
+        if names.joints.len() != names.actuators.len() || names.joints.is_empty() {
+            return Err(bind.error(format!(
+                "{} joints and {} actuators: a serial arm names one actuator per joint",
+                names.joints.len(),
+                names.actuators.len()
+            )));
+        }
+        if !(stiffness > 0.0 && stiffness.is_finite()) {
+            return Err(bind.error(format!("stiffness {stiffness} must be a positive number")));
+        }
+        let mut joints = Vec::with_capacity(names.joints.len());
+        let mut actuators = Vec::with_capacity(names.joints.len());
+        for (joint, actuator) in names.joints.iter().zip(names.actuators) {
+            joints.push(bind.joint(joint)?);
+            let actuator_handle = bind.actuator(actuator)?;
+            let model = bind.backend().model();
+            let actuation = match (
+                model.motor_gear(actuator_handle.id()),
+                actuator_handle.servo_gains(),
+            ) {
+                (Some(gear), _) => Actuation::Motor { gear },
+                (None, Some(gains)) => Actuation::Servo(gains),
+                (None, None) => {
+                    return Err(bind.error(format!(
+                        "actuator {actuator:?} is neither a motor (<motor>) nor a position \
+                         servo on its joint: a serial arm drives one of these"
+                    )));
+                }
+            };
+            actuators.push((actuator_handle, actuation));
+        }
+        let model = std::sync::Arc::clone(bind.backend().model());
+        let tcp = match bind.site(names.tcp) {
+            Ok(site) => TcpFrame::Site(site.id()),
+            Err(_) => TcpFrame::Body(bind.body(names.tcp)?.id()),
+        };
+        let ids: Vec<_> = joints.iter().map(|joint| joint.id()).collect();
+        let kinematics = SerialKinematics::new(&model, &ids, tcp).map_err(|e| bind.error(e))?;
+        if let Some(start) = start {
+            if !kinematics.within_limits(start) {
+                return Err(bind.error(format!(
+                    "start {start:?} is not one finite angle per joint within its limits {:?}",
+                    kinematics.limits()
+                )));
+            }
+            for (joint, angle) in joints.iter().zip(start) {
+                joint.set_position(*angle);
+            }
+        }
+        let start: Vec<f64> = joints.iter().map(|joint| joint.position()).collect();
+        let sim = SimJoints {
+            joints,
+            actuators,
+            stiffness,
+        };
+        let controller = Rc::new(Controller::new(
+            bind.clock(),
+            kinematics,
+            sim,
+            start.clone(),
+        ));
+        controller.command();
+        let restarting = Rc::clone(&controller);
+        let start = Rc::new(start);
+        let start_again = Rc::clone(&start);
+        bind.on_restart(move || restarting.restart(&start_again));
+        let ticking = Rc::clone(&controller);
+        bind.on_tick(move || {
+            ticking.tick();
+            Ok(())
+        });
+        Ok(Self { controller, start })
+    }
+
+    /// The joints at the start of the run.
+    pub fn start(&self) -> &[f64] {
+        &self.start
+    }
+
+    /// Joint angles (radians; metres for slide joints).
+    pub fn q(&self) -> Vec<f64> {
+        self.controller.q()
+    }
+
+    /// Joint speeds.
+    pub fn qd(&self) -> Vec<f64> {
+        self.controller.qd()
+    }
+
+    /// Each joint's limits, `[lower, upper]`.
+    pub fn limits(&self) -> Vec<[f64; 2]> {
+        self.controller.kinematics().limits().to_vec()
+    }
+
+    /// The TCP's pose in the base frame, as MuJoCo puts it at the current joints.
+    pub fn tcp_pose(&self) -> Isometry3<f64> {
+        let q = self.q();
+        self.controller.kinematics().forward(&q)
+    }
+
+    /// The joints nearest `near` that put the TCP at `pose` (base frame), as the motions find
+    /// them (see [`SerialKinematics::solve`]).
+    ///
+    /// # Errors
+    ///
+    /// As [`SerialKinematics::solve`].
+    pub fn solve(
+        &self,
+        pose: &Isometry3<f64>,
+        near: &[f64],
+    ) -> Result<Vec<f64>, super::SerialIkError> {
+        self.controller.kinematics().solve(pose, near)
+    }
+
+    /// Whether every joint is within [`ARRIVED_RAD`] of `target`.
+    pub fn is_at(&self, target: &[f64]) -> bool {
+        within(&self.q(), target)
+    }
+
+    /// Whether the TCP is within [`ARRIVED_M`] (and [`ARRIVED_RAD`]) of `pose`.
+    pub fn is_at_pose(&self, pose: &Isometry3<f64>) -> bool {
+        let at = self.tcp_pose();
+        (at.translation.vector - pose.translation.vector).norm() < ARRIVED_M
+            && at.rotation.angle_to(&pose.rotation) < ARRIVED_RAD
+    }
+
+    /// Whether a motion is under way.
+    pub fn is_moving(&self) -> bool {
+        self.controller.is_moving()
+    }
+
+    /// A joint motion to `target` (URScript `movej`'s meaning): every joint starts and stops
+    /// together, the one moving furthest at the speed and acceleration given
+    /// ([`MOVE_J_DEFAULTS`]). `.await` it, or [`SerialMove::start`] it.
+    pub fn move_j(&self, target: Vec<f64>) -> SerialMove<'_> {
+        self.motion(Goal::Joints(target), MOVE_J_DEFAULTS)
+    }
+
+    /// A joint motion to the joints nearest the current ones that put the TCP at `pose`.
+    pub fn move_j_pose(&self, pose: Isometry3<f64>) -> SerialMove<'_> {
+        self.motion(Goal::JointsFor(pose), MOVE_J_DEFAULTS)
+    }
+
+    /// A straight-line motion of the TCP to `pose` (URScript `movel`'s meaning), at the speed
+    /// and acceleration given ([`MOVE_L_DEFAULTS`]).
+    pub fn move_l(&self, pose: Isometry3<f64>) -> SerialMove<'_> {
+        self.motion(Goal::Line(pose), MOVE_L_DEFAULTS)
+    }
+
+    fn motion(&self, goal: Goal, (speed, acceleration): (f64, f64)) -> SerialMove<'_> {
+        SerialMove {
+            controller: &self.controller,
+            goal,
+            speed,
+            acceleration,
+        }
+    }
+
+    /// Stops the motion under way: it decelerates along its path at its own acceleration; its
+    /// awaiting future ends with [`SerialMotionError::Stopped`].
+    pub fn stop(&self) {
+        self.controller.stop(None);
+    }
+}
+
+/// A serial arm's motion about to start: set its speed and acceleration, then `.await` it (it
+/// resolves on arrival) or [`SerialMove::start`] it.
+///
+/// # Cancel safety
+///
+/// Dropping the awaited future before arrival stops the arm (as [`SerialArm::stop`]).
+#[must_use = "a motion does nothing until awaited or started"]
+pub struct SerialMove<'a> {
+    controller: &'a Controller,
+    goal: Goal,
+    speed: f64,
+    acceleration: f64,
+}
+
+impl std::fmt::Debug for SerialMove<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SerialMove")
+            .field("goal", &self.goal)
+            .field("speed", &self.speed)
+            .field("acceleration", &self.acceleration)
+            .finish()
+    }
+}
+
+impl SerialMove<'_> {
+    /// The speed: of the leading joint for `move_j`, of the TCP (m/s) for `move_l`.
+    pub fn speed(mut self, speed: f64) -> Self {
+        self.speed = speed;
+        self
+    }
+
+    /// The acceleration.
+    pub fn acceleration(mut self, acceleration: f64) -> Self {
+        self.acceleration = acceleration;
+        self
+    }
+
+    /// Starts the motion and returns at once.
+    ///
+    /// # Errors
+    ///
+    /// [`SerialMotionError`] when the target or a point on the way cannot be reached, or the
+    /// limits are not positive numbers: nothing moves then.
+    pub fn start(self) -> Result<(), SerialMotionError> {
+        self.controller
+            .start(self.goal, self.speed, self.acceleration)
+            .map(drop)
+    }
+}
+
+impl<'a> IntoFuture for SerialMove<'a> {
+    type Output = Result<(), SerialMotionError>;
+    type IntoFuture = Pin<Box<dyn Future<Output = Self::Output> + 'a>>;
+
+    fn into_future(self) -> Self::IntoFuture {
+        Box::pin(async move {
+            let controller = self.controller;
+            let id = controller.start(self.goal, self.speed, self.acceleration)?;
+            let _stop_if_dropped = StopIfDropped { controller, id };
+            let mut outcome = None;
+            controller
+                .clock()
+                .wait(|| {
+                    outcome = controller.outcome(id);
+                    outcome.is_some()
+                })
+                .await?;
+            outcome.unwrap_or(Err(SerialMotionError::Replaced))
+        })
+    }
+}
+
+/// Stops motion `id` when its future is dropped before it ends.
+struct StopIfDropped<'a> {
+    controller: &'a Controller,
+    id: u64,
+}
+
+impl Drop for StopIfDropped<'_> {
+    fn drop(&mut self) {
+        self.controller.stop(Some(self.id));
+    }
+}

@@ -1,0 +1,430 @@
+//! [`Controller`]: runs a serial arm's motions in `sim` as a real arm's controller does — after
+//! every step, the joints due along the motion's path, with the forces their accelerations,
+//! gravity and the rest of the bias take fed forward — and tells how each motion ended.
+
+use std::cell::RefCell;
+
+use nalgebra::Isometry3;
+use yarok_core::time::Clock;
+use yarok_mjc::{Actuator, Joint, ServoGains};
+
+use super::error::SerialMotionError;
+use super::kinematics::SerialKinematics;
+use crate::robots::profile::Profile;
+use crate::robots::ur::{ARRIVED_RAD, SETTLE_SECONDS};
+
+/// Spacing (metres or radians of path length) at which a line is checked before it starts.
+const CHECK_SPACING: f64 = 0.005;
+
+/// The largest joint step between two checked points of a line; more means the line passes a
+/// singularity.
+const MAX_JOINT_STEP: f64 = 0.25;
+
+/// Where a motion goes.
+#[derive(Debug, Clone)]
+pub(super) enum Goal {
+    Joints(Vec<f64>),
+    /// In joint space, to the joints nearest the current ones that put the TCP at the pose.
+    JointsFor(Isometry3<f64>),
+    /// The TCP along a straight line.
+    Line(Isometry3<f64>),
+}
+
+/// A motion's path, measured by the length its profile runs along.
+#[derive(Debug, Clone)]
+enum Path {
+    /// Every joint moves in proportion; the length is the largest joint motion.
+    Joints { from: Vec<f64>, to: Vec<f64> },
+    /// The TCP along a line while turning; the length is the longer of distance and turn.
+    Line {
+        from: Isometry3<f64>,
+        to: Isometry3<f64>,
+        /// The joints at the start, which the redundant joints are drawn back to.
+        posture: Vec<f64>,
+    },
+}
+
+impl Path {
+    fn length(&self) -> f64 {
+        match self {
+            Path::Joints { from, to } => from
+                .iter()
+                .zip(to)
+                .map(|(a, b)| (b - a).abs())
+                .fold(0.0, f64::max),
+            Path::Line { from, to, .. } => (to.translation.vector - from.translation.vector)
+                .norm()
+                .max(from.rotation.angle_to(&to.rotation)),
+        }
+    }
+
+    /// The joints `along` the path, found near `near` on a line.
+    fn joints_at(
+        &self,
+        along: f64,
+        kinematics: &mut SerialKinematics,
+        near: &[f64],
+    ) -> Result<Vec<f64>, SerialMotionError> {
+        let length = self.length();
+        let fraction = if length > 0.0 {
+            (along / length).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        match self {
+            Path::Joints { from, to } => Ok(from
+                .iter()
+                .zip(to)
+                .map(|(a, b)| a + (b - a) * fraction)
+                .collect()),
+            Path::Line { from, to, posture } => {
+                Ok(kinematics.solve_towards(&from.lerp_slerp(to, fraction), near, posture)?)
+            }
+        }
+    }
+
+    /// Checks, before anything moves, that the arm can follow the whole path from `start`;
+    /// the joints at its end.
+    fn check(
+        &self,
+        kinematics: &mut SerialKinematics,
+        start: &[f64],
+    ) -> Result<Vec<f64>, SerialMotionError> {
+        let length = self.length();
+        let steps = match self {
+            Path::Joints { .. } => 1,
+            Path::Line { .. } => ((length / CHECK_SPACING).ceil() as usize).max(1),
+        };
+        let mut q = start.to_vec();
+        for step in 1..=steps {
+            let along = length * step as f64 / steps as f64;
+            let next = self.joints_at(along, kinematics, &q)?;
+            let jump = largest_difference(&next, &q);
+            if matches!(self, Path::Line { .. }) && jump > MAX_JOINT_STEP {
+                return Err(SerialMotionError::Singular { along, jump });
+            }
+            q = next;
+        }
+        Ok(q)
+    }
+}
+
+fn largest_difference(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max)
+}
+
+/// How an actuator moves its joint.
+#[derive(Debug, Clone, Copy)]
+pub(super) enum Actuation {
+    /// A torque motor: force = gear × control.
+    Motor { gear: f64 },
+    /// A position servo.
+    Servo(ServoGains),
+}
+
+/// The joints and actuators of an arm in `sim`, and how stiffly motors track (rad/s).
+pub(super) struct SimJoints {
+    pub(super) joints: Vec<Joint>,
+    pub(super) actuators: Vec<(Actuator, Actuation)>,
+    pub(super) stiffness: f64,
+}
+
+struct State {
+    reference: Vec<f64>,
+    speed: Vec<f64>,
+    acceleration: Vec<f64>,
+    /// Each motor's integrated tracking error (an acceleration): what holds the joint against
+    /// what the model's bias forces do not include (dry friction, damping).
+    integral: Vec<f64>,
+    motion: Option<Motion>,
+    next_id: u64,
+    ended: Option<(u64, Result<(), SerialMotionError>)>,
+}
+
+struct Motion {
+    id: u64,
+    path: Path,
+    profile: Profile,
+    started: f64,
+    target: Vec<f64>,
+    stopping: bool,
+}
+
+/// Runs a serial arm's motions.
+pub(super) struct Controller {
+    kinematics: RefCell<SerialKinematics>,
+    clock: Clock,
+    sim: SimJoints,
+    state: RefCell<State>,
+}
+
+impl Controller {
+    pub(super) fn new(
+        clock: Clock,
+        kinematics: SerialKinematics,
+        sim: SimJoints,
+        start: Vec<f64>,
+    ) -> Self {
+        let zeros = vec![0.0; start.len()];
+        Self {
+            kinematics: RefCell::new(kinematics),
+            clock,
+            sim,
+            state: RefCell::new(State {
+                reference: start,
+                speed: zeros.clone(),
+                acceleration: zeros.clone(),
+                integral: zeros,
+                motion: None,
+                next_id: 0,
+                ended: None,
+            }),
+        }
+    }
+
+    pub(super) fn clock(&self) -> &Clock {
+        &self.clock
+    }
+
+    pub(super) fn kinematics(&self) -> std::cell::RefMut<'_, SerialKinematics> {
+        self.kinematics.borrow_mut()
+    }
+
+    pub(super) fn q(&self) -> Vec<f64> {
+        self.sim.joints.iter().map(Joint::position).collect()
+    }
+
+    pub(super) fn qd(&self) -> Vec<f64> {
+        self.sim.joints.iter().map(Joint::velocity).collect()
+    }
+
+    pub(super) fn is_moving(&self) -> bool {
+        self.state.borrow().motion.is_some()
+    }
+
+    /// After a step: the reference for the next one, and whether the motion has ended.
+    pub(super) fn tick(&self) {
+        let now = self.clock.time() + self.clock.timestep();
+        self.advance(now);
+        self.integrate();
+        self.command();
+    }
+
+    /// Adds the step's tracking error to each motor's integral.
+    fn integrate(&self) {
+        let mut state = self.state.borrow_mut();
+        let gain = self.sim.stiffness.powi(3) * self.clock.timestep();
+        for (i, joint) in self.sim.joints.iter().enumerate() {
+            let error = state.reference[i] - joint.position();
+            state.integral[i] += gain * error;
+        }
+    }
+
+    fn advance(&self, now: f64) {
+        let mut state = self.state.borrow_mut();
+        let Some(mut motion) = state.motion.take() else {
+            return;
+        };
+        let dt = self.clock.timestep();
+        let t = now + dt - motion.started;
+        let mut kinematics = self.kinematics.borrow_mut();
+        let (along, _) = motion.profile.at(t);
+        let (ahead, _) = motion.profile.at(t + dt);
+        let reference = motion
+            .path
+            .joints_at(along, &mut kinematics, &state.reference)
+            .and_then(|q| {
+                let next = motion.path.joints_at(ahead, &mut kinematics, &q)?;
+                Ok((q, next))
+            });
+        drop(kinematics);
+        let outcome = match reference {
+            Err(error) => Some(Err(error)),
+            Ok((q, next)) => {
+                let speed: Vec<f64> = q.iter().zip(&next).map(|(a, b)| (b - a) / dt).collect();
+                state.acceleration = (0..q.len())
+                    .map(|i| (speed[i] - (q[i] - state.reference[i]) / dt) / dt)
+                    .collect();
+                state.reference = q;
+                state.speed = speed;
+                if t >= motion.profile.duration() {
+                    if matches!(motion.path, Path::Line { .. }) && !motion.stopping {
+                        // A redundant arm ends a line where its path's solutions lead.
+                        motion.target.clone_from(&state.reference);
+                    }
+                    self.settled(&motion, now)
+                } else {
+                    None
+                }
+            }
+        };
+        match outcome {
+            Some(outcome) => {
+                state.speed.fill(0.0);
+                state.acceleration.fill(0.0);
+                state.ended = Some((motion.id, outcome));
+            }
+            None => state.motion = Some(motion),
+        }
+    }
+
+    fn settled(&self, motion: &Motion, now: f64) -> Option<Result<(), SerialMotionError>> {
+        let at = self.q();
+        if motion.stopping {
+            Some(Err(SerialMotionError::Stopped))
+        } else if within(&at, &motion.target) {
+            Some(Ok(()))
+        } else if now - (motion.started + motion.profile.duration()) > SETTLE_SECONDS {
+            Some(Err(SerialMotionError::NotArrived {
+                target: motion.target.clone(),
+                at,
+                seconds: SETTLE_SECONDS,
+            }))
+        } else {
+            None
+        }
+    }
+
+    /// The world went back to its start: the arm holds `start`, a motion under way is stopped.
+    pub(super) fn restart(&self, start: &[f64]) {
+        {
+            let mut state = self.state.borrow_mut();
+            if let Some(motion) = state.motion.take() {
+                state.ended = Some((motion.id, Err(SerialMotionError::Stopped)));
+            }
+            state.reference = start.to_vec();
+            state.speed.fill(0.0);
+            state.acceleration.fill(0.0);
+            state.integral.fill(0.0);
+        }
+        self.command();
+    }
+
+    /// Sets the actuators for the reference, with what a real arm's controller adds: the forces
+    /// the reference's accelerations take (through the whole inertia matrix), and gravity,
+    /// Coriolis and centrifugal forces the model does not compensate itself. Motors track with
+    /// a stiffness of their own (proportional, integral and derivative terms placing the
+    /// error's three poles at the stiffness); servos with the model's gains.
+    pub(super) fn command(&self) {
+        let state = self.state.borrow();
+        let sim = &self.sim;
+        let (kp, kv) = (3.0 * sim.stiffness * sim.stiffness, 3.0 * sim.stiffness);
+        let wanted: Vec<f64> = sim
+            .joints
+            .iter()
+            .zip(&sim.actuators)
+            .enumerate()
+            .map(|(i, (joint, (_, actuation)))| match actuation {
+                Actuation::Motor { .. } => {
+                    state.acceleration[i]
+                        + state.integral[i]
+                        + kp * (state.reference[i] - joint.position())
+                        + kv * (state.speed[i] - joint.velocity())
+                }
+                Actuation::Servo(_) => state.acceleration[i],
+            })
+            .collect();
+        let inertial = Joint::inertial_forces(&sim.joints, &wanted);
+        for (i, (joint, (actuator, actuation))) in sim.joints.iter().zip(&sim.actuators).enumerate()
+        {
+            let force = inertial[i] + joint.bias_force();
+            let control = match actuation {
+                Actuation::Motor { gear } => force / gear,
+                Actuation::Servo(gains) => {
+                    (gains.gear * (gains.kp * state.reference[i] + gains.kv * state.speed[i])
+                        + force / gains.gear)
+                        / gains.gain
+                }
+            };
+            actuator.set(control);
+        }
+    }
+
+    /// Starts a motion after checking its whole path; its id.
+    pub(super) fn start(
+        &self,
+        goal: Goal,
+        speed: f64,
+        acceleration: f64,
+    ) -> Result<u64, SerialMotionError> {
+        if !(speed > 0.0 && acceleration > 0.0 && speed.is_finite() && acceleration.is_finite()) {
+            return Err(SerialMotionError::InvalidLimits {
+                speed,
+                acceleration,
+            });
+        }
+        let mut state = self.state.borrow_mut();
+        let from = state.reference.clone();
+        let mut kinematics = self.kinematics.borrow_mut();
+        let path = match goal {
+            Goal::Joints(target) => {
+                if !kinematics.within_limits(&target) {
+                    return Err(SerialMotionError::InvalidTarget { target });
+                }
+                Path::Joints { from, to: target }
+            }
+            Goal::JointsFor(pose) => {
+                let target = kinematics.solve(&pose, &from)?;
+                Path::Joints { from, to: target }
+            }
+            Goal::Line(pose) => Path::Line {
+                from: kinematics.forward(&from),
+                to: pose,
+                posture: from,
+            },
+        };
+        let target = path.check(&mut kinematics, &state.reference)?;
+        drop(kinematics);
+        let id = state.next_id;
+        state.next_id += 1;
+        if let Some(replaced) = state.motion.take() {
+            state.ended = Some((replaced.id, Err(SerialMotionError::Replaced)));
+        }
+        state.motion = Some(Motion {
+            id,
+            profile: Profile::rest_to_rest(path.length(), speed, acceleration),
+            path,
+            started: self.clock.time(),
+            target,
+            stopping: false,
+        });
+        drop(state);
+        self.advance(self.clock.time());
+        self.command();
+        Ok(id)
+    }
+
+    /// Stops the motion under way (only motion `id`, if given): it decelerates along its path.
+    pub(super) fn stop(&self, id: Option<u64>) {
+        let mut state = self.state.borrow_mut();
+        let now = self.clock.time();
+        let Some(motion) = state.motion.as_mut() else {
+            return;
+        };
+        if motion.stopping || id.is_some_and(|id| id != motion.id) {
+            return;
+        }
+        let (along, speed) = motion.profile.at(now - motion.started);
+        motion.profile = Profile::stopping(along, speed, motion.profile.acceleration());
+        motion.started = now;
+        motion.stopping = true;
+    }
+
+    /// How motion `id` is: `None` while under way.
+    pub(super) fn outcome(&self, id: u64) -> Option<Result<(), SerialMotionError>> {
+        let state = self.state.borrow();
+        match (&state.motion, &state.ended) {
+            (Some(motion), _) if motion.id == id => None,
+            (_, Some((ended, outcome))) if *ended == id => Some(outcome.clone()),
+            _ => Some(Err(SerialMotionError::Replaced)),
+        }
+    }
+}
+
+/// Whether every joint of `q` is within [`ARRIVED_RAD`] of `target`.
+pub(super) fn within(q: &[f64], target: &[f64]) -> bool {
+    q.len() == target.len() && largest_difference(q, target) < ARRIVED_RAD
+}
