@@ -1,5 +1,8 @@
 //! Measures, side by side in one run, for manipulation: a UR5e inverse kinematics solve (every
-//! solution, then the nearest within the limits; target ≤ 2 µs), the platform loop in
+//! solution, then the nearest within the limits; target ≤ 2 µs) beside the generic serial
+//! arm's damped least-squares solve on MuJoCo's Jacobian for the same UR5e (6-DoF) and for
+//! robosuite's Panda (7-DoF, from the test peers' `robosuite` package; aim ≤ 50 µs), the
+//! platform loop in
 //! `PickAndPlaceWorld` against raw `mj_step` on the same model from the same state (target
 //! ≥ 95 %), and the world's start-up: compose, compile, bind and the first tick.
 //!
@@ -8,16 +11,19 @@
 //! ```
 
 use std::f64::consts::{PI, TAU};
-use std::sync::OnceLock;
+use std::sync::{Arc, OnceLock};
 use std::time::{Duration, Instant};
 
-use yarok::components::robots::ur::{DhParameters, Joints, Kinematics};
+use yarok::components::robots::serial::{SerialKinematics, TcpFrame};
+use yarok::components::robots::ur::{ArmNames, DhParameters, Joints, Kinematics, Ur5e};
 use yarok::components::tactile::noise::SplitMix64;
 use yarok::components::worlds::PickAndPlaceWorld;
 use yarok::core::compose::compose;
-use yarok::mjc::Data;
+use yarok::mjc::{Data, Model};
 
 mod measure;
+#[path = "../yarok-hw/tests/support/peers.rs"]
+mod peers;
 mod versus_raw;
 use measure::mean_times;
 use versus_raw::compare;
@@ -51,8 +57,10 @@ fn arm_at_start(data: &mut Data) {
     }
 }
 
-/// Mean time of one IK solve over poses of random joint angles.
-fn ik_solve() -> Duration {
+/// Mean time of one IK solve over poses of random joint angles, the solve starting 0.05 rad
+/// from them: the UR closed form, then the generic solve on yarok's UR5e and on robosuite's
+/// Panda.
+fn ik_solves() -> [Duration; 3] {
     let kinematics = Kinematics::new(DhParameters::UR5E);
     let mut random = SplitMix64::new(1);
     let mut angle = |limit: f64| random.uniform(-limit, limit);
@@ -62,13 +70,53 @@ fn ik_solve() -> Duration {
             (kinematics.forward(&q), q.map(|a| a + 0.05))
         })
         .collect();
+    let ur5e =
+        Arc::new(Model::from_composition(&compose::<Ur5e>().expect("compose")).expect("compile"));
+    let joints = ArmNames::YAROK
+        .joints
+        .map(|name| ur5e.joint(name).expect("joint"));
+    let tcp = TcpFrame::Site(ur5e.site("flange").expect("flange"));
+    let mut six = SerialKinematics::new(&ur5e, &joints, tcp).expect("UR5e chain");
+    let panda_file = peers::package("robosuite").join("models/assets/robots/panda/robot.xml");
+    let panda = Arc::new(Model::from_file(panda_file).expect("robosuite's Panda"));
+    let joints: Vec<_> = (1..=7)
+        .map(|i| panda.joint(&format!("joint{i}")).expect("joint"))
+        .collect();
+    let tcp = TcpFrame::Body(panda.body("right_hand").expect("hand"));
+    let mut seven = SerialKinematics::new(&panda, &joints, tcp).expect("Panda chain");
+    let generic_cases = |arm: &mut SerialKinematics, random: &mut SplitMix64| -> Vec<_> {
+        let limits = arm.limits().to_vec();
+        (0..1024)
+            .map(|_| {
+                let q: Vec<f64> = limits
+                    .iter()
+                    .map(|[lower, upper]| random.uniform(lower + 0.1, upper - 0.1))
+                    .collect();
+                let near: Vec<f64> = q.iter().map(|a| a + 0.05).collect();
+                (arm.forward(&q), near)
+            })
+            .collect()
+    };
+    let six_cases = generic_cases(&mut six, &mut random);
+    let seven_cases = generic_cases(&mut seven, &mut random);
     let mut next = 0;
-    let [time] = mean_times(|_| {
-        let (pose, near) = &cases[next % cases.len()];
+    mean_times(|variant| {
         next += 1;
-        kinematics.nearest(pose, near).ok()
-    });
-    time
+        match variant {
+            0 => {
+                let (pose, near) = &cases[next % cases.len()];
+                kinematics.nearest(pose, near).is_ok()
+            }
+            1 => {
+                let (pose, near) = &six_cases[next % six_cases.len()];
+                six.solve(pose, near).is_ok()
+            }
+            _ => {
+                let (pose, near) = &seven_cases[next % seven_cases.len()];
+                seven.solve(pose, near).is_ok()
+            }
+        }
+    })
 }
 
 /// Milliseconds from nothing to the first tick: compose, compile, bind, one step.
@@ -94,10 +142,18 @@ fn start_up() -> f64 {
 }
 
 fn main() {
-    let ik = ik_solve();
+    let [closed, six, seven] = ik_solves();
     println!(
-        "UR5e inverse kinematics      {:>8.2} µs per solve (target ≤ 2)",
-        ik.as_secs_f64() * 1e6
+        "UR5e inverse kinematics      {:>8.2} µs per solve, closed form (target ≤ 2)",
+        closed.as_secs_f64() * 1e6
+    );
+    println!(
+        "generic IK, 6-DoF UR5e       {:>8.2} µs per solve, damped least squares (aim ≤ 50)",
+        six.as_secs_f64() * 1e6
+    );
+    println!(
+        "generic IK, 7-DoF Panda      {:>8.2} µs per solve, with the null space (aim ≤ 50)",
+        seven.as_secs_f64() * 1e6
     );
     let measured = compare::<PickAndPlaceWorld>(1, arm_at_start);
     println!(
