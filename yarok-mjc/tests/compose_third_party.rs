@@ -80,3 +80,37 @@ fn a_component_in_degrees_compiles_in_a_radian_world_as_it_does_alone() {
         "the wrist class's range"
     );
 }
+
+/// A file written in radians that does not say so, wrapped as it is.
+struct SilentHinge;
+impl Component for SilentHinge {
+    fn declaration() -> Declaration {
+        Declaration::new("silent-hinge").mjcf_file(
+            PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/no_unit/hinge.xml"),
+        )
+    }
+}
+
+/// The same file with its angle unit stated, without editing it: a component that extends it
+/// and sets only `<compiler angle>`.
+struct RadianHinge;
+impl Component for RadianHinge {
+    fn declaration() -> Declaration {
+        Declaration::new("radian-hinge")
+            .extends::<SilentHinge>()
+            .template(r#"<mujoco><compiler angle="radian"/></mujoco>"#)
+    }
+}
+
+#[test]
+fn a_wrapped_files_angle_unit_is_stated_by_extending_it() {
+    let range = |model: &Model| model.joint_range(model.joint("hinge").unwrap()).unwrap();
+    let silent = Model::from_composition(&compose::<SilentHinge>().unwrap()).unwrap();
+    assert!(
+        (range(&silent)[1] - 1.5f64.to_radians()).abs() < 1e-12,
+        "read as MuJoCo reads it, in degrees: {:?}",
+        range(&silent)
+    );
+    let stated = Model::from_composition(&compose::<RadianHinge>().unwrap()).unwrap();
+    assert_eq!(range(&stated), [-1.5, 1.5]);
+}
