@@ -80,7 +80,10 @@ fn stderr_of_child(case: &str) -> String {
 #[test]
 fn a_nan_control_is_a_visible_warning() {
     let stderr = stderr_of_child("motor");
-    let warnings: Vec<&str> = stderr.lines().filter(|l| l.contains("WARN")).collect();
+    let warnings: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.contains("WARN") && l.contains("mujoco"))
+        .collect();
     assert_eq!(warnings.len(), 1, "once, not every step:\n{stderr}");
     assert!(
         warnings[0].contains("mujoco") && warnings[0].contains("CTRL"),

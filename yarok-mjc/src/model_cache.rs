@@ -145,13 +145,17 @@ fn load(file: &Path, key: &[u8; 32]) -> Option<Model> {
         _ => None,
     };
     if model.is_none() {
-        let problem = match entry {
-            Some(_) => {
-                "a compiled-model cache entry compiled for another world (copied or renamed from another entry)"
-            }
-            None => "a corrupt compiled-model cache entry, or one of an older yarok",
-        };
-        tracing::warn!(file = %file.display(), "{problem}; rebuilding it");
+        let another_format =
+            bytes.starts_with(MAGIC) && bytes.get(8..12) != Some(&FORMAT.to_le_bytes()[..]);
+        match entry {
+            _ if another_format => tracing::debug!(file = %file.display(),
+                "a compiled-model cache entry of another yarok version; rebuilding it"),
+            Some(_) => tracing::warn!(file = %file.display(),
+                "a compiled-model cache entry compiled for another world (copied or renamed \
+                 from another entry); rebuilding it"),
+            None => tracing::warn!(file = %file.display(),
+                "a corrupt compiled-model cache entry; rebuilding it"),
+        }
         let _ = std::fs::remove_file(file);
     }
     model
