@@ -9,6 +9,16 @@ use crate::model::{ActuatorId, BodyId, JointId, KeyframeId, Model, SensorId, Sit
 use crate::pose::Pose;
 use crate::sys;
 
+/// MuJoCo's functions that write a frame's translation and rotation Jacobians
+/// (`mj_jacSite`, `mj_jacBody`).
+type FrameJacobian = unsafe extern "C" fn(
+    *const sys::mjModel,
+    *const sys::mjData,
+    *mut f64,
+    *mut f64,
+    std::os::raw::c_int,
+);
+
 /// What [`Data::save_state`] saves: MuJoCo's integration state without the time.
 const SAVED_STATE: sys::mjtState = sys::mjSTATE_INTEGRATION & !sys::mjSTATE_TIME;
 
@@ -400,20 +410,7 @@ impl Data {
     #[track_caller]
     pub fn site_jacobian(&self, site: SiteId, translation: &mut Vec<f64>, rotation: &mut Vec<f64>) {
         let index = self.model.index_of(site);
-        let nv = self.model.nv();
-        translation.resize(3 * nv, 0.0);
-        rotation.resize(3 * nv, 0.0);
-        // SAFETY: model and data belong together; both buffers hold the 3·nv numbers mj_jacSite
-        // writes, and `index` < nsite.
-        unsafe {
-            self.model.mj().mj_jacSite(
-                self.model.raw(),
-                self.raw(),
-                translation.as_mut_ptr(),
-                rotation.as_mut_ptr(),
-                index as i32,
-            );
-        }
+        self.frame_jacobian(self.model.mj().mj_jacSite, index, translation, rotation);
     }
 
     /// As [`Data::site_jacobian`], for the frame of `body` (MuJoCo's `mj_jacBody`).
@@ -424,13 +421,25 @@ impl Data {
     #[track_caller]
     pub fn body_jacobian(&self, body: BodyId, translation: &mut Vec<f64>, rotation: &mut Vec<f64>) {
         let index = self.model.index_of(body);
+        self.frame_jacobian(self.model.mj().mj_jacBody, index, translation, rotation);
+    }
+
+    /// The Jacobian MuJoCo's `jacobian` (`mj_jacSite`, `mj_jacBody`) writes for object `index`
+    /// of its kind, into buffers resized to 3·nv.
+    fn frame_jacobian(
+        &self,
+        jacobian: FrameJacobian,
+        index: usize,
+        translation: &mut Vec<f64>,
+        rotation: &mut Vec<f64>,
+    ) {
         let nv = self.model.nv();
         translation.resize(3 * nv, 0.0);
         rotation.resize(3 * nv, 0.0);
-        // SAFETY: model and data belong together; both buffers hold the 3·nv numbers mj_jacBody
-        // writes, and `index` < nbody.
+        // SAFETY: model and data belong together; both buffers hold the 3·nv numbers the
+        // function writes, and `index` was resolved in this model for the function's kind.
         unsafe {
-            self.model.mj().mj_jacBody(
+            jacobian(
                 self.model.raw(),
                 self.raw(),
                 translation.as_mut_ptr(),
