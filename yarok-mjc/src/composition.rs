@@ -4,7 +4,6 @@
 use yarok_core::compose::{ComponentKeyframe, Composition, Instance};
 use yarok_core::template::xml::Element;
 
-use crate::compile_notice::CompileNotice;
 use crate::error::ModelError;
 use crate::model::{Model, to_usize};
 use crate::sys;
@@ -57,9 +56,13 @@ impl Model {
                 message: problem.to_owned(),
             });
         }
-        let elements = composition.mjcf.descendants();
-        let bodies = elements.iter().filter(|e| e.name == "body").count();
-        let _notice = CompileNotice::start(elements.len(), bodies);
+        crate::compile_notice::announcing_long(&composition.mjcf, || {
+            Self::compile_composed(composition)
+        })
+    }
+
+    /// Compiles the composed world, then again with its component keyframes placed.
+    fn compile_composed(composition: &Composition) -> Result<Self, ModelError> {
         let model = Self::compile_xml(&composition.to_xml(), NO_ASSETS)
             .map_err(|error| located(error, composition))?;
         if composition.keyframes.is_empty() {
