@@ -302,9 +302,7 @@ impl SerialKinematics {
             .zip(&self.columns)
             .map(|(pull, column)| pull - column.dot(&back))
             .collect();
-        let largest = step.iter().fold(0.0_f64, |m, s| m.max(s.abs()));
-        self.add(q, &step);
-        largest > POSTURE_SETTLED
+        self.add(q, &step) > POSTURE_SETTLED
     }
 
     /// The Cholesky factors of J Jᵀ + damping² I, `None` when singular.
@@ -316,8 +314,9 @@ impl SerialKinematics {
         jjt.cholesky()
     }
 
-    /// `q` plus `step` (scaled down to [`MAX_STEP`] a joint), within the limits.
-    fn add(&self, q: &mut [f64], step: &[f64]) {
+    /// `q` plus `step` (scaled down to [`MAX_STEP`] a joint), within the limits; the largest
+    /// joint change `step` asked for.
+    fn add(&self, q: &mut [f64], step: &[f64]) -> f64 {
         let largest = step.iter().fold(0.0_f64, |m, s| m.max(s.abs()));
         let scale = if largest > MAX_STEP {
             MAX_STEP / largest
@@ -327,6 +326,7 @@ impl SerialKinematics {
         for ((q, step), [lower, upper]) in q.iter_mut().zip(step).zip(&self.limits) {
             *q = (*q + step * scale).clamp(*lower, *upper);
         }
+        largest
     }
 
     /// The TCP's Jacobian at the last [`SerialKinematics::forward`], into `columns`, in the
