@@ -239,7 +239,7 @@ impl Component for Menagerie2f85 {
 
 impl Interface<Sim> for Menagerie2f85 {
     async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
-        Robotiq2f85::bind_sim(bind, GripperNames::MENAGERIE).map(Menagerie2f85)
+        Robotiq2f85::bind_sim(bind, &GripperNames::MENAGERIE_2F85).map(Menagerie2f85)
     }
 }
 
@@ -350,7 +350,7 @@ impl Component for MisnamedGripper {
 
 impl Interface<Sim> for MisnamedGripper {
     async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
-        Robotiq2f85::bind_sim(bind, GripperNames::YAROK).map(|_| MisnamedGripper)
+        Robotiq2f85::bind_sim(bind, &GripperNames::YAROK_2F85).map(|_| MisnamedGripper)
     }
 }
 

@@ -338,6 +338,25 @@ impl Data {
         }
     }
 
+    /// An actuator's length — its transmission's position times its gear (a joint's angle or
+    /// travel, a tendon's length) — and the rate it changes at, as of the last step.
+    ///
+    /// # Panics
+    ///
+    /// When `actuator` was resolved in a different model.
+    #[track_caller]
+    pub fn actuator_length(&self, actuator: ActuatorId) -> (f64, f64) {
+        let index = self.model.index_of(actuator);
+        let nu = self.model.nu();
+        // SAFETY: actuator_length and actuator_velocity hold nu elements and `index` < nu.
+        unsafe {
+            (
+                self.array(self.raw().actuator_length, nu)[index],
+                self.array(self.raw().actuator_velocity, nu)[index],
+            )
+        }
+    }
+
     /// The reading of one sensor, as many values as the sensor's dimension (3 for an
     /// accelerometer, 1 for a joint position sensor, …).
     ///

@@ -59,6 +59,20 @@ impl Actuator {
     pub fn servo_gains(&self) -> Option<crate::ServoGains> {
         self.data.borrow().model().servo_gains(self.id)
     }
+
+    /// The range its control is clamped to, if it is limited (see [`Model::ctrl_range`]).
+    ///
+    /// [`Model::ctrl_range`]: crate::Model::ctrl_range
+    pub fn ctrl_range(&self) -> Option<[f64; 2]> {
+        self.data.borrow().model().ctrl_range(self.id)
+    }
+
+    /// Its length and the rate it changes at (see [`Data::actuator_length`]).
+    ///
+    /// [`Data::actuator_length`]: crate::Data::actuator_length
+    pub fn length(&self) -> (f64, f64) {
+        self.data.borrow().actuator_length(self.id)
+    }
 }
 
 handle! {

@@ -286,6 +286,26 @@ impl Model {
         })
     }
 
+    /// The range an actuator's control is clamped to (`ctrlrange`), or `None` when it is not
+    /// limited.
+    ///
+    /// # Panics
+    ///
+    /// When `actuator` was resolved in a different model.
+    #[track_caller]
+    pub fn ctrl_range(&self, actuator: ActuatorId) -> Option<[f64; 2]> {
+        let index = self.index_of(actuator);
+        let nu = self.count(ObjectKind::Actuator);
+        // SAFETY: actuator_ctrllimited holds nu entries and actuator_ctrlrange 2·nu.
+        let (limited, range) = unsafe {
+            (
+                self.array(self.raw().actuator_ctrllimited, nu)[index],
+                self.array(self.raw().actuator_ctrlrange, 2 * nu),
+            )
+        };
+        limited.then(|| [range[2 * index], range[2 * index + 1]])
+    }
+
     /// The gear of a motor on a joint — an actuator whose force is gear × control, with no
     /// bias (`<motor>`, or `<general>` so set) — or `None` for any other actuator.
     ///

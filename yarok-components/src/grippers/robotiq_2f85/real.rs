@@ -13,7 +13,8 @@ use yarok_core::component::{Bind, BindError, Interface};
 use yarok_hw::robotiq::{Gripper, GripperError, GripperState, Motion};
 use yarok_hw::{Real, reopen};
 
-use super::{Drive, Robotiq2f85};
+use super::Robotiq2f85;
+use crate::grippers::parallel::{FingerDrive, ParallelGripper, Request, Stroke};
 
 /// How often the status is read.
 const POLL: Duration = Duration::from_millis(20);
@@ -44,30 +45,46 @@ impl Default for Settings {
 }
 
 /// What the driver's task knows of the real gripper, and the request it is to send.
-pub(super) struct RealFingers {
+struct RealFingers {
     status: Cell<GripperState>,
     requests: watch::Sender<Option<[u8; 3]>>,
 }
 
-impl RealFingers {
-    pub(super) fn position(&self) -> u8 {
-        self.status.get().position
-    }
-
-    pub(super) fn request(&self, request: [u8; 3]) {
-        self.requests.send_replace(Some(request));
+impl FingerDrive for RealFingers {
+    fn position(&self) -> f64 {
+        f64::from(self.status.get().position)
     }
 
     /// Moving until the gripper reports the latest request as taken and its motion ended.
-    pub(super) fn is_moving(&self) -> bool {
+    fn is_moving(&self) -> bool {
         let status = self.status.get();
         let requested = self.requests.borrow().map(|[position, ..]| position);
         requested.is_some_and(|position| position != status.requested)
             || status.motion == Motion::Moving
     }
 
-    /// Stopped on an object (`OBJ` 1 or 2).
-    pub(super) fn object_detected(&self) -> bool {
+    fn requested(&self) -> Request {
+        match *self.requests.borrow() {
+            Some(request) => {
+                let [position, speed, force] = request.map(f64::from);
+                Request {
+                    position,
+                    speed,
+                    force,
+                }
+            }
+            None => Request::POWER_ON,
+        }
+    }
+
+    fn request(&self, request: Request) {
+        let bytes = [request.position, request.speed, request.force]
+            .map(|value| value.round().clamp(0.0, 255.0) as u8);
+        self.requests.send_replace(Some(bytes));
+    }
+
+    /// Stopped on an object (`OBJ` 1 or 2), as the gripper reports.
+    fn object_detected(&self) -> bool {
         matches!(
             self.status.get().motion,
             Motion::ObjectWhileOpening | Motion::ObjectWhileClosing
@@ -94,7 +111,11 @@ impl Interface<Real> for Robotiq2f85 {
             requests: watch::Sender::new(None),
         });
         bind.spawn(drive(Rc::clone(&fingers), socket, gripper));
-        Ok(Self::with_drive(bind, Drive::Real(fingers)))
+        Ok(Self(ParallelGripper::with_drive(
+            bind,
+            fingers,
+            Stroke::ROBOTIQ_2F85,
+        )))
     }
 }
 
