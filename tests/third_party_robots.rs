@@ -3,27 +3,31 @@
 //! compensation, is driven through the same API as yarok's arms and arrives under gravity, its
 //! kinematics measured from the model putting its flange where MuJoCo does (robosuite's UR5e's
 //! too); with Menagerie's 2F-85 at its attachment site it stacks the blocks with the same
-//! behaviour as `PickAndPlaceWorld`, and it holds a payload set as on the real arm.
+//! behaviour as `PickAndPlaceWorld` (the example `menagerie_pick_and_place`), and it holds a
+//! payload set as on the real arm.
 
 use std::f64::consts::FRAC_PI_2;
 use std::path::PathBuf;
 
 use std::sync::Arc;
 
-use yarok::components::demos::stack_with;
 use yarok::components::grippers::{GripperNames, Robotiq2f85};
 use yarok::components::robots::ur::{
     Arm, ArmConfig, ArmNames, Joints, MeasuredKinematics, isometry_of,
 };
 use yarok::components::tactile::noise::SplitMix64;
-use yarok::components::toys::{Block, Spot};
+
 use yarok::core::compose::compose;
 use yarok::mjc::{Data, Model, Sim, Site};
-use yarok::nalgebra::{Isometry3, Vector3};
+use yarok::nalgebra::Vector3;
 use yarok::prelude::*;
 
+#[path = "support/example_binary.rs"]
+mod example_binary;
 #[path = "../yarok-hw/tests/support/peers.rs"]
 mod peers;
+
+use example_binary::example_binary;
 
 const HOME: Joints = [0.0, -FRAC_PI_2, FRAC_PI_2, -FRAC_PI_2, -FRAC_PI_2, 0.0];
 
@@ -223,114 +227,22 @@ fn menageries_ur5e_arrives_under_gravity() {
         .unwrap();
 }
 
-/// Menagerie's `robotiq_2f85/2f85.xml`, wrapped as it is.
-#[derive(Clone, Debug)]
-struct Menagerie2f85(Robotiq2f85);
-
-impl Component for Menagerie2f85 {
-    fn declaration() -> Declaration {
-        Declaration::new("menagerie_2f85").mjcf_file(menagerie("robotiq_2f85/2f85.xml"))
-    }
-
-    fn interfaces(interfaces: &mut Interfaces<Self>) {
-        interfaces.add::<Sim>();
-    }
-}
-
-impl Interface<Sim> for Menagerie2f85 {
-    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
-        Robotiq2f85::bind_sim(bind, &GripperNames::MENAGERIE_2F85).map(Menagerie2f85)
-    }
-}
-
-/// Menagerie's UR5e, its TCP at the pinch point of Menagerie's 2F-85 mounted at its attachment
-/// site (the 2F-85's base mount 7 mm, base 3.8 mm and pinch site 145 mm along the flange's z),
-/// starting as `PickAndPlaceWorld`'s arm does.
-#[derive(Clone, Debug)]
-struct PickingUr5e(Arm);
-
-impl Component for PickingUr5e {
-    fn declaration() -> Declaration {
-        MenagerieUr5e::declaration()
-    }
-
-    fn interfaces(interfaces: &mut Interfaces<Self>) {
-        interfaces.add::<Sim>();
-    }
-}
-
-impl Interface<Sim> for PickingUr5e {
-    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
-        let measured = MeasuredKinematics::of(bind, &ArmNames::MENAGERIE)?;
-        let pinch = Isometry3::translation(0.0, 0.0, 0.007 + 0.0038 + 0.145);
-        let config = ArmConfig {
-            kinematics: measured
-                .kinematics
-                .with_tcp(measured.kinematics.tcp * pinch),
-            names: ArmNames::MENAGERIE,
-            start: Some([0.0, -1.9, 1.9, -1.57, -1.57, 0.0]),
-        };
-        Arm::bind_sim(bind, config).map(PickingUr5e)
-    }
-}
-
-/// `PickAndPlaceWorld`'s layout (a stand, a table 0.4 m high, three blocks and a target spot)
-/// with Menagerie's arm and gripper.
-struct MenagerieWorld;
-
-impl Component for MenagerieWorld {
-    fn declaration() -> Declaration {
-        Declaration::new("menagerie_world")
-            .uses::<PickingUr5e>()
-            .uses::<Menagerie2f85>()
-            .uses::<Block>()
-            .uses::<Spot>()
-            .template(
-                r#"<mujoco>
-                  <worldbody>
-                    <light pos="0 0 3" dir="0 0 -1"/>
-                    <geom name="floor" type="plane" size="2 2 0.1"/>
-                    <geom name="stand" type="box" size="0.12 0.12 0.2" pos="0 0 0.2"/>
-                    <geom name="table" type="box" size="0.4 0.6 0.02" pos="0.52 0 0.38"/>
-                    <body name="mount" pos="0 0 0.4">
-                      <menagerie_ur5e name="arm">
-                        <menagerie_2f85 name="gripper" parent="attachment_site"/>
-                      </menagerie_ur5e>
-                    </body>
-                    <block name="large" size="0.05" pos="{[0.5, -0.25, 0.425]}"/>
-                    <block name="medium" size="0.04" pos="{[0.62, 0.02, 0.42]}"/>
-                    <block name="small" size="0.03" pos="{[0.45, 0.12, 0.415]}"/>
-                    <spot name="target" pos="{[0.42, 0.38, 0.4005]}"/>
-                  </worldbody>
-                </mujoco>"#,
-            )
-    }
-}
-
+/// The README's worked example, `examples/sim/menagerie`: Menagerie's unmodified UR5e and
+/// 2F-85 stack the blocks with the pick-and-place demo's behaviour; it fails if a motion does
+/// not arrive within 1e-3 rad, a grasp detects no object or a block ends more than 5 mm from
+/// its place.
 #[test]
 fn menageries_ur5e_and_2f85_stack_the_blocks_as_the_pick_and_place_demo_does() {
-    yarok::platform()
-        .world::<MenagerieWorld>()
-        .behaviour(|pl| async move {
-            let arm: PickingUr5e = pl.get("/arm")?;
-            let gripper: Menagerie2f85 = pl.get("/arm/gripper")?;
-            // Fails if a motion does not arrive, the gripper closes on nothing (no object
-            // detected) or a block ends more than 1 cm from its place.
-            stack_with(&pl, &arm.0, &gripper.0).await?;
-            let target: Spot = pl.get("/target")?;
-            let [x, y, table] = target.position();
-            let mut top = table;
-            for name in ["/large", "/medium", "/small"] {
-                let block: Block = pl.get(name)?;
-                let place = Vector3::new(x, y, top + block.size() / 2.0);
-                let off = (Vector3::from(block.position()) - place).norm();
-                assert!(off < 0.005, "{name} is {off} m from its place");
-                top += block.size();
-            }
-            Ok(())
-        })
-        .run()
+    let output = std::process::Command::new(example_binary("menagerie_pick_and_place"))
+        .arg(menagerie(""))
+        .output()
         .unwrap();
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stdout}\n{stderr}");
+    for block in ["/large", "/medium", "/small"] {
+        assert!(stdout.contains(&format!("{block} stacked")), "{stdout}");
+    }
 }
 
 /// Menagerie's 2F-85 bound with yarok's own names: an error naming the part and listing the
@@ -340,7 +252,7 @@ struct MisnamedGripper;
 
 impl Component for MisnamedGripper {
     fn declaration() -> Declaration {
-        Menagerie2f85::declaration()
+        Declaration::new("menagerie_2f85").mjcf_file(menagerie("robotiq_2f85/2f85.xml"))
     }
 
     fn interfaces(interfaces: &mut Interfaces<Self>) {

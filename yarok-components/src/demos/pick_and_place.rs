@@ -5,7 +5,7 @@ use std::f64::consts::PI;
 use nalgebra::Isometry3;
 use yarok_core::runtime::{BehaviourResult, Pl};
 
-use crate::grippers::Robotiq2f85;
+use crate::grippers::{ParallelGripper, Robotiq2f85};
 use crate::robots::ur::{Arm, Ur5e, pose_from_vector};
 use crate::toys::{Block, Spot};
 
@@ -39,7 +39,7 @@ pub async fn stack(pl: Pl) -> BehaviourResult {
 /// [`stack`] with any UR arm and 2F-85 (a world of the same layout whose arm and gripper are
 /// other models, e.g. MuJoCo Menagerie's): the blocks at `/large`, `/medium` and `/small`, the
 /// spot at `/target`, the arm's base frame level with the table top, its TCP at the pinch point.
-pub async fn stack_with(pl: &Pl, arm: &Arm, gripper: &Robotiq2f85) -> BehaviourResult {
+pub async fn stack_with(pl: &Pl, arm: &Arm, gripper: &ParallelGripper) -> BehaviourResult {
     let target: Spot = pl.get("/target")?;
     let blocks: Vec<Block> = BLOCKS
         .iter()
