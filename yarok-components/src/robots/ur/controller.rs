@@ -14,8 +14,9 @@ use super::kinematics::{IkError, Joints, Kinematics, pose_to_vector};
 use super::measured::isometry_of;
 use super::path::Path;
 use super::payload::Payload;
-use super::real::{RealLink, movej, movel, set_payload};
+use super::real::RealLink;
 use crate::robots::profile::Profile;
+use yarok_hw::ur::script;
 
 /// How close (radians, every joint) counts as arrived.
 pub const ARRIVED_RAD: f64 = 1e-3;
@@ -299,7 +300,7 @@ impl Controller {
     pub(super) fn set_payload(&self, payload: Payload) {
         self.state.borrow_mut().payload = Some(payload);
         if let Drive::Real(link) = &self.drive {
-            link.send_script(set_payload(&payload));
+            link.send_script(script::set_payload(payload.mass, payload.centre));
         }
         self.command();
     }
@@ -346,13 +347,13 @@ impl Controller {
         drop(state);
         if let Drive::Real(link) = &self.drive {
             link.send_script(match path {
-                Path::Line { to, .. } => movel(
+                Path::Line { to, .. } => script::movel_with_tcp(
                     &pose_to_vector(&to),
                     &pose_to_vector(&self.kinematics.tcp),
                     speed,
                     acceleration,
                 ),
-                Path::Joints { .. } => movej(&target, speed, acceleration),
+                Path::Joints { .. } => script::movej(&target, speed, acceleration),
             });
         }
         self.advance(self.clock.time());
@@ -385,11 +386,10 @@ impl Controller {
         let (along, speed) = motion.profile.at(now - motion.started);
         let deceleration = motion.profile.acceleration();
         if let Drive::Real(link) = &self.drive {
-            let stop = match motion.path {
-                Path::Line { .. } => "stopl",
-                Path::Joints { .. } => "stopj",
-            };
-            link.send_script(format!("{stop}({deceleration})"));
+            link.send_script(match motion.path {
+                Path::Line { .. } => script::stopl(deceleration),
+                Path::Joints { .. } => script::stopj(deceleration),
+            });
         }
         motion.profile = Profile::stopping(along, speed, deceleration);
         motion.started = now;

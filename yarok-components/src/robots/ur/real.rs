@@ -14,6 +14,7 @@ use tokio::time::Instant;
 use yarok_core::component::{Bind, BindError};
 use yarok_hw::ur::dashboard::{Dashboard, RobotMode, SafetyStatus};
 use yarok_hw::ur::rtde::{Rtde, RtdeError, RtdeSettings, Value};
+use yarok_hw::ur::script;
 use yarok_hw::ur::secondary::{KinematicsInfo, Secondary, send_script};
 use yarok_hw::{Real, reopen};
 
@@ -197,31 +198,6 @@ impl RealLink {
     }
 }
 
-/// `set_payload` of `payload`.
-pub(super) fn set_payload(payload: &Payload) -> String {
-    let [x, y, z] = payload.centre;
-    format!("set_payload({}, [{x}, {y}, {z}])", payload.mass)
-}
-
-/// `movej` to `target` at `speed` rad/s and `acceleration` rad/s².
-pub(super) fn movej(target: &Joints, speed: f64, acceleration: f64) -> String {
-    let q: Vec<String> = target.iter().map(|q| format!("{q:.6}")).collect();
-    format!("movej([{}], a={acceleration}, v={speed})", q.join(", "))
-}
-
-/// A program that sets the TCP and runs `movel` to the TCP `pose` (a UR pose vector).
-pub(super) fn movel(pose: &[f64; 6], tcp: &[f64; 6], speed: f64, acceleration: f64) -> String {
-    let vector = |values: &[f64; 6]| {
-        let values: Vec<String> = values.iter().map(|v| format!("{v:.6}")).collect();
-        format!("p[{}]", values.join(", "))
-    };
-    format!(
-        "def yarok_move():\n  set_tcp({})\n  movel({}, a={acceleration}, v={speed})\nend",
-        vector(tcp),
-        vector(pose)
-    )
-}
-
 /// Which known arm DH parameters these are.
 fn model_name(dh: &DhParameters) -> &'static str {
     let close = |known: &DhParameters| {
@@ -384,7 +360,7 @@ pub(super) async fn connect(
     check_kinematics(bind, &kinematics.dh, &reported)?;
     if let Some(payload) = &payload {
         secondary
-            .send_script(&set_payload(payload))
+            .send_script(&script::set_payload(payload.mass, payload.centre))
             .await
             .map_err(|e| bind.error(e))?;
     }
@@ -400,7 +376,7 @@ pub(super) async fn connect(
         // for a robot state (the interface may be what fell silent).
         let stopping = async {
             let mut stream = TcpStream::connect((host.as_str(), SECONDARY_PORT)).await?;
-            send_script(&mut stream, "stopj(2.0)").await
+            send_script(&mut stream, &script::stopj(2.0)).await
         };
         tokio::time::timeout(reply, stopping).await.map_err(|_| {
             format!("controller {host}: no connection to send stopj within {reply:?}")
