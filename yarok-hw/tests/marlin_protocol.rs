@@ -124,6 +124,14 @@ async fn a_refused_line_is_sent_again_after_the_printer_acknowledges_it() {
 }
 
 #[tokio::test(start_paused = true)]
+async fn absolute_coordinates_are_one_g90() {
+    let (mut marlin, printer) = connected(vec![Expect("N1 G90*17"), Send(&["ok"])]).await;
+    marlin.use_absolute_coordinates().await.unwrap();
+    drop(marlin);
+    printer.await.unwrap();
+}
+
+#[tokio::test(start_paused = true)]
 async fn a_resend_storm_is_an_error_naming_the_command() {
     let mut script = vec![Expect("N1 M114*38")];
     for _ in 0..9 {

@@ -180,6 +180,16 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Marlin<T> {
     /// [`MarlinError`] naming the printer and the command.
     pub async fn home(&mut self) -> Result<(), MarlinError> {
         self.command("G28").await?;
+        self.use_absolute_coordinates().await
+    }
+
+    /// Sets absolute coordinates (`G90`): [`Marlin::move_to`]'s targets are positions, not
+    /// offsets.
+    ///
+    /// # Errors
+    ///
+    /// [`MarlinError`] naming the printer and the command.
+    pub async fn use_absolute_coordinates(&mut self) -> Result<(), MarlinError> {
         self.command("G90").await.map(drop)
     }
 

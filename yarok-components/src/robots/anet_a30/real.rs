@@ -95,7 +95,7 @@ impl Interface<Real> for AnetA30 {
             if home {
                 marlin.home().await?;
             } else {
-                marlin.command("G90").await?;
+                marlin.use_absolute_coordinates().await?;
             }
             marlin.position().await
         };
