@@ -15,8 +15,10 @@ mod reading;
 mod reopen;
 pub mod robotiq;
 mod serial;
+mod tcp;
 pub mod ur;
 
 pub use backend::{DEFAULT_TICK_HZ, HardwareBackend, InvalidTickRate, Real};
 pub use reopen::{FIRST_RETRY, reopen};
 pub use serial::{SerialError, SerialPort};
+pub use tcp::{ConnectError, connect_within};

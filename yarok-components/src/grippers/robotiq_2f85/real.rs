@@ -11,7 +11,7 @@ use tokio::net::TcpStream;
 use tokio::sync::watch;
 use yarok_core::component::{Bind, BindError, Interface};
 use yarok_hw::robotiq::{Gripper, GripperError, GripperState, Motion};
-use yarok_hw::{Real, reopen};
+use yarok_hw::{Real, connect_within, reopen};
 
 use super::Robotiq2f85;
 use crate::grippers::parallel::{FingerDrive, ParallelGripper, Request, Stroke};
@@ -143,16 +143,10 @@ impl Socket {
 
     /// A connection to the gripper, made within the reply time.
     async fn open(&self) -> Result<Gripper<TcpStream>, String> {
-        let connecting = TcpStream::connect((self.host.as_str(), self.port));
-        match tokio::time::timeout(self.reply, connecting).await {
-            Ok(Ok(stream)) => Ok(Gripper::new(stream, self.name.clone(), self.reply)),
-            Ok(Err(error)) => Err(format!("gripper {}: {error}", self.name)),
-            Err(_) => Err(format!(
-                "gripper {}: no connection within {} s",
-                self.name,
-                self.reply.as_secs_f64()
-            )),
-        }
+        let stream = connect_within(&self.host, self.port, self.reply)
+            .await
+            .map_err(|error| format!("gripper {}: {error}", self.name))?;
+        Ok(Gripper::new(stream, self.name.clone(), self.reply))
     }
 
     /// The gripper reconnected after `dropped` (attempts within the reply time, waits doubling

@@ -16,7 +16,7 @@ use yarok_hw::ur::dashboard::{Dashboard, RobotMode, SafetyStatus};
 use yarok_hw::ur::rtde::{Rtde, RtdeError, RtdeSettings, Value};
 use yarok_hw::ur::script;
 use yarok_hw::ur::secondary::{KinematicsInfo, Secondary, send_script};
-use yarok_hw::{Real, reopen};
+use yarok_hw::{Real, connect_within, reopen};
 
 use super::error::MotionError;
 use super::kinematics::{DhParameters, Joints, Kinematics};
@@ -258,21 +258,12 @@ fn check_kinematics(
     )))
 }
 
-/// A connection to `host`'s `port`, made within `reply`.
-async fn connect_to(
-    host: &str,
-    port: u16,
-    reply: Duration,
-) -> Result<TcpStream, yarok_core::BoxError> {
-    Ok(tokio::time::timeout(reply, TcpStream::connect((host, port))).await??)
-}
-
 /// The dashboard of `host`, connected and its welcome read, each within `reply`.
 async fn dashboard(
     host: &str,
     reply: Duration,
 ) -> Result<Dashboard<TcpStream>, yarok_core::BoxError> {
-    let stream = connect_to(host, DASHBOARD_PORT, reply).await?;
+    let stream = connect_within(host, DASHBOARD_PORT, reply).await?;
     Ok(Dashboard::connect(stream, host, reply).await?)
 }
 
@@ -283,7 +274,7 @@ async fn rtde_stream(
     hz: Option<f64>,
     reply: Duration,
 ) -> Result<(Rtde<TcpStream>, Measured), yarok_core::BoxError> {
-    let stream = connect_to(host, RTDE_PORT, reply).await?;
+    let stream = connect_within(host, RTDE_PORT, reply).await?;
     let mut settings = RtdeSettings::new(host);
     settings.reply_timeout = reply;
     let mut rtde = Rtde::connect(stream, settings).await?;
@@ -312,7 +303,7 @@ async fn secondary_stream(
     host: &str,
     reply: Duration,
 ) -> Result<Secondary<TcpStream>, yarok_core::BoxError> {
-    let stream = connect_to(host, SECONDARY_PORT, reply).await?;
+    let stream = connect_within(host, SECONDARY_PORT, reply).await?;
     Ok(Secondary::connect(stream, host, reply).await?)
 }
 
