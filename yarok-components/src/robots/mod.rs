@@ -6,4 +6,4 @@ mod profile;
 pub mod serial;
 pub mod ur;
 
-pub use anet_a30::{ARRIVED_MM, AnetA30, WORK_VOLUME_MM};
+pub use anet_a30::{ARRIVED_MM, AnetA30, AxesDrive, WORK_VOLUME_MM};

@@ -1,12 +1,18 @@
 //! [`AnetA30`]: a 3-D printer used as a cartesian robot.
 
+mod drive;
+mod mock;
 mod real;
+mod sim;
 
-use std::cell::Cell;
 use std::rc::Rc;
 
 use yarok_core::component::{Bind, BindError, Component, Declaration, Interface, Interfaces, Mock};
-use yarok_mjc::{Actuator, Joint, Sensor, Sim, SimBind};
+use yarok_mjc::Sim;
+
+pub use drive::AxesDrive;
+use mock::MockAxes;
+use sim::SimAxes;
 
 /// The work volume of the [`AnetA30`], in millimetres.
 pub const WORK_VOLUME_MM: [f64; 3] = [320.0, 320.0, 420.0];
@@ -28,21 +34,7 @@ pub const ARRIVED_MM: f64 = 0.25;
 /// the printer stops (`M410`) at shutdown; `mock` moves instantly.
 #[derive(Clone)]
 pub struct AnetA30 {
-    axes: Axes,
-}
-
-#[derive(Clone)]
-enum Axes {
-    Sim(Rc<SimAxes>),
-    Real(Rc<real::RealAxes>),
-    Mock(Rc<Cell<[f64; 3]>>),
-}
-
-/// The axes in MuJoCo: position servos, their measured positions, and the joints themselves.
-struct SimAxes {
-    servos: [Actuator; 3],
-    positions: [Sensor; 3],
-    joints: [Joint; 3],
+    axes: Rc<dyn AxesDrive>,
 }
 
 impl std::fmt::Debug for AnetA30 {
@@ -52,6 +44,11 @@ impl std::fmt::Debug for AnetA30 {
 }
 
 impl AnetA30 {
+    /// A printer whose head `axes` move: for an environment of your own.
+    pub fn with_drive(axes: Rc<dyn AxesDrive>) -> Self {
+        Self { axes }
+    }
+
     /// Starts moving the head to `target` (millimetres), clamped to the work volume; returns the
     /// clamped target.
     ///
@@ -62,15 +59,7 @@ impl AnetA30 {
             tracing::warn!("printer: move_to({target:?}) has a NaN coordinate; it goes to 0");
         }
         let clamped = clamp(target);
-        match &self.axes {
-            Axes::Sim(axes) => {
-                for (servo, mm) in axes.servos.iter().zip(clamped) {
-                    servo.set(mm / 1000.0);
-                }
-            }
-            Axes::Real(axes) => axes.move_to(clamped),
-            Axes::Mock(at) => at.set(clamped),
-        }
+        self.axes.move_to(clamped);
         clamped
     }
 
@@ -80,22 +69,17 @@ impl AnetA30 {
     /// scene up, or collecting data that must not depend on the order it is collected in.
     /// `mock` as [`AnetA30::move_to`].
     pub fn place(&self, target: [f64; 3]) -> [f64; 3] {
-        let clamped = self.move_to(target);
-        if let Axes::Sim(axes) = &self.axes {
-            for (joint, mm) in axes.joints.iter().zip(clamped) {
-                joint.set_position(mm / 1000.0);
-            }
+        if target.iter().any(|t| t.is_nan()) {
+            tracing::warn!("printer: place({target:?}) has a NaN coordinate; it goes to 0");
         }
+        let clamped = clamp(target);
+        self.axes.place(clamped);
         clamped
     }
 
     /// Where the head is, in millimetres.
     pub fn at(&self) -> [f64; 3] {
-        match &self.axes {
-            Axes::Sim(axes) => axes.positions.each_ref().map(|axis| axis.value() * 1000.0),
-            Axes::Real(axes) => axes.at(),
-            Axes::Mock(at) => at.get(),
-        }
+        self.axes.at()
     }
 
     /// Whether the head is at `target` (clamped to the work volume) within [`ARRIVED_MM`].
@@ -135,21 +119,12 @@ impl Component for AnetA30 {
 
 impl Interface<Sim> for AnetA30 {
     async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
-        let [x, y, z] = ["x", "y", "z"];
-        Ok(AnetA30 {
-            axes: Axes::Sim(Rc::new(SimAxes {
-                servos: [bind.actuator(x)?, bind.actuator(y)?, bind.actuator(z)?],
-                positions: [bind.sensor(x)?, bind.sensor(y)?, bind.sensor(z)?],
-                joints: [bind.joint(x)?, bind.joint(y)?, bind.joint(z)?],
-            })),
-        })
+        Ok(Self::with_drive(Rc::new(SimAxes::bind(bind)?)))
     }
 }
 
 impl Interface<Mock> for AnetA30 {
     async fn bind(_: &mut Bind<Mock>) -> Result<Self, BindError> {
-        Ok(AnetA30 {
-            axes: Axes::Mock(Rc::default()),
-        })
+        Ok(Self::with_drive(Rc::new(MockAxes::default())))
     }
 }

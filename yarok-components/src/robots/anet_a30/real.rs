@@ -12,7 +12,7 @@ use yarok_core::component::{Bind, BindError, Interface};
 use yarok_hw::marlin::{Marlin, MarlinError, MarlinSettings, Position, Reconnecting};
 use yarok_hw::{Real, SerialPort};
 
-use super::{AnetA30, Axes};
+use super::{AnetA30, AxesDrive};
 
 /// The interface settings of a real printer (`[interfaces."/printer"]`).
 #[derive(Debug, Clone, Deserialize)]
@@ -47,17 +47,17 @@ impl Default for Settings {
 
 /// The head as the driver's task keeps it: the newest target asked for, and where the printer
 /// last said the head was after finishing its moves.
-pub(super) struct RealAxes {
+struct RealAxes {
     target: watch::Sender<Option<[f64; 3]>>,
     at: Cell<[f64; 3]>,
 }
 
-impl RealAxes {
-    pub(super) fn move_to(&self, target: [f64; 3]) {
+impl AxesDrive for RealAxes {
+    fn move_to(&self, target: [f64; 3]) {
         self.target.send_replace(Some(target));
     }
 
-    pub(super) fn at(&self) -> [f64; 3] {
+    fn at(&self) -> [f64; 3] {
         self.at.get()
     }
 }
@@ -113,9 +113,7 @@ impl Interface<Real> for AnetA30 {
             }
             Ok(())
         });
-        Ok(AnetA30 {
-            axes: Axes::Real(axes),
-        })
+        Ok(AnetA30::with_drive(axes))
     }
 }
 
