@@ -179,46 +179,45 @@ fn close<G: Hanging>(settings: &[&str]) -> Closed {
     closed.take().expect("the behaviour ran")
 }
 
-/// The opening a gripper reports when holding a block is the block's width: short by at most
-/// 2.5 mm, as the pads' soft contacts sink into the block (1.5–1.9 mm measured).
-fn assert_holds_width(closed: &Closed, width: f64) {
-    let short = width * 1000.0 - closed.opening_mm;
-    assert!(
-        (0.0..2.5).contains(&short),
-        "{closed:?} on a {width} m block"
-    );
+/// On each block of `widths` (metres) the gripper reports the object, and an opening that is
+/// the block's width: short by at most 2.5 mm, as the pads' soft contacts sink into the block
+/// (1.5–1.9 mm measured).
+fn holds_blocks<G: Hanging>(widths: &[f64]) {
+    for width in widths {
+        let setting = format!("/width={width}");
+        let closed = close::<G>(&[&setting]);
+        assert!(closed.object_detected, "{closed:?}");
+        let short = width * 1000.0 - closed.opening_mm;
+        assert!(
+            (0.0..2.5).contains(&short),
+            "{closed:?} on a {width} m block"
+        );
+    }
+}
+
+/// With the block moved away the gripper closes until its pads meet, and reports nothing.
+fn closes_on_nothing<G: Hanging>() {
+    let closed = close::<G>(&["/block_x=0.5"]);
+    assert!(!closed.object_detected, "{closed:?}");
+    assert!(closed.opening_mm < 3.0, "{closed:?}");
 }
 
 #[test]
 fn menageries_2f85_closes_on_a_block_and_reports_it() {
-    for width in [0.03, 0.045, 0.06] {
-        let setting = format!("/width={width}");
-        let closed = close::<Menagerie2f85>(&[&setting]);
-        assert!(closed.object_detected, "{closed:?}");
-        assert_holds_width(&closed, width);
-    }
+    holds_blocks::<Menagerie2f85>(&[0.03, 0.045, 0.06]);
 }
 
 #[test]
 fn menageries_2f85_closes_on_nothing_and_reports_nothing() {
-    let closed = close::<Menagerie2f85>(&["/block_x=0.5"]);
-    assert!(!closed.object_detected, "{closed:?}");
-    assert!(closed.opening_mm < 3.0, "{closed:?}");
+    closes_on_nothing::<Menagerie2f85>();
 }
 
 #[test]
 fn robosuites_franka_hand_closes_on_a_block_and_reports_it() {
-    for width in [0.02, 0.04, 0.06] {
-        let setting = format!("/width={width}");
-        let closed = close::<FrankaHand>(&[&setting]);
-        assert!(closed.object_detected, "{closed:?}");
-        assert_holds_width(&closed, width);
-    }
+    holds_blocks::<FrankaHand>(&[0.02, 0.04, 0.06]);
 }
 
 #[test]
 fn robosuites_franka_hand_closes_on_nothing_and_reports_nothing() {
-    let closed = close::<FrankaHand>(&["/block_x=0.5"]);
-    assert!(!closed.object_detected, "{closed:?}");
-    assert!(closed.opening_mm < 3.0, "{closed:?}");
+    closes_on_nothing::<FrankaHand>();
 }

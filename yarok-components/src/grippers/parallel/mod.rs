@@ -106,6 +106,11 @@ impl ParallelGripper {
         }
     }
 
+    /// A gripper with no physics behind it ([`MockFingers`]), moving over `stroke`.
+    pub fn mock<E: Environment>(bind: &mut Bind<E>, stroke: Stroke) -> Self {
+        Self::with_drive(bind, Rc::new(MockFingers::new(stroke)), stroke)
+    }
+
     /// Binds a gripper model in `sim` given its parts' `names`: each servo's gains, force
     /// range and controls are read from the model.
     ///

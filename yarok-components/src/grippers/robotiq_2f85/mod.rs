@@ -2,12 +2,11 @@
 //! status — position, speed and force 0–255, and `gOBJ`'s object detection.
 
 use std::ops::Deref;
-use std::rc::Rc;
 
 use yarok_core::component::{Bind, BindError, Component, Declaration, Interface, Interfaces, Mock};
 use yarok_mjc::Sim;
 
-use crate::grippers::parallel::{GripperNames, MockFingers, ParallelGripper, Stroke};
+use crate::grippers::parallel::{GripperNames, ParallelGripper, Stroke};
 
 mod real;
 
@@ -78,11 +77,6 @@ impl Interface<Sim> for Robotiq2f85 {
 
 impl Interface<Mock> for Robotiq2f85 {
     async fn bind(bind: &mut Bind<Mock>) -> Result<Self, BindError> {
-        let fingers = Rc::new(MockFingers::new(Stroke::ROBOTIQ_2F85));
-        Ok(Self(ParallelGripper::with_drive(
-            bind,
-            fingers,
-            Stroke::ROBOTIQ_2F85,
-        )))
+        Ok(Self(ParallelGripper::mock(bind, Stroke::ROBOTIQ_2F85)))
     }
 }

@@ -55,10 +55,7 @@ impl AnetA30 {
     /// A NaN coordinate is a warning (`tracing`) and goes to 0; an infinite one to the end of
     /// its axis.
     pub fn move_to(&self, target: [f64; 3]) -> [f64; 3] {
-        if target.iter().any(|t| t.is_nan()) {
-            tracing::warn!("printer: move_to({target:?}) has a NaN coordinate; it goes to 0");
-        }
-        let clamped = clamp(target);
+        let clamped = requested("move_to", target);
         self.axes.move_to(clamped);
         clamped
     }
@@ -69,10 +66,7 @@ impl AnetA30 {
     /// scene up, or collecting data that must not depend on the order it is collected in.
     /// `mock` as [`AnetA30::move_to`].
     pub fn place(&self, target: [f64; 3]) -> [f64; 3] {
-        if target.iter().any(|t| t.is_nan()) {
-            tracing::warn!("printer: place({target:?}) has a NaN coordinate; it goes to 0");
-        }
-        let clamped = clamp(target);
+        let clamped = requested("place", target);
         self.axes.place(clamped);
         clamped
     }
@@ -92,6 +86,14 @@ impl AnetA30 {
             .sum::<f64>()
             < ARRIVED_MM
     }
+}
+
+/// A target given to `request`, clamped to the work volume; a NaN coordinate is a warning.
+fn requested(request: &str, target: [f64; 3]) -> [f64; 3] {
+    if target.iter().any(|t| t.is_nan()) {
+        tracing::warn!("printer: {request}({target:?}) has a NaN coordinate; it goes to 0");
+    }
+    clamp(target)
 }
 
 fn clamp(target: [f64; 3]) -> [f64; 3] {
