@@ -13,7 +13,7 @@
 
 use image::RgbImage;
 use yarok::components::tactile::calibration::{
-    Calibration, FitSettings, Press, read_presses, split_held_out,
+    Calibration, FitSettings, Press, RenderBuffers, read_presses, split_held_out,
 };
 use yarok::components::tactile::fidelity::{self, Scores};
 use yarok::components::tactile::phong::{PhongModel, PhongParams};
@@ -118,19 +118,21 @@ fn main() {
             |press| calibration.render_press(press.centre, press.radius),
         );
         row("calibrated", &fidelity::median(&calibrated));
-        // Each model given its input ready: the press's indentation, or its depth map.
+        // Each model given its input ready (the press's indentation, or its depth map) and its
+        // buffers, as a sensor in the world renders its frames.
         let (width, height) = calibration.size();
         let press = Some(&set.held_out[0]);
         let depth = fidelity::phong_depth(surface, &geometry, press, width, height);
         let indentation: Vec<f32> = depth.iter().map(|d| surface as f32 - d).collect();
         let metres_per_pixel = 1e-3 / geometry.pixels_per_mm;
+        let mut buffers = RenderBuffers::default();
+        let mut out = vec![0; width * height * 3];
         let [calibrated_ms, reference_ms] = measure::mean_times(|variant| match variant {
             0 => calibration
-                .render_indentation(&indentation, metres_per_pixel)
-                .expect("its size")
-                .into_raw(),
+                .render_indentation_into(&indentation, metres_per_pixel, &mut buffers, &mut out)
+                .expect("its size"),
             _ => reference
-                .render(&depth, width, untouched.as_raw())
+                .render_into(&depth, width, untouched.as_raw(), &mut out)
                 .expect("its size"),
         })
         .map(|t| t.as_secs_f64() * 1e3);

@@ -5,6 +5,7 @@
 mod common;
 
 use common::{background, depth, golden};
+use yarok_components::tactile::calibration::{Calibration, RenderBuffers, ball_press};
 use yarok_components::tactile::geltip::{GelTipModel, GelTipParams};
 use yarok_components::tactile::phong::{PhongModel, PhongParams};
 
@@ -57,4 +58,37 @@ fn geltip_frames_allocate_nothing() {
     });
     assert_eq!(counted, 0);
     assert!(out.iter().any(|&v| v != 0));
+}
+
+#[test]
+fn calibrated_frames_allocate_nothing() {
+    let digit = Calibration::digit();
+    let (width, height) = digit.size();
+    let metres_per_pixel = 5e-5;
+    let indentation: Vec<f32> = ball_press(width, height, [120.0, 160.0], 30.0, 46.0)
+        .iter()
+        .map(|pixels| (pixels * metres_per_pixel) as f32)
+        .collect();
+    let mut buffers = RenderBuffers::default();
+    let mut out = vec![0; width * height * 3];
+    digit
+        .render_indentation_into(&indentation, metres_per_pixel, &mut buffers, &mut out)
+        .unwrap();
+    let counted = allocations(|| {
+        for _ in 0..3 {
+            digit
+                .render_indentation_into(&indentation, metres_per_pixel, &mut buffers, &mut out)
+                .unwrap();
+        }
+    });
+    assert_eq!(counted, 0);
+    assert_ne!(out, digit.background().as_raw()[..], "a press was drawn");
+    assert_eq!(
+        out,
+        digit
+            .render_indentation(&indentation, metres_per_pixel)
+            .unwrap()
+            .into_raw(),
+        "the same image as a frame rendered afresh"
+    );
 }

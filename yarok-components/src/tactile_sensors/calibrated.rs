@@ -1,9 +1,9 @@
 //! [`CalibratedModel`]: a flat gel's image by a [`Calibration`] fitted to a real sensor.
 
 use super::flat_gel::FlatGelModel;
-use crate::tactile::calibration::Calibration;
+use crate::tactile::SizeError;
+use crate::tactile::calibration::{Calibration, RenderBuffers};
 use crate::tactile::noise::SplitMix64;
-use crate::tactile::{SizeError, expect_len};
 
 /// A calibration's model of a flat gel `gel_face` metres from the camera, `pixel` metres a
 /// pixel there. It draws its own untouched gel (the calibration's), not the sensor's background,
@@ -13,6 +13,7 @@ pub(super) struct CalibratedModel {
     gel_face: f32,
     pixel: f64,
     indentation: Vec<f32>,
+    buffers: RenderBuffers,
     noise: Option<CameraNoise>,
 }
 
@@ -66,6 +67,7 @@ impl CalibratedModel {
             gel_face: gel_face as f32,
             pixel,
             indentation: Vec::with_capacity(width * height),
+            buffers: RenderBuffers::default(),
             noise,
         })
     }
@@ -79,14 +81,15 @@ impl FlatGelModel for CalibratedModel {
         _background: &[u8],
         out: &mut [u8],
     ) -> Result<(), SizeError> {
-        expect_len("image", out.len(), 3, self.calibration.size())?;
         self.indentation.clear();
         self.indentation
             .extend(depth.iter().map(|d| (self.gel_face - d).max(0.0)));
-        let image = self
-            .calibration
-            .render_indentation(&self.indentation, self.pixel)?;
-        out.copy_from_slice(image.as_raw());
+        self.calibration.render_indentation_into(
+            &self.indentation,
+            self.pixel,
+            &mut self.buffers,
+            out,
+        )?;
         if let Some(noise) = &self.noise {
             noise.add(out);
         }

@@ -97,19 +97,34 @@ impl Geometry {
 
     /// [`Geometry::press`] spread, on the half-resolution grid.
     fn heights(&self, width: usize, height: usize, centre: [f64; 2], radius: f64) -> Vec<f64> {
-        self.spread_half(&self.press(width, height, centre, radius), width)
-    }
-
-    /// A `width`-wide indentation map (pixels) halved and spread.
-    fn spread_half(&self, heights: &[f64], width: usize) -> Vec<f64> {
-        let mut half = surface::halve(heights, width);
-        surface::spread(
-            &mut half,
-            width.div_ceil(surface::HALF),
-            self.spread / surface::HALF as f64,
-        );
+        let mut half = surface::halve(&self.press(width, height, centre, radius), width);
+        self.spread_half(&mut half, width, &mut Vec::new());
         half
     }
+
+    /// Spreads a halved indentation map (pixels) of a `width`-wide image, with `scratch`.
+    fn spread_half(&self, half: &mut [f64], width: usize, scratch: &mut Vec<f64>) {
+        surface::spread_with(
+            half,
+            width.div_ceil(surface::HALF),
+            self.spread / surface::HALF as f64,
+            scratch,
+        );
+    }
+}
+
+/// Buffers a [`Calibration`] renders frames with: once a frame of a size is rendered, the next
+/// allocate nothing ([`Calibration::render_indentation_into`]).
+#[derive(Debug, Default)]
+pub struct RenderBuffers {
+    /// The half-resolution spread indentation (pixels).
+    heights: Vec<f64>,
+    /// The spread's intermediate rows.
+    scratch: Vec<f64>,
+    /// Per half-resolution point, its colour change (zero where the gel is untouched).
+    changes: Vec<[f32; 3]>,
+    /// Per column of the image, where it falls on the half-resolution grid.
+    columns: Vec<(usize, usize, f64)>,
 }
 
 /// A calibrated optical model (see the [module](self)): cheap to clone (the per-pixel weights
@@ -235,65 +250,120 @@ impl Calibration {
         indentation: &[f32],
         metres_per_pixel: f64,
     ) -> Result<RgbImage, SizeError> {
+        let mut image = self.background.clone();
+        self.render_indentation_into(
+            indentation,
+            metres_per_pixel,
+            &mut RenderBuffers::default(),
+            &mut image,
+        )?;
+        Ok(image)
+    }
+
+    /// [`Calibration::render_indentation`] into `out` (RGB, the image's size), with `buffers`
+    /// kept from frame to frame: once they have rendered a frame of this size, this allocates
+    /// nothing.
+    ///
+    /// # Errors
+    ///
+    /// [`SizeError`] if `indentation` or `out` is not the image's size.
+    pub fn render_indentation_into(
+        &self,
+        indentation: &[f32],
+        metres_per_pixel: f64,
+        buffers: &mut RenderBuffers,
+        out: &mut [u8],
+    ) -> Result<(), SizeError> {
         let (width, height) = self.size();
         super::expect_len("indentation map", indentation.len(), 1, (width, height))?;
+        super::expect_len("image", out.len(), 3, (width, height))?;
+        out.copy_from_slice(self.background.as_raw());
         if !indentation.iter().any(|m| *m > 0.0) {
-            return Ok(self.background.clone());
+            return Ok(());
         }
-        let heights: Vec<f64> = indentation
-            .iter()
-            .map(|m| (f64::from(*m) / metres_per_pixel).max(0.0))
-            .map(|h| if h.is_finite() { h } else { 0.0 })
-            .collect();
-        Ok(self.render_heights(&self.geometry.spread_half(&heights, width)))
+        let pixels = |index: usize| {
+            let h = (f64::from(indentation[index]) / metres_per_pixel).max(0.0);
+            if h.is_finite() { h } else { 0.0 }
+        };
+        surface::halve_into(pixels, indentation.len(), width, &mut buffers.heights);
+        self.geometry
+            .spread_half(&mut buffers.heights, width, &mut buffers.scratch);
+        let RenderBuffers {
+            heights,
+            changes,
+            columns,
+            ..
+        } = buffers;
+        self.add_changes(heights, changes, columns, out);
+        Ok(())
     }
 
     /// The image of the ball it was fitted with pressed at `centre` (column, row) with a press
     /// radius of `radius` pixels, as the presses it was fitted to are described.
     pub fn render_press(&self, centre: [f64; 2], radius: f64) -> RgbImage {
         let (width, height) = self.size();
-        self.render_heights(&self.geometry.heights(width, height, centre, radius))
+        let heights = self.geometry.heights(width, height, centre, radius);
+        let mut image = self.background.clone();
+        self.add_changes(&heights, &mut Vec::new(), &mut Vec::new(), &mut image);
+        image
     }
 
-    /// The image of a spread half-resolution height map (pixels).
-    fn render_heights(&self, heights: &[f64]) -> RgbImage {
+    /// Adds to `pixels` (the untouched gel's image) the colour changes of a spread
+    /// half-resolution height map (pixels), computed into `changes` (per point of the grid)
+    /// with `columns` (where each of the image's columns falls on the grid).
+    fn add_changes(
+        &self,
+        heights: &[f64],
+        changes: &mut Vec<[f32; 3]>,
+        columns: &mut Vec<(usize, usize, f64)>,
+        pixels: &mut [u8],
+    ) {
         let (width, height) = self.size();
         let (half_width, half_height) = surface::half_size(width, height);
         let count = NORMAL_TERMS.len();
-        let changes: Vec<Option<[f32; 3]>> = surface::half_normal_terms(heights, half_width)
-            .iter()
-            .enumerate()
-            .map(|(index, terms)| {
-                let terms = terms.as_ref()?.map(|t| t as f32);
-                let weights = &self.weights[index * 3 * count..(index + 1) * 3 * count];
-                let mut change = [0.0f32; 3];
-                for (change, weights) in change.iter_mut().zip(weights.chunks_exact(count)) {
-                    *change = terms.iter().zip(weights).map(|(t, w)| t * w).sum();
-                }
-                Some(change)
-            })
-            .collect();
-        let mut image = self.background.clone();
-        let pixels: &mut [u8] = &mut image;
-        let columns: Vec<_> = (0..width)
-            .map(|x| surface::between(x, half_width))
-            .collect();
+        changes.clear();
+        changes.resize(heights.len(), [0.0; 3]);
+        // The touched points' bounds on the grid: columns, then rows.
+        let mut touched: Option<[usize; 4]> = None;
+        surface::for_each_normal_terms(heights, half_width, |index, terms| {
+            let terms = terms.map(|t| t as f32);
+            let weights = &self.weights[index * 3 * count..(index + 1) * 3 * count];
+            for (change, weights) in changes[index].iter_mut().zip(weights.chunks_exact(count)) {
+                *change = terms.iter().zip(weights).map(|(t, w)| t * w).sum();
+            }
+            let (hx, hy) = (index % half_width, index / half_width);
+            let [x0, x1, y0, y1] = touched.get_or_insert([hx, hx, hy, hy]);
+            (*x0, *x1, *y0, *y1) = ((*x0).min(hx), (*x1).max(hx), (*y0).min(hy), (*y1).max(hy));
+        });
+        let Some([first_column, last_column, first_row, last_row]) = touched else {
+            return;
+        };
+        columns.clear();
+        columns.extend((0..width).map(|x| surface::between(x, half_width)));
+        // The image's columns and rows that an untouched point's zero change alone reaches are
+        // left as they are.
+        let reached = |before: usize, after: usize, first: usize, last: usize| {
+            after >= first && before <= last
+        };
         for y in 0..height {
             let (y0, y1, fy) = surface::between(y, half_height);
+            if !reached(y0, y1, first_row, last_row) {
+                continue;
+            }
             for (x, &(x0, x1, fx)) in columns.iter().enumerate() {
+                if !reached(x0, x1, first_column, last_column) {
+                    continue;
+                }
                 let corners = [
                     (changes[y0 * half_width + x0], (1.0 - fx) * (1.0 - fy)),
                     (changes[y0 * half_width + x1], fx * (1.0 - fy)),
                     (changes[y1 * half_width + x0], (1.0 - fx) * fy),
                     (changes[y1 * half_width + x1], fx * fy),
                 ];
-                if corners.iter().all(|(change, _)| change.is_none()) {
-                    continue;
-                }
                 for c in 0..3 {
                     let change: f32 = corners
                         .iter()
-                        .map(|(change, weight)| change.map_or(0.0, |v| v[c]) * *weight as f32)
+                        .map(|(change, weight)| change[c] * *weight as f32)
                         .sum();
                     let pixel = &mut pixels[(y * width + x) * 3 + c];
                     // Rounds half up: the sum is non-negative once clamped.
@@ -301,6 +371,5 @@ impl Calibration {
                 }
             }
         }
-        image
     }
 }

@@ -58,21 +58,34 @@ pub(super) fn half_size(width: usize, height: usize) -> (usize, usize) {
 /// The mean of each 2 × 2 block of a row-major `width`-wide map (blocks cut by the edge are the
 /// mean of what they hold).
 pub(super) fn halve(values: &[f64], width: usize) -> Vec<f64> {
-    let height = values.len() / width;
+    let mut half = Vec::new();
+    halve_into(|index| values[index], values.len(), width, &mut half);
+    half
+}
+
+/// [`halve`] of the `len` values `value(index)` of a row-major `width`-wide map, into `half`
+/// (its memory reused).
+pub(super) fn halve_into(
+    value: impl Fn(usize) -> f64,
+    len: usize,
+    width: usize,
+    half: &mut Vec<f64>,
+) {
+    let height = len / width;
     let (half_width, half_height) = half_size(width, height);
-    let mut half = vec![0.0; half_width * half_height];
-    for (index, value) in half.iter_mut().enumerate() {
+    half.clear();
+    half.resize(half_width * half_height, 0.0);
+    for (index, out) in half.iter_mut().enumerate() {
         let (hx, hy) = (index % half_width, index / half_width);
         let (mut sum, mut count) = (0.0, 0.0);
         for y in HALF * hy..(HALF * hy + HALF).min(height) {
             for x in HALF * hx..(HALF * hx + HALF).min(width) {
-                sum += values[y * width + x];
+                sum += value(y * width + x);
                 count += 1.0;
             }
         }
-        *value = sum / count;
+        *out = sum / count;
     }
-    half
 }
 
 /// Where pixel `x` of a line of the image falls on the half-resolution line of `half_len`
@@ -100,14 +113,31 @@ pub(super) fn half_normal_terms(
     half_width: usize,
 ) -> Vec<Option<[f64; NORMAL_TERMS.len()]>> {
     let mut terms = vec![None; heights.len()];
-    for_each_slope(heights, half_width, |index, gx, gy| {
-        if heights[index] != 0.0 || gx != 0.0 || gy != 0.0 {
-            // Slopes per half-resolution step, made per image pixel.
-            let (gx, gy) = (gx / HALF as f64, gy / HALF as f64);
-            terms[index] = Some(normal_terms(gx, gy, heights[index]));
-        }
+    for_each_normal_terms(heights, half_width, |index, point| {
+        terms[index] = Some(point)
     });
     terms
+}
+
+/// Below how many pixels of sinking and of slope (pixels per pixel) the gel counts as untouched:
+/// the spread's running sums leave traces of rounding far from any contact, and a colour change
+/// this small never moves a pixel's level.
+const UNTOUCHED: f64 = 1e-9;
+
+/// Calls `each(index, terms)` with the normal terms of every point of a spread half-resolution
+/// height map where the gel is touched (sunk or sloping).
+pub(super) fn for_each_normal_terms(
+    heights: &[f64],
+    half_width: usize,
+    mut each: impl FnMut(usize, [f64; NORMAL_TERMS.len()]),
+) {
+    for_each_slope(heights, half_width, |index, gx, gy| {
+        if heights[index].abs() > UNTOUCHED || gx.abs() > UNTOUCHED || gy.abs() > UNTOUCHED {
+            // Slopes per half-resolution step, made per image pixel.
+            let (gx, gy) = (gx / HALF as f64, gy / HALF as f64);
+            each(index, normal_terms(gx, gy, heights[index]));
+        }
+    });
 }
 
 /// Calls `each(index, slope_x, slope_y)` for every pixel of a row-major height map, slopes by
@@ -142,17 +172,25 @@ fn for_each_slope(heights: &[f64], width: usize, mut each: impl FnMut(usize, f64
 /// Smooths a row-major map in place by three box filters in each direction, which approximate
 /// a Gaussian of `sigma` pixels (edges repeated): how the gel around a contact sinks with it.
 pub(super) fn spread(values: &mut [f64], width: usize, sigma: f64) {
+    spread_with(values, width, sigma, &mut Vec::new());
+}
+
+/// [`spread`] with `scratch` for its intermediate rows (its memory reused).
+pub(super) fn spread_with(values: &mut [f64], width: usize, sigma: f64, scratch: &mut Vec<f64>) {
     if sigma <= 0.0 || values.is_empty() || width == 0 {
         return;
     }
-    let mut scratch = vec![0.0; values.len()];
+    scratch.clear();
+    scratch.resize(values.len() + width, 0.0);
+    let (rows, sums) = scratch.split_at_mut(values.len());
     for radius in box_radii(sigma) {
-        for (row, out) in values.chunks(width).zip(scratch.chunks_mut(width)) {
+        for (row, out) in values.chunks(width).zip(rows.chunks_mut(width)) {
             box_row(row, radius, out);
         }
-        box_columns(&scratch, width, radius, values);
+        box_columns(rows, width, radius, sums, values);
     }
 }
+
 /// The radii of three box filters whose succession has the variance of a Gaussian of `sigma`
 /// (widths odd, as near each other as possible).
 fn box_radii(sigma: f64) -> [usize; 3] {
@@ -184,8 +222,8 @@ fn box_row(row: &[f64], radius: usize, out: &mut [f64]) {
 }
 
 /// The moving average of `2·radius + 1` rows of the row-major `values` (edges repeated) into
-/// `out`, whole rows at a time.
-fn box_columns(values: &[f64], width: usize, radius: usize, out: &mut [f64]) {
+/// `out`, whole rows at a time, summing in `sum` (a row's length).
+fn box_columns(values: &[f64], width: usize, radius: usize, sum: &mut [f64], out: &mut [f64]) {
     let rows = (values.len() / width) as i64;
     let row = |i: i64| {
         let i = i.clamp(0, rows - 1) as usize;
@@ -193,7 +231,7 @@ fn box_columns(values: &[f64], width: usize, radius: usize, out: &mut [f64]) {
     };
     let radius = radius as i64;
     let scale = 1.0 / (2 * radius + 1) as f64;
-    let mut sum = vec![0.0; width];
+    sum.fill(0.0);
     for i in -radius..=radius {
         for (sum, value) in sum.iter_mut().zip(row(i)) {
             *sum += value;
@@ -201,7 +239,7 @@ fn box_columns(values: &[f64], width: usize, radius: usize, out: &mut [f64]) {
     }
     for (y, out) in out.chunks_mut(width).enumerate() {
         let y = y as i64;
-        for (out, sum) in out.iter_mut().zip(&sum) {
+        for (out, sum) in out.iter_mut().zip(sum.iter()) {
             *out = sum * scale;
         }
         for ((sum, added), removed) in sum.iter_mut().zip(row(y + radius + 1)).zip(row(y - radius))
