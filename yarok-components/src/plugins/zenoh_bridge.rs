@@ -11,6 +11,7 @@ use yarok_core::runtime::{Plugin, World};
 use yarok_mjc::SimBackend;
 use zenoh::Wait;
 
+use super::recording_profile::{Json, RecordingProfile};
 use super::sim_state::SimState;
 use crate::grippers::Robotiq2f85;
 use crate::probe_images;
@@ -147,8 +148,10 @@ impl ZenohBridge {
 
     fn publish_states(&self, world: &World<'_>, time: f64) -> Result<(), BoxError> {
         if let (Some(state), Some(sim)) = (&self.sim, world.backend::<SimBackend>()) {
-            self.put_json(self.key("", "joint_states"), &state.joint_state(sim, time))?;
-            self.put_json(self.key("", "tf"), &state.transforms(sim, time))?;
+            let joints = Json.joint_state(time, &state.joint_values(sim));
+            self.put(self.key("", "joint_states"), joints, false)?;
+            let poses = Json.transforms(time, &state.poses(sim));
+            self.put(self.key("", "tf"), poses, false)?;
         }
         for (path, device) in &self.devices {
             let state = match device {

@@ -1,0 +1,207 @@
+//! `yarok run digit_world --record FILE --profile ros2` read back by the two ROS 2 readers on
+//! PyPI, each in a process of its own: `rosbags` (which refuses a file whose MCAP profile is not
+//! `ros2`) and `mcap-ros2-support`. Both find every topic with its ROS 2 type and as many
+//! messages as the run recorded; the joint positions equal, bit for bit, those the run's
+//! `joints_csv` recorder wrote at the same ticks; the DIGITs' images decode (colour PNG, depth
+//! `32FC1` in metres within the gel) and the behaviour's log lines read as it logged them.
+
+use std::process::Command;
+
+#[path = "../yarok-hw/tests/support/peers.rs"]
+mod peers;
+
+/// Lines of `output` that start with `name `, without it.
+fn lines<'a>(output: &'a str, name: &str) -> Vec<&'a str> {
+    let prefix = format!("{name} ");
+    output
+        .lines()
+        .filter_map(|line| line.strip_prefix(prefix.as_str()))
+        .collect()
+}
+
+fn count(output: &str, topic: &str, msgtype: &str) -> usize {
+    let found = lines(output, "topic")
+        .into_iter()
+        .find_map(|line| line.strip_prefix(&format!("{topic} {msgtype} ")))
+        .unwrap_or_else(|| panic!("no topic {topic} of type {msgtype} in\n{output}"));
+    found.parse().unwrap()
+}
+
+#[test]
+fn a_ros2_recording_reads_back_in_rosbags_and_mcap_ros2_support() {
+    let folder = tempfile::tempdir().unwrap();
+    let mcap = folder.path().join("run.mcap");
+    let csv = folder.path().join("joints.csv");
+    let output = Command::new(env!("CARGO_BIN_EXE_yarok"))
+        .current_dir(folder.path())
+        .args(["run", "digit_world", "--record"])
+        .arg(&mcap)
+        .args(["--profile", "ros2", "--set"])
+        .arg(format!(
+            "plugins/joints_csv/path={:?}",
+            csv.display().to_string()
+        ))
+        .args(["--set", "plugins/joints_csv/every=10"])
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let csv = std::fs::read_to_string(&csv).unwrap();
+    let mut rows = csv.lines();
+    let header: Vec<&str> = rows.next().unwrap().split(',').collect();
+    let rows: Vec<Vec<f64>> = rows
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert!(rows.len() > 300, "{} rows", rows.len());
+    let duration = rows.last().unwrap()[0];
+
+    for reader in ["rosbags", "mcap_ros2"] {
+        let read = peers::run("ros2_bag_read.py", &[reader, mcap.to_str().unwrap()]);
+        assert_eq!(peers::field(&read, "profile"), "ros2", "{reader}");
+        for (topic, msgtype) in [
+            ("/joint_states", "sensor_msgs/msg/JointState"),
+            ("/tf", "tf2_msgs/msg/TFMessage"),
+            ("/clock", "rosgraph_msgs/msg/Clock"),
+        ] {
+            assert_eq!(
+                count(&read, topic, msgtype),
+                rows.len(),
+                "{reader}: {topic}"
+            );
+        }
+        assert_eq!(
+            lines(&read, "clock").len(),
+            rows.len(),
+            "{reader}: a clock message each time the state is recorded"
+        );
+
+        // Joint positions: the CSV's every 10th tick, column for column, bit for bit.
+        let names: Vec<&str> = peers::field(&read, "joint_names").split(' ').collect();
+        let columns: Vec<usize> = names
+            .iter()
+            .map(|name| {
+                let column = match name.split_once('[') {
+                    Some((joint, index)) => format!("{joint}.pos[{index}"),
+                    None => format!("{name}.pos"),
+                };
+                header
+                    .iter()
+                    .position(|h| *h == column)
+                    .unwrap_or_else(|| panic!("no column {column} in {header:?}"))
+            })
+            .collect();
+        let states = lines(&read, "joint_state");
+        assert_eq!(states.len(), rows.len(), "{reader}");
+        for (state, row) in states.iter().zip(&rows) {
+            let state: Vec<f64> = state.split(' ').map(|v| v.parse().unwrap()).collect();
+            assert!(
+                (state[0] - row[0]).abs() < 1e-9,
+                "{reader}: times {state:?} {row:?}"
+            );
+            let positions: Vec<f64> = columns.iter().map(|c| row[*c]).collect();
+            let same = state[1..]
+                .iter()
+                .zip(&positions)
+                .all(|(a, b)| a.to_bits() == b.to_bits());
+            assert!(
+                same,
+                "{reader} at {} s: {state:?} against {positions:?}",
+                row[0]
+            );
+        }
+        let transforms = peers::field(&read, "transforms");
+        assert!(transforms.ends_with(" world"), "{reader}: {transforms}");
+
+        // The DIGITs: colour PNGs and depth in metres, ten a second, at the same times.
+        for side in ["left", "right"] {
+            let image_topic = format!("/arm/gripper/{side}_digit/image");
+            let depth_topic = format!("/arm/gripper/{side}_digit/depth");
+            let images = count(&read, &image_topic, "sensor_msgs/msg/CompressedImage");
+            assert_eq!(
+                count(&read, &depth_topic, "sensor_msgs/msg/Image"),
+                images,
+                "{reader}"
+            );
+            assert!(
+                images as f64 >= duration * 10.0 - 1.0,
+                "{reader}: {images} images"
+            );
+            for image in lines(&read, "image")
+                .into_iter()
+                .filter_map(|line| line.strip_prefix(&format!("{image_topic} ")))
+            {
+                let fields: Vec<&str> = image.split(' ').collect();
+                assert_eq!(fields[1..4], ["240", "320", "RGB"], "{reader}: {image}");
+                assert!(fields[4].parse::<u32>().unwrap() > 20, "{reader}: {image}");
+            }
+            let depths: Vec<(f64, f64)> = lines(&read, "depth")
+                .into_iter()
+                .filter_map(|line| line.strip_prefix(&format!("{depth_topic} ")))
+                .map(|depth| {
+                    let fields: Vec<&str> = depth.split(' ').collect();
+                    assert_eq!(fields[1..3], ["240", "320"], "{reader}: {depth}");
+                    (fields[3].parse().unwrap(), fields[4].parse().unwrap())
+                })
+                .collect();
+            assert_eq!(depths.len(), images, "{reader}");
+            // The gel's face is 18 mm from the camera, 2 mm thick; the grasp presses it in.
+            assert!(
+                depths
+                    .iter()
+                    .all(|(near, far)| *near > 0.015 && *far <= 0.0181),
+                "{reader}: {depths:?}"
+            );
+            assert!(
+                depths.iter().any(|(near, _)| *near < 0.0175),
+                "{reader}: the grasp shows in the depth"
+            );
+        }
+
+        let logs = lines(&read, "log");
+        assert_eq!(logs.len(), 3, "{reader}: {logs:?}");
+        assert!(
+            logs[2].ends_with("the block is on the target") && logs[2].contains(" 20 t = "),
+            "{reader}: {logs:?}"
+        );
+    }
+}
+
+#[test]
+fn a_profile_without_a_recording_is_refused() {
+    let output = Command::new(env!("CARGO_BIN_EXE_yarok"))
+        .args(["run", "digit_world", "--profile", "ros2"])
+        .output()
+        .unwrap();
+    assert!(!output.status.success());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("give --record FILE.mcap too"), "{stderr}");
+}
+
+#[test]
+fn an_unknown_profile_names_the_ones_there_are() {
+    let folder = tempfile::tempdir().unwrap();
+    let output = Command::new(env!("CARGO_BIN_EXE_yarok"))
+        .current_dir(folder.path())
+        .args([
+            "run",
+            "empty_world",
+            "--record",
+            "run.mcap",
+            "--profile",
+            "ros1",
+        ])
+        .output()
+        .unwrap();
+    assert!(!output.status.success());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains(
+            "plugin mcap failed: `profile`: no recording profile \"ros1\": there are \"json\" \
+             and \"ros2\""
+        ),
+        "{stderr}"
+    );
+}

@@ -1,0 +1,90 @@
+//! [`RecordingProfile`]: how a recording encodes its messages — the MCAP profile it declares,
+//! each kind of message's schema, and each message's bytes. One implementation a file:
+//! [`json`] (Foxglove's JSON shapes, the default) and [`ros2`] (CDR with ROS 2 message
+//! definitions, for `ros2 bag`).
+
+mod json;
+mod ros2;
+
+pub(crate) use json::Json;
+
+use yarok_core::BoxError;
+use yarok_core::component::ProbeImage;
+use yarok_mjc::Pose;
+
+/// The kinds of message a recording holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum MessageKind {
+    JointState,
+    Transforms,
+    /// A colour image, compressed.
+    Image,
+    /// A depth image.
+    Depth,
+    Log,
+    /// The platform's clock.
+    Clock,
+}
+
+/// A schema as an MCAP file states it.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Schema {
+    pub(crate) name: &'static str,
+    pub(crate) encoding: &'static str,
+    pub(crate) data: &'static str,
+}
+
+/// Joint coordinates' names, positions and velocities.
+#[derive(Debug)]
+pub(crate) struct JointValues<'a> {
+    pub(crate) names: &'a [String],
+    pub(crate) positions: Vec<f64>,
+    pub(crate) velocities: Vec<f64>,
+}
+
+/// How a recording encodes its messages. Times are platform time, seconds.
+pub(crate) trait RecordingProfile: Send {
+    /// The profile the MCAP header declares (`""` for none).
+    fn mcap_profile(&self) -> &'static str;
+
+    /// The encoding of every message (`json`, `cdr`).
+    fn message_encoding(&self) -> &'static str;
+
+    /// The schema of `kind`, or `None` if this profile does not record it.
+    fn schema(&self, kind: MessageKind) -> Option<Schema>;
+
+    fn joint_state(&self, time: f64, joints: &JointValues<'_>) -> Vec<u8>;
+
+    /// Bodies' poses in the world frame.
+    fn transforms(&self, time: f64, bodies: &[(&str, Pose)]) -> Vec<u8>;
+
+    /// A probe's or camera's image in frame `frame`: a colour image as [`MessageKind::Image`],
+    /// a depth image as [`MessageKind::Depth`].
+    ///
+    /// # Errors
+    ///
+    /// If the image cannot be encoded.
+    fn image(&self, time: f64, frame: &str, image: &ProbeImage) -> Result<Vec<u8>, BoxError>;
+
+    /// A behaviour's log line.
+    fn log(&self, time: f64, text: &str) -> Vec<u8>;
+
+    /// The platform's clock, if this profile records it (then [`MessageKind::Clock`] has a
+    /// schema).
+    fn clock(&self, time: f64) -> Option<Vec<u8>>;
+}
+
+/// The profile named `name` (`json` or `ros2`).
+///
+/// # Errors
+///
+/// If there is no profile of that name, naming the ones there are.
+pub(crate) fn named(name: &str) -> Result<Box<dyn RecordingProfile>, String> {
+    match name {
+        "json" => Ok(Box::new(Json)),
+        "ros2" => Ok(Box::new(ros2::Ros2)),
+        other => Err(format!(
+            "no recording profile {other:?}: there are \"json\" and \"ros2\""
+        )),
+    }
+}
