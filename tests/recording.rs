@@ -96,6 +96,16 @@ fn a_pick_and_place_recording_reads_back_in_others_tools() {
     let transforms: usize = peers::field(&summary, "transforms").parse().unwrap();
     assert!(transforms > 20, "{transforms} bodies");
 
+    // The run it is of.
+    let metadata = peers::field(&summary, "metadata");
+    assert!(
+        metadata.starts_with("yarok environment=sim seed=")
+            && metadata.contains(" timestep=0.002 ")
+            && metadata.contains(" world=pick_and_place_world ")
+            && metadata.ends_with(&format!("yarok={}", env!("CARGO_PKG_VERSION"))),
+        "{metadata}"
+    );
+
     // The camera: every half second of the run, decodable, not blank.
     let duration = rows.last().unwrap()[0];
     let images: Vec<&str> = summary

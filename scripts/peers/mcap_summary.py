@@ -11,7 +11,8 @@ Prints, a line each:
   `transforms COUNT` for the bodies in the last /tf message;
   `log TIME TEXT` for every /log message;
   `summary CHANNELS MESSAGES` from the file's summary section (`summary none` without one: a
-  file cut short).
+  file cut short);
+  `metadata NAME KEY=VALUE...` for every metadata record.
 """
 
 import base64
@@ -55,10 +56,13 @@ def main():
             elif topic == "/log":
                 print("log", repr(seconds(body["timestamp"])), body["message"])
         summary = reader.get_summary()
+        metadata = list(reader.iter_metadata()) if summary is not None else []
     for topic, count in sorted(counts.items()):
         schema, encoding = kinds[topic]
         print("topic", topic, schema, encoding, count)
     print("transforms", last_transforms)
+    for record in metadata:
+        print("metadata", record.name, *(f"{key}={value}" for key, value in sorted(record.metadata.items())))
     if summary is None or summary.statistics is None:
         print("summary none")
     else:

@@ -98,8 +98,11 @@ impl Recording {
             .compression(None)
             .profile(profile.mcap_profile())
             .library(concat!("yarok ", env!("CARGO_PKG_VERSION")));
-        let writer = options
+        let mut writer = options
             .create(BufWriter::new(file))
+            .map_err(|e| failed(&path, e))?;
+        writer
+            .write_metadata(&run_metadata(world, episode)?)
             .map_err(|e| failed(&path, e))?;
         let mut recording = Self {
             path,
@@ -198,6 +201,38 @@ impl Recording {
         let mut file = self.writer.into_inner();
         std::io::Write::flush(&mut file).map_err(|e| failed(&self.path, e))
     }
+}
+
+/// The run a recording is of, as its `yarok` metadata record states it: the world's tag, the
+/// environment, the platform's seed and timestep, the shard, the episode and yarok's version.
+fn run_metadata(
+    world: &World<'_>,
+    episode: Option<Episode>,
+) -> Result<mcap::records::Metadata, BoxError> {
+    let pl = world.pl();
+    let platform = world.settings().platform_settings()?;
+    let shard = pl.shard();
+    let mut metadata = BTreeMap::from([
+        (
+            "world".to_owned(),
+            world.composition().instances[0].tag.clone(),
+        ),
+        ("environment".to_owned(), pl.environment().to_owned()),
+        ("seed".to_owned(), platform.seed.to_string()),
+        ("timestep".to_owned(), pl.timestep().to_string()),
+        (
+            "shard".to_owned(),
+            format!("{}/{}", shard.index, shard.count),
+        ),
+        ("yarok".to_owned(), env!("CARGO_PKG_VERSION").to_owned()),
+    ]);
+    if let Some(episode) = episode {
+        metadata.insert("episode".to_owned(), episode.number.to_string());
+    }
+    Ok(mcap::records::Metadata {
+        name: "yarok".to_owned(),
+        metadata,
+    })
 }
 
 fn failed(path: &Path, error: impl std::fmt::Display) -> BoxError {
