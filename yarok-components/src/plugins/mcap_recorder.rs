@@ -204,14 +204,15 @@ impl Recording {
 }
 
 /// The run a recording is of, as its `yarok` metadata record states it: the world's tag, the
-/// environment, the platform's seed and timestep, the shard, the episode and yarok's version.
+/// environment, the platform's seed and timestep, yarok's version, and the episode's number
+/// (an episode's file) or the shard (the run's: an episode's file is the same whichever shard
+/// recorded it).
 fn run_metadata(
     world: &World<'_>,
     episode: Option<Episode>,
 ) -> Result<mcap::records::Metadata, BoxError> {
     let pl = world.pl();
     let platform = world.settings().platform_settings()?;
-    let shard = pl.shard();
     let mut metadata = BTreeMap::from([
         (
             "world".to_owned(),
@@ -220,15 +221,16 @@ fn run_metadata(
         ("environment".to_owned(), pl.environment().to_owned()),
         ("seed".to_owned(), platform.seed.to_string()),
         ("timestep".to_owned(), pl.timestep().to_string()),
-        (
-            "shard".to_owned(),
-            format!("{}/{}", shard.index, shard.count),
-        ),
         ("yarok".to_owned(), env!("CARGO_PKG_VERSION").to_owned()),
     ]);
-    if let Some(episode) = episode {
-        metadata.insert("episode".to_owned(), episode.number.to_string());
-    }
+    let (key, value) = match episode {
+        Some(episode) => ("episode", episode.number.to_string()),
+        None => {
+            let shard = pl.shard();
+            ("shard", format!("{}/{}", shard.index, shard.count))
+        }
+    };
+    metadata.insert(key.to_owned(), value);
     Ok(mcap::records::Metadata {
         name: "yarok".to_owned(),
         metadata,
