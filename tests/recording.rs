@@ -8,10 +8,13 @@ use std::process::Command;
 
 #[path = "support/example_binary.rs"]
 mod example_binary;
+#[path = "support/joints_csv.rs"]
+mod joints_csv;
 #[path = "../yarok-hw/tests/support/peers.rs"]
 mod peers;
 
 use example_binary::example_binary;
+use joints_csv::JointsCsv;
 
 #[test]
 fn a_pick_and_place_recording_reads_back_in_others_tools() {
@@ -53,46 +56,17 @@ fn a_pick_and_place_recording_reads_back_in_others_tools() {
     };
 
     // Joint positions: the CSV's every 10th tick, column for column.
-    let csv = std::fs::read_to_string(&csv).unwrap();
-    let mut rows = csv.lines();
-    let header: Vec<&str> = rows.next().unwrap().split(',').collect();
-    let states: Vec<Vec<f64>> = summary
-        .lines()
-        .filter_map(|l| l.strip_prefix("joint_state "))
-        .map(|l| l.split(' ').map(|v| v.parse().unwrap()).collect())
-        .collect();
-    let rows: Vec<Vec<f64>> = rows
-        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
-        .collect();
+    let csv = JointsCsv::read(&csv);
+    let rows = &csv.rows;
     assert!(rows.len() > 1000, "{} rows", rows.len());
-    assert_eq!(states.len(), rows.len());
     assert_eq!(count("/joint_states"), rows.len());
     assert_eq!(count("/tf"), rows.len());
     let names: Vec<&str> = peers::field(&summary, "joint_names").split(' ').collect();
-    let position_columns: Vec<usize> = names
-        .iter()
-        .map(|name| {
-            // `joint` is `joint.pos`; coordinate `joint[k]` of a free joint, `joint.pos[k]`.
-            let column = match name.split_once('[') {
-                Some((joint, index)) => format!("{joint}.pos[{index}"),
-                None => format!("{name}.pos"),
-            };
-            header
-                .iter()
-                .position(|h| *h == column)
-                .unwrap_or_else(|| panic!("no column {column} in {header:?}"))
-        })
+    let states: Vec<&str> = summary
+        .lines()
+        .filter_map(|l| l.strip_prefix("joint_state "))
         .collect();
-    for (state, row) in states.iter().zip(&rows) {
-        assert!(
-            (state[0] - row[0]).abs() < 1e-9,
-            "times {} {}",
-            state[0],
-            row[0]
-        );
-        let positions: Vec<f64> = position_columns.iter().map(|c| row[*c]).collect();
-        assert_eq!(state[1..], positions[..], "at {} s", row[0]);
-    }
+    csv.assert_positions(&names, &states, "mcap");
     let transforms: usize = peers::field(&summary, "transforms").parse().unwrap();
     assert!(transforms > 20, "{transforms} bodies");
 

@@ -7,8 +7,12 @@
 
 use std::process::Command;
 
+#[path = "support/joints_csv.rs"]
+mod joints_csv;
 #[path = "../yarok-hw/tests/support/peers.rs"]
 mod peers;
+
+use joints_csv::JointsCsv;
 
 /// Lines of `output` that start with `name `, without it.
 fn lines<'a>(output: &'a str, name: &str) -> Vec<&'a str> {
@@ -49,12 +53,8 @@ fn a_ros2_recording_reads_back_in_rosbags_and_mcap_ros2_support() {
         "{}",
         String::from_utf8_lossy(&output.stderr)
     );
-    let csv = std::fs::read_to_string(&csv).unwrap();
-    let mut rows = csv.lines();
-    let header: Vec<&str> = rows.next().unwrap().split(',').collect();
-    let rows: Vec<Vec<f64>> = rows
-        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
-        .collect();
+    let csv = JointsCsv::read(&csv);
+    let rows = &csv.rows;
     assert!(rows.len() > 300, "{} rows", rows.len());
     let duration = rows.last().unwrap()[0];
 
@@ -80,38 +80,7 @@ fn a_ros2_recording_reads_back_in_rosbags_and_mcap_ros2_support() {
 
         // Joint positions: the CSV's every 10th tick, column for column, bit for bit.
         let names: Vec<&str> = peers::field(&read, "joint_names").split(' ').collect();
-        let columns: Vec<usize> = names
-            .iter()
-            .map(|name| {
-                let column = match name.split_once('[') {
-                    Some((joint, index)) => format!("{joint}.pos[{index}"),
-                    None => format!("{name}.pos"),
-                };
-                header
-                    .iter()
-                    .position(|h| *h == column)
-                    .unwrap_or_else(|| panic!("no column {column} in {header:?}"))
-            })
-            .collect();
-        let states = lines(&read, "joint_state");
-        assert_eq!(states.len(), rows.len(), "{reader}");
-        for (state, row) in states.iter().zip(&rows) {
-            let state: Vec<f64> = state.split(' ').map(|v| v.parse().unwrap()).collect();
-            assert!(
-                (state[0] - row[0]).abs() < 1e-9,
-                "{reader}: times {state:?} {row:?}"
-            );
-            let positions: Vec<f64> = columns.iter().map(|c| row[*c]).collect();
-            let same = state[1..]
-                .iter()
-                .zip(&positions)
-                .all(|(a, b)| a.to_bits() == b.to_bits());
-            assert!(
-                same,
-                "{reader} at {} s: {state:?} against {positions:?}",
-                row[0]
-            );
-        }
+        csv.assert_positions(&names, &lines(&read, "joint_state"), reader);
         let transforms = peers::field(&read, "transforms");
         assert!(transforms.ends_with(" world"), "{reader}: {transforms}");
 

@@ -250,7 +250,8 @@ impl Calibration {
         indentation: &[f32],
         metres_per_pixel: f64,
     ) -> Result<RgbImage, SizeError> {
-        let mut image = self.background.clone();
+        // Filled with the untouched gel by `render_indentation_into`.
+        let mut image = RgbImage::new(self.background.width(), self.background.height());
         self.render_indentation_into(
             indentation,
             metres_per_pixel,
