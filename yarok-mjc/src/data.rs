@@ -5,7 +5,7 @@ use std::ptr::NonNull;
 use std::sync::Arc;
 
 use crate::error::ModelError;
-use crate::model::{ActuatorId, BodyId, JointId, KeyframeId, Model, SensorId, SiteId, to_usize};
+use crate::model::{ActuatorId, BodyId, CameraId, JointId, KeyframeId, Model, SensorId, SiteId, to_usize};
 use crate::pose::Pose;
 use crate::sys;
 
@@ -559,6 +559,33 @@ impl Data {
                 self.array(self.raw().site_xmat, 9 * nsite),
             )
         };
+        self.pose_of_frame(xpos, xmat, index)
+    }
+
+    /// The pose of a camera in world coordinates, as computed by the last [`Data::step`] or
+    /// [`Data::forward`]; see [`Data::body_pose`]. MuJoCo's cameras look down their frame's −z
+    /// axis, +y up in the image.
+    ///
+    /// # Panics
+    ///
+    /// When `camera` was resolved in a different model.
+    #[track_caller]
+    pub fn camera_pose(&self, camera: CameraId) -> Pose {
+        let index = self.model.index_of(camera);
+        let ncam = self.model.count(crate::ObjectKind::Camera);
+        // SAFETY: cam_xpos holds 3·ncam elements and cam_xmat 9·ncam.
+        let (xpos, xmat) = unsafe {
+            (
+                self.array(self.raw().cam_xpos, 3 * ncam),
+                self.array(self.raw().cam_xmat, 9 * ncam),
+            )
+        };
+        self.pose_of_frame(xpos, xmat, index)
+    }
+
+    /// The `index`th pose of MuJoCo arrays of positions (3 numbers each) and rotation matrices
+    /// (9).
+    fn pose_of_frame(&self, xpos: &[f64], xmat: &[f64], index: usize) -> Pose {
         let mut quat = [0.0; 4];
         // SAFETY: `quat` holds 4 numbers and the matrix 9, as mju_mat2Quat reads and writes.
         unsafe {

@@ -445,6 +445,25 @@ impl Model {
         self.name_of(ObjectKind::Body, self.index_of(body))
     }
 
+    /// Every camera, in MuJoCo's order.
+    pub fn cameras(&self) -> impl Iterator<Item = CameraId> + '_ {
+        (0..self.count(ObjectKind::Camera)).map(|index| CameraId {
+            index,
+            signature: self.signature(),
+        })
+    }
+
+    /// A camera's name in the model (`arm/gripper/left_digit/camera`), or `None` when it has
+    /// none.
+    ///
+    /// # Panics
+    ///
+    /// When `camera` was resolved in a different model.
+    #[track_caller]
+    pub fn camera_name(&self, camera: CameraId) -> Option<String> {
+        self.name_of(ObjectKind::Camera, self.index_of(camera))
+    }
+
     /// The name of object `index` of `kind`, if it has one.
     pub(crate) fn name_of(&self, kind: ObjectKind, index: usize) -> Option<String> {
         let index = i32::try_from(index).ok()?;

@@ -7,7 +7,7 @@ use yarok_mjc::{Data, Model, ModelError, ObjectKind};
 const SCENE: &str = r#"
 <mujoco>
   <worldbody>
-    <camera name="eye" pos="0 0 3"/>
+    <camera name="eye" pos="0 0 3" euler="90 0 0"/>
     <site name="anchor" pos="0 0 1"/>
     <body name="stand" pos="0 0 1">
       <site name="imu"/>
@@ -104,6 +104,22 @@ fn free_joint_has_seven_positions_and_six_velocities() {
     data.forward();
     let pose = data.body_pose(model.body("ball").unwrap());
     assert_eq!(pose.pos[0], data.qpos(free)[0]);
+}
+
+#[test]
+fn cameras_are_listed_with_their_names_and_poses() {
+    let (model, mut data) = setup();
+    let cameras: Vec<_> = model.cameras().collect();
+    assert_eq!(cameras, vec![model.camera("eye").unwrap()]);
+    assert_eq!(model.camera_name(cameras[0]).as_deref(), Some("eye"));
+    data.forward();
+    let pose = data.camera_pose(cameras[0]);
+    assert_eq!(pose.pos, [0.0, 0.0, 3.0]);
+    // Turned 90° about x: w = x = cos 45°.
+    let half = std::f64::consts::FRAC_1_SQRT_2;
+    for (got, want) in pose.quat.iter().zip([half, half, 0.0, 0.0]) {
+        assert!((got - want).abs() < 1e-9, "{:?}", pose.quat);
+    }
 }
 
 #[test]
