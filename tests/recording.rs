@@ -67,8 +67,10 @@ fn a_pick_and_place_recording_reads_back_in_others_tools() {
         .filter_map(|l| l.strip_prefix("joint_state "))
         .collect();
     csv.assert_positions(&names, &states, "mcap");
-    let transforms: usize = peers::field(&summary, "transforms").parse().unwrap();
-    assert!(transforms > 20, "{transforms} bodies");
+    let frames: Vec<&str> = peers::field(&summary, "transforms").split(' ').collect();
+    let count_of_frames: usize = frames[0].parse().unwrap();
+    assert!(count_of_frames > 20, "{frames:?}");
+    assert!(frames.contains(&"overview/optical"), "{frames:?}");
 
     // The run it is of.
     let metadata = peers::field(&summary, "metadata");
@@ -95,6 +97,7 @@ fn a_pick_and_place_recording_reads_back_in_others_tools() {
     for image in &images {
         let fields: Vec<&str> = image.split(' ').collect();
         assert_eq!(fields[3..6], ["160", "120", "RGB"], "{image}");
+        assert_eq!(fields[7], "overview/optical", "the camera's frame: {image}");
         let spread: u32 = fields[6].parse().unwrap();
         assert!(spread > 50, "a blank image: {image}");
     }

@@ -168,7 +168,7 @@ fn an_unknown_profile_names_the_ones_there_are() {
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(
         stderr.contains(
-            "plugin mcap failed: `profile`: no recording profile \"ros1\": there are \"json\" \
+            "plugin mcap failed: `profile`: no recording profile \"ros1\": there are \"foxglove\" \
              and \"ros2\""
         ),
         "{stderr}"

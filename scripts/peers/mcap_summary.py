@@ -6,13 +6,14 @@ Usage: mcap_summary.py FILE
 Prints, a line each:
   `topic NAME SCHEMA ENCODING COUNT` for every channel;
   `joint_names NAME...`, then `joint_state TIME POSITION...` for every /joint_states message;
-  `image TOPIC TIME WIDTH HEIGHT MODE SPREAD` for every image message, decoded (SPREAD: the
-  difference between its brightest and darkest pixel values);
-  `transforms COUNT` for the bodies in the last /tf message;
+  `image TOPIC TIME WIDTH HEIGHT MODE SPREAD FRAME` for every image message, decoded (SPREAD:
+  the difference between its brightest and darkest pixel values; FRAME its frame_id);
+  `transforms COUNT FRAME...` for the frames in the last /tf message;
   `log TIME TEXT` for every /log message;
   `summary CHANNELS MESSAGES` from the file's summary section (`summary none` without one: a
   file cut short);
-  `metadata NAME KEY=VALUE...` for every metadata record.
+  `metadata NAME KEY=VALUE...` for every metadata record;
+  `chunks COMPRESSION...` the compression of every chunk, in the file's order.
 """
 
 import base64
@@ -33,7 +34,7 @@ def main():
     counts = Counter()
     kinds = {}
     names_printed = False
-    last_transforms = 0
+    last_transforms = []
     with open(sys.argv[1], "rb") as stream:
         reader = make_reader(stream)
         for schema, channel, message in reader.iter_messages(log_time_order=True):
@@ -43,16 +44,16 @@ def main():
             body = json.loads(message.data)
             if topic == "/joint_states":
                 if not names_printed:
-                    print("joint_names", *body["name"])
+                    print("joint_names", *(joint["name"] for joint in body["joints"]))
                     names_printed = True
-                print("joint_state", repr(message.log_time * 1e-9), *(repr(p) for p in body["position"]))
+                print("joint_state", repr(message.log_time * 1e-9), *(repr(joint["position"]) for joint in body["joints"]))
             elif schema is not None and schema.name == "foxglove.CompressedImage":
                 image = Image.open(io.BytesIO(base64.b64decode(body["data"])))
                 image.load()
                 low, high = image.getextrema()[0] if image.mode == "RGB" else image.getextrema()
-                print("image", topic, repr(seconds(body["timestamp"])), image.width, image.height, image.mode, high - low)
+                print("image", topic, repr(seconds(body["timestamp"])), image.width, image.height, image.mode, high - low, body["frame_id"])
             elif topic == "/tf":
-                last_transforms = len(body["transforms"])
+                last_transforms = [transform["child_frame_id"] for transform in body["transforms"]]
             elif topic == "/log":
                 print("log", repr(seconds(body["timestamp"])), body["message"])
         summary = reader.get_summary()
@@ -60,9 +61,10 @@ def main():
     for topic, count in sorted(counts.items()):
         schema, encoding = kinds[topic]
         print("topic", topic, schema, encoding, count)
-    print("transforms", last_transforms)
+    print("transforms", len(last_transforms), *last_transforms)
     for record in metadata:
         print("metadata", record.name, *(f"{key}={value}" for key, value in sorted(record.metadata.items())))
+    print("chunks", *(chunk.compression or "none" for chunk in (summary.chunk_indexes if summary else [])))
     if summary is None or summary.statistics is None:
         print("summary none")
     else:

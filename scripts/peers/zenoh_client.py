@@ -36,7 +36,7 @@ def main():
                 continue
             if key.endswith("/joint_states"):
                 joint_states += 1
-                names = json.loads(payload)["name"]
+                names = [joint["name"] for joint in json.loads(payload)["joints"]]
             elif key == f"yarok/{world}/arm/state":
                 arm = json.loads(payload)
             elif key.endswith("/image"):

@@ -5,7 +5,9 @@ use std::ptr::NonNull;
 use std::sync::Arc;
 
 use crate::error::ModelError;
-use crate::model::{ActuatorId, BodyId, CameraId, JointId, KeyframeId, Model, SensorId, SiteId, to_usize};
+use crate::model::{
+    ActuatorId, BodyId, CameraId, JointId, KeyframeId, Model, SensorId, SiteId, to_usize,
+};
 use crate::pose::Pose;
 use crate::sys;
 

@@ -3,7 +3,7 @@
 //! ```text
 //! yarok --help
 //! yarok run WORLD [--behaviour NAME] [--viewer] [--inspect] [--record FILE.mcap]
-//!           [--profile json|ros2] [--video FILE.mp4] [--shard I/N] [--bridge] [--env ENV]
+//!           [--profile foxglove|ros2] [--video FILE.mp4] [--shard I/N] [--bridge] [--env ENV]
 //!           [--set TARGET=VALUE]... [--config FILE]
 //! yarok run --list
 //! yarok compose WORLD [--set [/PATH/]KEY=VALUE]... [--out FILE]
@@ -44,7 +44,7 @@ mod tactile;
 use std::process::ExitCode;
 
 const USAGE: &str = "usage: yarok run WORLD [--behaviour NAME] [--viewer] [--inspect] [--record FILE.mcap]
-                 [--profile json|ros2] [--video FILE.mp4] [--shard I/N] [--bridge] [--env ENV]
+                 [--profile foxglove|ros2] [--video FILE.mp4] [--shard I/N] [--bridge] [--env ENV]
                  [--set TARGET=VALUE]... [--config FILE]
        yarok run --list
        yarok compose WORLD [--set [/PATH/]KEY=VALUE]... [--out FILE]

@@ -93,8 +93,8 @@ impl Cdr {
     /// A sequence of `values`, each written by `each`.
     pub(crate) fn sequence<T>(
         &mut self,
-        values: &[T],
-        mut each: impl FnMut(&mut Self, &T),
+        values: impl ExactSizeIterator<Item = T>,
+        mut each: impl FnMut(&mut Self, T),
     ) -> &mut Self {
         self.length(values.len());
         for value in values {

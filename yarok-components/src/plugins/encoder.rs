@@ -4,11 +4,13 @@
 use std::io::{Read, Write};
 use std::path::PathBuf;
 use std::process::{Child, Command, Stdio};
-use std::sync::mpsc::{SyncSender, TrySendError, sync_channel};
+use std::sync::mpsc::{SyncSender, sync_channel};
 use std::thread::JoinHandle;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use yarok_core::BoxError;
+
+use super::bounded_wait::{Refused, poll_within, send_within};
 
 /// Frames queued for the encoder before the platform waits for it.
 const QUEUED_FRAMES: usize = 8;
@@ -18,9 +20,6 @@ const STALL: Duration = Duration::from_secs(5);
 
 /// How long the encoder may take to write the file once its input has ended.
 const FINISH: Duration = Duration::from_secs(60);
-
-/// How often a wait on the encoder looks again.
-const POLL: Duration = Duration::from_millis(5);
 
 /// An encoder process writing `path` from the frames it is sent; killed and reaped when
 /// dropped unfinished.
@@ -87,34 +86,22 @@ impl Encoder {
         let Some(frames) = &self.frames else {
             return Err("the encoder has already ended".into());
         };
-        let until = Instant::now() + STALL;
-        let mut frame = frame;
-        loop {
-            match frames.try_send(frame) {
-                Ok(()) => return Ok(()),
-                Err(TrySendError::Full(again)) if Instant::now() < until => {
-                    frame = again;
-                    std::thread::sleep(POLL);
-                }
-                Err(TrySendError::Full(_)) => {
-                    let said = self.stop();
-                    return Err(format!(
-                        "the encoder took no frame for {} s and was stopped; {} is incomplete{said}",
-                        STALL.as_secs(),
-                        self.path.display()
-                    )
-                    .into());
-                }
-                Err(TrySendError::Disconnected(_)) => {
-                    let said = self.stop();
-                    return Err(format!(
-                        "the encoder stopped reading frames; {} is incomplete{said}",
-                        self.path.display()
-                    )
-                    .into());
-                }
+        let refused = match send_within(frames, frame, STALL) {
+            Ok(()) => return Ok(()),
+            Err(refused) => refused,
+        };
+        let said = self.stop();
+        let path = self.path.display();
+        Err(match refused {
+            Refused::Full => format!(
+                "the encoder took no frame for {} s and was stopped; {path} is incomplete{said}",
+                STALL.as_secs()
+            ),
+            Refused::Gone => {
+                format!("the encoder stopped reading frames; {path} is incomplete{said}")
             }
         }
+        .into())
     }
 
     /// Ends the input and waits (at most [`FINISH`]) for the encoder to write the file.
@@ -124,16 +111,7 @@ impl Encoder {
     /// When it fails, with what it said, or does not finish in time (it is then stopped).
     pub(super) fn finish(mut self) -> Result<(), BoxError> {
         self.frames = None;
-        let until = Instant::now() + FINISH;
-        let status = loop {
-            if let Some(status) = self.process.try_wait()? {
-                break Some(status);
-            }
-            if Instant::now() >= until {
-                break None;
-            }
-            std::thread::sleep(POLL);
-        };
+        let status = poll_within(FINISH, || self.process.try_wait())?;
         let said = self.stop();
         match status {
             Some(status) if status.success() => Ok(()),

@@ -1,8 +1,8 @@
 //! Plugins: code that runs beside the behaviours and sees the world.
 
+mod bounded_wait;
 mod cdr;
 mod encoder;
-mod foxglove;
 #[cfg(feature = "viewer")]
 mod inspector;
 mod joint_recorder;

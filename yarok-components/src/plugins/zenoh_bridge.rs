@@ -11,7 +11,7 @@ use yarok_core::runtime::{Plugin, World};
 use yarok_mjc::SimBackend;
 use zenoh::Wait;
 
-use super::recording_profile::{Json, RecordingProfile};
+use super::recording_profile::{Foxglove, JointValues, RecordingProfile};
 use super::sim_state::SimState;
 use crate::grippers::Robotiq2f85;
 use crate::probe_images;
@@ -148,9 +148,18 @@ impl ZenohBridge {
 
     fn publish_states(&self, world: &World<'_>, time: f64) -> Result<(), BoxError> {
         if let (Some(state), Some(sim)) = (&self.sim, world.backend::<SimBackend>()) {
-            let joints = Json.joint_state(time, &state.joint_values(sim));
-            self.put(self.key("", "joint_states"), joints, false)?;
-            let poses = Json.transforms(time, &state.poses(sim));
+            let (positions, velocities) = state.joint_values(sim);
+            let joints = JointValues {
+                names: state.joint_names(),
+                positions: &positions,
+                velocities: &velocities,
+            };
+            self.put(
+                self.key("", "joint_states"),
+                Foxglove.joint_state(time, &joints),
+                false,
+            )?;
+            let poses = Foxglove.transforms(time, state.frame_names(), &state.poses(sim));
             self.put(self.key("", "tf"), poses, false)?;
         }
         for (path, device) in &self.devices {

@@ -5,19 +5,32 @@
 use std::path::PathBuf;
 use std::process::Command;
 
-/// The Python of the peers' virtual environment (`${YAROK_CACHE_DIR:-~/.cache/yarok}/peers`).
-pub(crate) fn python() -> PathBuf {
-    let python = std::env::var_os("YAROK_CACHE_DIR")
+/// `path` among the peers (`${YAROK_CACHE_DIR:-~/.cache/yarok}/peers/{path}`), which must be
+/// there.
+fn installed(path: &str) -> PathBuf {
+    let installed = std::env::var_os("YAROK_CACHE_DIR")
         .map(PathBuf::from)
         .or_else(|| std::env::var_os("HOME").map(|home| PathBuf::from(home).join(".cache/yarok")))
         .expect("YAROK_CACHE_DIR or HOME")
-        .join("peers/bin/python");
+        .join("peers")
+        .join(path);
     assert!(
-        python.exists(),
+        installed.exists(),
         "{} is missing: run `bash scripts/setup-test-peers.sh` (scripts/test.sh does)",
-        python.display()
+        installed.display()
     );
-    python
+    installed
+}
+
+/// The Python of the peers' virtual environment.
+pub(crate) fn python() -> PathBuf {
+    installed("bin/python")
+}
+
+/// Foxglove's JSON Schemas of its well-known messages (npm's `@foxglove/schemas`), a file each,
+/// named by title (`foxglove.Log.json`).
+pub(crate) fn foxglove_schemas() -> PathBuf {
+    installed("node/foxglove-schemas-2.1.0")
 }
 
 /// The folder of the Python package `package` installed among the peers, found without

@@ -1,12 +1,12 @@
 //! [`RecordingProfile`]: how a recording encodes its messages — the MCAP profile it declares,
 //! each kind of message's schema, and each message's bytes. One implementation a file:
-//! [`json`] (Foxglove's JSON shapes, the default) and [`ros2`] (CDR with ROS 2 message
-//! definitions, for `ros2 bag`).
+//! [`foxglove`] (JSON in Foxglove's well-known shapes, the default) and [`ros2`] (CDR with
+//! ROS 2 message definitions, for `ros2 bag`).
 
-mod json;
+mod foxglove;
 mod ros2;
 
-pub(crate) use json::Json;
+pub(crate) use foxglove::Foxglove;
 
 use yarok_core::BoxError;
 use yarok_core::component::ProbeImage;
@@ -34,16 +34,16 @@ pub(crate) struct Schema {
     pub(crate) data: &'static str,
 }
 
-/// Joint coordinates' names, positions and velocities.
+/// Joints' names, positions and velocities, one of each a joint.
 #[derive(Debug)]
 pub(crate) struct JointValues<'a> {
     pub(crate) names: &'a [String],
-    pub(crate) positions: Vec<f64>,
-    pub(crate) velocities: Vec<f64>,
+    pub(crate) positions: &'a [f64],
+    pub(crate) velocities: &'a [f64],
 }
 
 /// How a recording encodes its messages. Times are platform time, seconds.
-pub(crate) trait RecordingProfile: Send {
+pub(crate) trait RecordingProfile: Send + Sync {
     /// The profile the MCAP header declares (`""` for none).
     fn mcap_profile(&self) -> &'static str;
 
@@ -55,8 +55,8 @@ pub(crate) trait RecordingProfile: Send {
 
     fn joint_state(&self, time: f64, joints: &JointValues<'_>) -> Vec<u8>;
 
-    /// Bodies' poses in the world frame.
-    fn transforms(&self, time: f64, bodies: &[(&str, Pose)]) -> Vec<u8>;
+    /// The poses of frames `frames` in the world frame, one for one.
+    fn transforms(&self, time: f64, frames: &[String], poses: &[Pose]) -> Vec<u8>;
 
     /// A probe's or camera's image in frame `frame`: a colour image as [`MessageKind::Image`],
     /// a depth image as [`MessageKind::Depth`].
@@ -74,17 +74,22 @@ pub(crate) trait RecordingProfile: Send {
     fn clock(&self, time: f64) -> Option<Vec<u8>>;
 }
 
-/// The profile named `name` (`json` or `ros2`).
+/// Platform time in nanoseconds, as MCAP's log times count it.
+pub(crate) fn nanoseconds(seconds: f64) -> u64 {
+    (seconds.max(0.0) * 1e9).round() as u64
+}
+
+/// The profile named `name` (`foxglove` or `ros2`).
 ///
 /// # Errors
 ///
 /// If there is no profile of that name, naming the ones there are.
 pub(crate) fn named(name: &str) -> Result<Box<dyn RecordingProfile>, String> {
     match name {
-        "json" => Ok(Box::new(Json)),
+        "foxglove" => Ok(Box::new(Foxglove)),
         "ros2" => Ok(Box::new(ros2::Ros2)),
         other => Err(format!(
-            "no recording profile {other:?}: there are \"json\" and \"ros2\""
+            "no recording profile {other:?}: there are \"foxglove\" and \"ros2\""
         )),
     }
 }

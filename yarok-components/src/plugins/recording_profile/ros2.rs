@@ -8,9 +8,8 @@ use yarok_core::BoxError;
 use yarok_core::component::ProbeImage;
 use yarok_mjc::Pose;
 
-use super::{JointValues, MessageKind, RecordingProfile, Schema};
+use super::{JointValues, MessageKind, RecordingProfile, Schema, nanoseconds};
 use crate::plugins::cdr::Cdr;
-use crate::plugins::foxglove::nanoseconds;
 use crate::probe_images;
 
 /// See the [module](self).
@@ -131,25 +130,28 @@ impl RecordingProfile for Ros2 {
         let mut cdr = Cdr::new();
         header(&mut cdr, time, "");
         cdr.strings(joints.names.iter().map(String::as_str))
-            .f64s(&joints.positions)
-            .f64s(&joints.velocities)
+            .f64s(joints.positions)
+            .f64s(joints.velocities)
             .f64s(&[]);
         cdr.finish()
     }
 
-    fn transforms(&self, time: f64, bodies: &[(&str, Pose)]) -> Vec<u8> {
+    fn transforms(&self, time: f64, frames: &[String], poses: &[Pose]) -> Vec<u8> {
         let mut cdr = Cdr::new();
-        cdr.sequence(bodies, |cdr, (name, Pose { pos, quat })| {
-            header(cdr, time, "world");
-            cdr.string(name);
-            for value in pos {
-                cdr.f64(*value);
-            }
-            // MuJoCo's quaternions are w first; ROS's w last.
-            for value in [quat[1], quat[2], quat[3], quat[0]] {
-                cdr.f64(value);
-            }
-        });
+        cdr.sequence(
+            frames.iter().zip(poses),
+            |cdr, (name, Pose { pos, quat })| {
+                header(cdr, time, "world");
+                cdr.string(name);
+                for value in pos {
+                    cdr.f64(*value);
+                }
+                // MuJoCo's quaternions are w first; ROS's w last.
+                for value in [quat[1], quat[2], quat[3], quat[0]] {
+                    cdr.f64(value);
+                }
+            },
+        );
         cdr.finish()
     }
 

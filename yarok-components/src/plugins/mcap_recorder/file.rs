@@ -1,0 +1,217 @@
+//! [`McapFile`]: one MCAP file of a recording — the run's or an episode's — with its channels,
+//! encoding each message as its profile says, in zstd-compressed chunks.
+
+use std::collections::BTreeMap;
+use std::fs::File;
+use std::io::BufWriter;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use yarok_core::BoxError;
+use yarok_core::component::ProbeImage;
+use yarok_mjc::Pose;
+
+use crate::plugins::recording_profile::{JointValues, MessageKind, RecordingProfile, nanoseconds};
+
+/// What a recording's files hold, found once at the start of the run.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Layout {
+    /// In `sim`: the joints' names and the transform frames' names.
+    pub(super) sim: Option<SimNames>,
+    /// One channel per probe, then per camera recorded.
+    pub(super) images: Vec<ImageChannel>,
+}
+
+/// The names a `sim` world's state is recorded under.
+#[derive(Debug, Clone)]
+pub(super) struct SimNames {
+    pub(super) joints: Arc<[String]>,
+    pub(super) frames: Arc<[String]>,
+}
+
+/// A channel of images.
+#[derive(Debug, Clone)]
+pub(super) struct ImageChannel {
+    pub(super) topic: String,
+    pub(super) kind: MessageKind,
+    /// The channel's metadata (a depth channel's unit).
+    pub(super) metadata: BTreeMap<String, String>,
+    /// The transform frame the images are in.
+    pub(super) frame: String,
+}
+
+/// A `sim` world's state at one time.
+#[derive(Debug)]
+pub(super) struct SimSample {
+    pub(super) positions: Vec<f64>,
+    pub(super) velocities: Vec<f64>,
+    pub(super) poses: Vec<Pose>,
+}
+
+#[derive(Debug, Default)]
+struct Channels {
+    joint_states: Option<u16>,
+    transforms: Option<u16>,
+    clock: Option<u16>,
+    log: u16,
+    images: Vec<u16>,
+}
+
+/// See the [module](self).
+pub(super) struct McapFile {
+    path: PathBuf,
+    profile: Arc<dyn RecordingProfile>,
+    layout: Layout,
+    writer: mcap::Writer<BufWriter<File>>,
+    channels: Channels,
+    sequence: u32,
+}
+
+impl std::fmt::Debug for McapFile {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("McapFile")
+            .field("path", &self.path)
+            .finish()
+    }
+}
+
+impl McapFile {
+    /// Creates `path` (and its folder) with `metadata` and a channel for everything `layout`
+    /// holds.
+    ///
+    /// # Errors
+    ///
+    /// When the file cannot be created or written, naming it.
+    pub(super) fn create(
+        path: PathBuf,
+        profile: &Arc<dyn RecordingProfile>,
+        layout: &Layout,
+        metadata: &mcap::records::Metadata,
+    ) -> Result<Self, BoxError> {
+        let cannot = |e: std::io::Error| format!("cannot create {}: {e}", path.display());
+        if let Some(folder) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
+            std::fs::create_dir_all(folder).map_err(cannot)?;
+        }
+        let file = File::create(&path).map_err(cannot)?;
+        let options = mcap::WriteOptions::new()
+            .compression(Some(mcap::Compression::Zstd))
+            .profile(profile.mcap_profile())
+            .library(concat!("yarok ", env!("CARGO_PKG_VERSION")));
+        let mut writer = options
+            .create(BufWriter::new(file))
+            .map_err(|e| failed(&path, e))?;
+        writer
+            .write_metadata(metadata)
+            .map_err(|e| failed(&path, e))?;
+        let mut file = Self {
+            path,
+            profile: Arc::clone(profile),
+            layout: layout.clone(),
+            writer,
+            channels: Channels::default(),
+            sequence: 0,
+        };
+        file.channels.log = file.channel(MessageKind::Log, "/log", &BTreeMap::new())?;
+        for image in &layout.images {
+            let channel = file.channel(image.kind, &image.topic, &image.metadata)?;
+            file.channels.images.push(channel);
+        }
+        if layout.sim.is_some() {
+            let none = BTreeMap::new();
+            file.channels.joint_states =
+                Some(file.channel(MessageKind::JointState, "/joint_states", &none)?);
+            file.channels.transforms = Some(file.channel(MessageKind::Transforms, "/tf", &none)?);
+        }
+        if file.profile.schema(MessageKind::Clock).is_some() {
+            file.channels.clock =
+                Some(file.channel(MessageKind::Clock, "/clock", &BTreeMap::new())?);
+        }
+        Ok(file)
+    }
+
+    fn channel(
+        &mut self,
+        kind: MessageKind,
+        topic: &str,
+        metadata: &BTreeMap<String, String>,
+    ) -> Result<u16, BoxError> {
+        let schema = self
+            .profile
+            .schema(kind)
+            .ok_or_else(|| format!("the recording's profile has no {kind:?} messages"))?;
+        let encoding = self.profile.message_encoding();
+        let writer = &mut self.writer;
+        let added = writer
+            .add_schema(schema.name, schema.encoding, schema.data.as_bytes())
+            .and_then(|id| writer.add_channel(id, topic, encoding, metadata));
+        added.map_err(|e| failed(&self.path, e))
+    }
+
+    fn write(&mut self, channel: u16, time: f64, data: &[u8]) -> Result<(), BoxError> {
+        self.sequence += 1;
+        let header = mcap::records::MessageHeader {
+            channel_id: channel,
+            sequence: self.sequence,
+            log_time: nanoseconds(time),
+            publish_time: nanoseconds(time),
+        };
+        let written = self.writer.write_to_known_channel(&header, data);
+        written.map_err(|e| failed(&self.path, e))
+    }
+
+    /// Writes a behaviour's log line.
+    pub(super) fn log(&mut self, time: f64, text: &str) -> Result<(), BoxError> {
+        let message = self.profile.log(time, text);
+        self.write(self.channels.log, time, &message)
+    }
+
+    /// Writes the clock (if the profile records it) and, in `sim`, the joints and frames.
+    pub(super) fn state(&mut self, time: f64, sim: Option<&SimSample>) -> Result<(), BoxError> {
+        if let (Some(channel), Some(message)) = (self.channels.clock, self.profile.clock(time)) {
+            self.write(channel, time, &message)?;
+        }
+        let (Some(sample), Some(names)) = (sim, &self.layout.sim) else {
+            return Ok(());
+        };
+        let (Some(joint_states), Some(transforms)) =
+            (self.channels.joint_states, self.channels.transforms)
+        else {
+            return Ok(());
+        };
+        let joints = JointValues {
+            names: &names.joints,
+            positions: &sample.positions,
+            velocities: &sample.velocities,
+        };
+        let joints = self.profile.joint_state(time, &joints);
+        let poses = self.profile.transforms(time, &names.frames, &sample.poses);
+        self.write(joint_states, time, &joints)?;
+        self.write(transforms, time, &poses)
+    }
+
+    /// Writes an image of every image channel, in the layout's order.
+    pub(super) fn images(&mut self, time: f64, images: &[ProbeImage]) -> Result<(), BoxError> {
+        for (index, image) in images.iter().enumerate() {
+            let (Some(&channel), Some(layout)) = (
+                self.channels.images.get(index),
+                self.layout.images.get(index),
+            ) else {
+                return Err(format!("no channel for image {index}").into());
+            };
+            let message = self.profile.image(time, &layout.frame, image)?;
+            self.write(channel, time, &message)?;
+        }
+        Ok(())
+    }
+
+    /// Writes the summary and closes the file.
+    pub(super) fn finish(mut self) -> Result<(), BoxError> {
+        self.writer.finish().map_err(|e| failed(&self.path, e))?;
+        let mut file = self.writer.into_inner();
+        std::io::Write::flush(&mut file).map_err(|e| failed(&self.path, e))
+    }
+}
+
+fn failed(path: &Path, error: impl std::fmt::Display) -> BoxError {
+    format!("cannot write {}: {error}", path.display()).into()
+}

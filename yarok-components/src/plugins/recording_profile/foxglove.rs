@@ -1,0 +1,205 @@
+//! The Foxglove profile: JSON messages in the shapes of Foxglove's well-known schemas
+//! (`foxglove.JointStates`, `foxglove.FrameTransforms`, `foxglove.CompressedImage`,
+//! `foxglove.Log`), each channel with a self-contained JSON Schema (no `$ref`, which the
+//! open-source Foxglove Studio and Lichtblick parsers do not resolve); images as PNG.
+
+use base64::Engine;
+use serde::Serialize;
+use yarok_core::BoxError;
+use yarok_core::component::ProbeImage;
+use yarok_mjc::Pose;
+
+use super::{JointValues, MessageKind, RecordingProfile, Schema, nanoseconds};
+use crate::probe_images;
+
+/// See the [module](self).
+#[derive(Debug)]
+pub(crate) struct Foxglove;
+
+fn schema(name: &'static str, data: &'static str) -> Schema {
+    Schema {
+        name,
+        encoding: "jsonschema",
+        data,
+    }
+}
+
+#[derive(Serialize)]
+struct Time {
+    sec: u64,
+    nsec: u64,
+}
+
+impl Time {
+    fn at(seconds: f64) -> Self {
+        let nanos = nanoseconds(seconds);
+        Self {
+            sec: nanos / 1_000_000_000,
+            nsec: nanos % 1_000_000_000,
+        }
+    }
+}
+
+#[derive(Serialize)]
+struct JointStates<'a> {
+    timestamp: Time,
+    joints: Vec<Joint<'a>>,
+}
+
+#[derive(Serialize)]
+struct Joint<'a> {
+    name: &'a str,
+    position: f64,
+    velocity: f64,
+}
+
+#[derive(Serialize)]
+struct FrameTransforms<'a> {
+    transforms: Vec<FrameTransform<'a>>,
+}
+
+#[derive(Serialize)]
+struct FrameTransform<'a> {
+    timestamp: Time,
+    parent_frame_id: &'static str,
+    child_frame_id: &'a str,
+    translation: Vector3,
+    rotation: Quaternion,
+}
+
+#[derive(Serialize)]
+struct Vector3 {
+    x: f64,
+    y: f64,
+    z: f64,
+}
+
+#[derive(Serialize)]
+struct Quaternion {
+    x: f64,
+    y: f64,
+    z: f64,
+    w: f64,
+}
+
+#[derive(Serialize)]
+struct CompressedImage<'a> {
+    timestamp: Time,
+    frame_id: &'a str,
+    data: String,
+    format: &'static str,
+}
+
+#[derive(Serialize)]
+struct Log<'a> {
+    timestamp: Time,
+    level: u8,
+    message: &'a str,
+    name: &'static str,
+    file: &'static str,
+    line: u32,
+}
+
+/// `foxglove.Log`'s level of information.
+const INFO: u8 = 2;
+
+fn bytes(message: &impl Serialize) -> Vec<u8> {
+    serde_json::to_vec(message).expect("numbers and strings serialise")
+}
+
+impl RecordingProfile for Foxglove {
+    fn mcap_profile(&self) -> &'static str {
+        ""
+    }
+
+    fn message_encoding(&self) -> &'static str {
+        "json"
+    }
+
+    fn schema(&self, kind: MessageKind) -> Option<Schema> {
+        Some(match kind {
+            MessageKind::JointState => schema(
+                "foxglove.JointStates",
+                include_str!("foxglove_schemas/joint_states.json"),
+            ),
+            MessageKind::Transforms => schema(
+                "foxglove.FrameTransforms",
+                include_str!("foxglove_schemas/frame_transforms.json"),
+            ),
+            // Depth too: a 16-bit PNG.
+            MessageKind::Image | MessageKind::Depth => schema(
+                "foxglove.CompressedImage",
+                include_str!("foxglove_schemas/compressed_image.json"),
+            ),
+            MessageKind::Log => schema("foxglove.Log", include_str!("foxglove_schemas/log.json")),
+            MessageKind::Clock => return None,
+        })
+    }
+
+    fn joint_state(&self, time: f64, joints: &JointValues<'_>) -> Vec<u8> {
+        let joints = joints
+            .names
+            .iter()
+            .zip(joints.positions)
+            .zip(joints.velocities)
+            .map(|((name, &position), &velocity)| Joint {
+                name,
+                position,
+                velocity,
+            })
+            .collect();
+        bytes(&JointStates {
+            timestamp: Time::at(time),
+            joints,
+        })
+    }
+
+    fn transforms(&self, time: f64, frames: &[String], poses: &[Pose]) -> Vec<u8> {
+        let transforms = frames
+            .iter()
+            .zip(poses)
+            .map(|(name, &Pose { pos, quat })| FrameTransform {
+                timestamp: Time::at(time),
+                parent_frame_id: "world",
+                child_frame_id: name,
+                translation: Vector3 {
+                    x: pos[0],
+                    y: pos[1],
+                    z: pos[2],
+                },
+                rotation: Quaternion {
+                    x: quat[1],
+                    y: quat[2],
+                    z: quat[3],
+                    w: quat[0],
+                },
+            })
+            .collect();
+        bytes(&FrameTransforms { transforms })
+    }
+
+    fn image(&self, time: f64, frame: &str, image: &ProbeImage) -> Result<Vec<u8>, BoxError> {
+        let png = probe_images::png(image)?;
+        Ok(bytes(&CompressedImage {
+            timestamp: Time::at(time),
+            frame_id: frame,
+            data: base64::engine::general_purpose::STANDARD.encode(png),
+            format: "png",
+        }))
+    }
+
+    fn log(&self, time: f64, text: &str) -> Vec<u8> {
+        bytes(&Log {
+            timestamp: Time::at(time),
+            level: INFO,
+            message: text,
+            name: "behaviour",
+            file: "",
+            line: 0,
+        })
+    }
+
+    fn clock(&self, _time: f64) -> Option<Vec<u8>> {
+        None
+    }
+}
