@@ -1,6 +1,7 @@
 //! What watching and recording cost, in PickAndPlaceWorld while the arm stacks blocks: ticks per
-//! second without a plugin, with the MCAP recorder (joint states and poses every 10 ticks; then
-//! also the overview camera at 320×240, 10 images a second), measured side by side; and, with
+//! second without a plugin, with the MCAP recorder in its Foxglove and its ROS 2 profile (joint
+//! states and poses every 10 ticks; then also the overview camera at 320×240, 10 images a
+//! second), measured side by side; and, with
 //! the viewer's window (800×600, under Xvfb when no display is set) pacing the run to the wall
 //! clock, the share of wall time the viewer spends drawing.
 //!
@@ -108,11 +109,12 @@ fn display() -> Option<Child> {
     Some(server)
 }
 
-fn recorder(folder: &std::path::Path, cameras: Vec<String>) -> Box<dyn Plugin> {
+fn recorder(folder: &std::path::Path, profile: &str, cameras: Vec<String>) -> Box<dyn Plugin> {
     let settings = McapRecorderSettings {
         path: folder.join("bench.mcap"),
         cameras,
         size: [320, 240],
+        profile: profile.to_owned(),
         ..McapRecorderSettings::default()
     };
     Box::new(McapRecorder::new(settings).expect("valid settings"))
@@ -122,10 +124,14 @@ fn main() {
     let mut xvfb = display();
     let folder = tempfile::tempdir().unwrap();
     let ticks = run(RUN, None);
-    let [bare, recorded, filmed] = mean_times(|variant| match variant {
+    let [bare, foxglove, ros2, filmed] = mean_times(|variant| match variant {
         0 => run(RUN, None),
-        1 => run(RUN, Some(recorder(folder.path(), Vec::new()))),
-        _ => run(RUN, Some(recorder(folder.path(), vec!["overview".into()]))),
+        1 => run(RUN, Some(recorder(folder.path(), "foxglove", Vec::new()))),
+        2 => run(RUN, Some(recorder(folder.path(), "ros2", Vec::new()))),
+        _ => run(
+            RUN,
+            Some(recorder(folder.path(), "foxglove", vec!["overview".into()])),
+        ),
     });
     let rate = |time: Duration| ticks as f64 / time.as_secs_f64();
     println!("PickAndPlaceWorld stacking, {RUN} s of platform time ({ticks} ticks), side by side:");
@@ -133,16 +139,17 @@ fn main() {
         "  no plugin                                  {:>8.0} ticks/s",
         rate(bare)
     );
-    println!(
-        "  MCAP recorder (joints, poses)              {:>8.0} ticks/s  ({:.1} % of the bare rate)",
-        rate(recorded),
-        100.0 * bare.as_secs_f64() / recorded.as_secs_f64()
-    );
-    println!(
-        "  MCAP recorder + overview camera 320×240    {:>8.0} ticks/s  ({:.1} % of the bare rate)",
-        rate(filmed),
-        100.0 * bare.as_secs_f64() / filmed.as_secs_f64()
-    );
+    for (name, time) in [
+        ("MCAP recorder, foxglove (joints, poses)   ", foxglove),
+        ("MCAP recorder, ros2 (joints, poses, clock)", ros2),
+        ("MCAP recorder, foxglove + camera 320×240  ", filmed),
+    ] {
+        println!(
+            "  {name} {:>8.0} ticks/s  ({:.1} % of the bare rate)",
+            rate(time),
+            100.0 * bare.as_secs_f64() / time.as_secs_f64()
+        );
+    }
 
     let drawing = Rc::new(Cell::new((Duration::ZERO, 0)));
     let shared = Rc::clone(&drawing);

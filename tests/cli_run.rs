@@ -248,3 +248,23 @@ fn interface_settings_nothing_reads_are_warned_about() {
         "{stderr}"
     );
 }
+
+/// A recording whose writes fail (a full disk: `/dev/full`) ends the run with an error naming
+/// the file and why, whichever thread of the recorder met it.
+#[test]
+fn a_recording_on_a_full_disk_ends_the_run_naming_the_file() {
+    let (code, _, stderr) = yarok(&[
+        "run",
+        "tower_world",
+        "--record",
+        "/dev/full",
+        "--set",
+        "behaviour/seconds=2",
+    ]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(
+        stderr.contains("plugin mcap (/dev/full) failed: cannot write /dev/full")
+            && stderr.contains("No space left on device"),
+        "{stderr}"
+    );
+}

@@ -48,6 +48,30 @@ pub fn write_report(error: &dyn Error, f: &mut fmt::Formatter<'_>) -> fmt::Resul
     Ok(())
 }
 
+/// `error`'s message followed by each cause it does not already include, on one line,
+/// separated by `: ` (for an error a larger message quotes).
+///
+/// # Examples
+///
+/// ```
+/// let error = std::io::Error::other("no space left on device");
+/// let wrapped = std::io::Error::new(std::io::ErrorKind::Other, error);
+/// assert_eq!(yarok_core::report::one_line(&wrapped), "no space left on device");
+/// ```
+pub fn one_line(error: &dyn Error) -> String {
+    let mut shown = error.to_string();
+    let mut source = error.source();
+    while let Some(cause) = source {
+        let text = cause.to_string();
+        if !shown.contains(&text) {
+            shown.push_str(": ");
+            shown.push_str(&text);
+        }
+        source = cause.source();
+    }
+    shown
+}
+
 /// Implements `Debug` for error types as [`write_report`].
 #[macro_export]
 macro_rules! debug_as_report {

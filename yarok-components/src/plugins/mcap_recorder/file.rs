@@ -208,10 +208,11 @@ impl McapFile {
     pub(super) fn finish(mut self) -> Result<(), BoxError> {
         self.writer.finish().map_err(|e| failed(&self.path, e))?;
         let mut file = self.writer.into_inner();
-        std::io::Write::flush(&mut file).map_err(|e| failed(&self.path, e))
+        std::io::Write::flush(&mut file).map_err(|e| failed(&self.path, mcap::McapError::Io(e)))
     }
 }
 
-fn failed(path: &Path, error: impl std::fmt::Display) -> BoxError {
+fn failed(path: &Path, error: mcap::McapError) -> BoxError {
+    let error = yarok_core::report::one_line(&error);
     format!("cannot write {}: {error}", path.display()).into()
 }

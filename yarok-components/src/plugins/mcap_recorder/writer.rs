@@ -11,11 +11,14 @@ use yarok_core::BoxError;
 use yarok_core::component::ProbeImage;
 
 use super::file::{McapFile, SimSample};
-use crate::plugins::bounded_wait::{Refused, poll_within, send_within};
+use crate::plugins::bounded_wait::{Refused, send_within};
 
-/// Jobs queued for the writer before the platform waits for it: at a state sample every 10
+/// Jobs handed over together: waking the writer costs the platform's thread more than a job.
+const BATCH: usize = 32;
+
+/// Batches queued for the writer before the platform waits for it: at a state sample every 10
 /// ticks, a second of a 500 Hz run.
-const QUEUED_JOBS: usize = 64;
+const QUEUED_BATCHES: usize = 2;
 
 /// How long the writer may take no job before it is taken as stalled.
 const STALL: Duration = Duration::from_secs(10);
@@ -48,46 +51,67 @@ pub(super) enum Job {
 /// See the [module](self).
 #[derive(Debug)]
 pub(super) struct Writer {
-    jobs: Option<SyncSender<Job>>,
-    thread: Option<JoinHandle<Result<(), BoxError>>>,
+    pending: Vec<Job>,
+    jobs: Option<SyncSender<Vec<Job>>>,
+    thread: Option<JoinHandle<()>>,
+    /// What the thread ended with, said as it ends.
+    ended: Receiver<Result<(), String>>,
 }
 
 impl Writer {
     /// Starts the writer on `run`, the run's file.
     pub(super) fn start(run: McapFile) -> Result<Self, BoxError> {
-        let (jobs, queue) = sync_channel(QUEUED_JOBS);
+        let (jobs, queue) = sync_channel(QUEUED_BATCHES);
+        let (said, ended) = sync_channel(1);
         let thread = std::thread::Builder::new()
             .name("mcap writer".to_owned())
-            .spawn(move || write(run, &queue))
+            .spawn(move || {
+                let result = write(run, &queue).map_err(|e| e.to_string());
+                let _nobody_waits_any_more = said.send(result);
+            })
             .map_err(|e| format!("cannot start the recording's writer: {e}"))?;
         Ok(Self {
+            pending: Vec::with_capacity(BATCH),
             jobs: Some(jobs),
             thread: Some(thread),
+            ended,
         })
     }
 
-    /// Queues `job`, waiting at most [`STALL`] for room.
+    /// Queues `job`, handing the queue over once it holds a batch, waiting at most [`STALL`]
+    /// for room.
     ///
     /// # Errors
     ///
     /// When the writer failed (with its error) or stalled.
     pub(super) fn send(&mut self, job: Job) -> Result<(), BoxError> {
+        let waited_for = matches!(job, Job::EndEpisode(_));
+        self.pending.push(job);
+        if waited_for || self.pending.len() >= BATCH {
+            self.hand_over()?;
+        }
+        Ok(())
+    }
+
+    fn hand_over(&mut self) -> Result<(), BoxError> {
         let jobs = self.jobs.as_ref().ok_or("the recording has ended")?;
-        match send_within(jobs, job, STALL) {
-            Ok(()) => Ok(()),
-            Err(Refused::Full) => {
-                self.jobs = None;
-                Err(format!(
-                    "the recording's writer took nothing for {} s; the files are incomplete",
-                    STALL.as_secs()
-                )
-                .into())
-            }
-            Err(Refused::Gone) => Err(self
+        let batch = std::mem::replace(&mut self.pending, Vec::with_capacity(BATCH));
+        let refused = match send_within(jobs, batch, STALL) {
+            Ok(()) => return Ok(()),
+            Err(refused) => refused,
+        };
+        self.jobs = None;
+        Err(match refused {
+            Refused::Full => format!(
+                "the recording's writer took nothing for {} s; the files are incomplete",
+                STALL.as_secs()
+            )
+            .into(),
+            Refused::Gone => self
                 .finish()
                 .err()
-                .unwrap_or_else(|| "the recording's writer has ended".into())),
-        }
+                .unwrap_or_else(|| "the recording's writer has ended".into()),
+        })
     }
 
     /// Closes the episode's file, waiting (at most [`FINISH`]) until it is complete on disk, so
@@ -121,28 +145,35 @@ impl Writer {
     ///
     /// The writer's, or when it does not finish in time.
     pub(super) fn finish(&mut self) -> Result<(), BoxError> {
+        let handed_over = if self.jobs.is_some() {
+            self.hand_over()
+        } else {
+            Ok(())
+        };
         self.jobs = None;
         let Some(thread) = self.thread.take() else {
-            return Ok(());
+            return handed_over;
         };
-        let finished = poll_within(FINISH, || Ok(thread.is_finished().then_some(())))?;
-        if finished.is_none() {
-            return Err(format!(
-                "the recording's writer did not finish within {} s; the files are incomplete",
-                FINISH.as_secs()
-            )
-            .into());
-        }
-        thread
-            .join()
-            .map_err(|_| BoxError::from("the recording's writer panicked"))?
+        let result = match self.ended.recv_timeout(FINISH) {
+            Ok(result) => result.map_err(BoxError::from),
+            Err(RecvTimeoutError::Timeout) => {
+                return Err(format!(
+                    "the recording's writer did not finish within {} s; the files are incomplete",
+                    FINISH.as_secs()
+                )
+                .into());
+            }
+            Err(RecvTimeoutError::Disconnected) => Err("the recording's writer panicked".into()),
+        };
+        let _ended_already = thread.join();
+        handed_over.and(result)
     }
 }
 
 /// The writer's thread: does every job, then closes the files.
-fn write(mut run: McapFile, queue: &Receiver<Job>) -> Result<(), BoxError> {
+fn write(mut run: McapFile, queue: &Receiver<Vec<Job>>) -> Result<(), BoxError> {
     let mut episode: Option<McapFile> = None;
-    for job in queue {
+    for job in queue.iter().flatten() {
         match job {
             Job::BeginEpisode(file) => episode = Some(*file),
             Job::EndEpisode(closed) => {
