@@ -71,6 +71,16 @@ for image in digit_world/digit_left.png geltip_world/geltip_left.png tactile_rig
   printer_world/printer_camera_3.png; do
   test -s "$out/$image" || { echo "error: yarok run wrote no $image" >&2; exit 1; }
 done
+echo "== the README's demo command: the DIGIT pick and place, its tactile images, a film and a recording"
+mkdir -p "$out/demo"
+(cd "$out/demo" && cargo run --release --locked --manifest-path "$OLDPWD/Cargo.toml" -- \
+  run digit_world --record out/digit_world.mcap --video out/digit_world.mp4 </dev/null)
+for file in digit_left.png digit_right.png digit_world.mcap digit_world.mp4; do
+  test -s "$out/demo/out/$file" || { echo "error: the demo wrote no $file" >&2; exit 1; }
+done
+"${YAROK_CACHE_DIR:-$HOME/.cache/yarok}/peers/bin/python" scripts/peers/mcap_summary.py \
+  "$out/demo/out/digit_world.mcap" | grep -q "^image /arm/gripper/left_digit/image " \
+  || { echo "error: the demo's recording holds no tactile image" >&2; exit 1; }
 echo "== the manipulation and tactile examples in release, as the README runs them"
 cargo run --release --locked --example pick_and_place
 cargo run --release --locked --example digit_world -- --set "behaviour/out=\"$out/examples\""
