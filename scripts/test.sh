@@ -78,8 +78,9 @@ mkdir -p "$out/demo"
 for file in digit_left.png digit_right.png digit_world.mcap digit_world.mp4; do
   test -s "$out/demo/out/$file" || { echo "error: the demo wrote no $file" >&2; exit 1; }
 done
-"${YAROK_CACHE_DIR:-$HOME/.cache/yarok}/peers/bin/python" scripts/peers/mcap_summary.py \
-  "$out/demo/out/digit_world.mcap" | grep -q "^image /arm/gripper/left_digit/image " \
+read_back=$("${YAROK_CACHE_DIR:-$HOME/.cache/yarok}/peers/bin/python" scripts/peers/mcap_summary.py \
+  "$out/demo/out/digit_world.mcap")
+grep -q "^image /arm/gripper/left_digit/image " <<<"$read_back" \
   || { echo "error: the demo's recording holds no tactile image" >&2; exit 1; }
 echo "== the manipulation and tactile examples in release, as the README runs them"
 cargo run --release --locked --example pick_and_place
