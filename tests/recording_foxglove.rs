@@ -7,38 +7,19 @@
 //! names them, the images are in the cameras' optical frames that `/tf` carries, and the joint
 //! positions (read by PyPI's `mcap`) are, bit for bit, those of the run's `joints_csv` file.
 
-use std::process::Command;
-
+#[path = "support/digit_world_recording.rs"]
+mod digit_world_recording;
 #[path = "support/joints_csv.rs"]
 mod joints_csv;
 #[path = "../yarok-hw/tests/support/peers.rs"]
 mod peers;
 
-use joints_csv::JointsCsv;
+use digit_world_recording::record_digit_world;
 
 #[test]
 fn a_foxglove_recording_validates_against_foxglove_schemas() {
     let folder = tempfile::tempdir().unwrap();
-    let mcap = folder.path().join("run.mcap");
-    let csv = folder.path().join("joints.csv");
-    let output = Command::new(env!("CARGO_BIN_EXE_yarok"))
-        .current_dir(folder.path())
-        .args(["run", "digit_world", "--record"])
-        .arg(&mcap)
-        .arg("--set")
-        .arg(format!(
-            "plugins/joints_csv/path={:?}",
-            csv.display().to_string()
-        ))
-        .args(["--set", "plugins/joints_csv/every=10"])
-        .output()
-        .unwrap();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    let csv = JointsCsv::read(&csv);
+    let (mcap, csv) = record_digit_world(folder.path(), &[]);
     let schemas = peers::foxglove_schemas();
     let checked = peers::run(
         "foxglove_validate.py",

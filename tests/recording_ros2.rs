@@ -7,12 +7,14 @@
 
 use std::process::Command;
 
+#[path = "support/digit_world_recording.rs"]
+mod digit_world_recording;
 #[path = "support/joints_csv.rs"]
 mod joints_csv;
 #[path = "../yarok-hw/tests/support/peers.rs"]
 mod peers;
 
-use joints_csv::JointsCsv;
+use digit_world_recording::record_digit_world;
 
 /// Lines of `output` that start with `name `, without it.
 fn lines<'a>(output: &'a str, name: &str) -> Vec<&'a str> {
@@ -34,26 +36,7 @@ fn count(output: &str, topic: &str, msgtype: &str) -> usize {
 #[test]
 fn a_ros2_recording_reads_back_in_rosbags_and_mcap_ros2_support() {
     let folder = tempfile::tempdir().unwrap();
-    let mcap = folder.path().join("run.mcap");
-    let csv = folder.path().join("joints.csv");
-    let output = Command::new(env!("CARGO_BIN_EXE_yarok"))
-        .current_dir(folder.path())
-        .args(["run", "digit_world", "--record"])
-        .arg(&mcap)
-        .args(["--profile", "ros2", "--set"])
-        .arg(format!(
-            "plugins/joints_csv/path={:?}",
-            csv.display().to_string()
-        ))
-        .args(["--set", "plugins/joints_csv/every=10"])
-        .output()
-        .unwrap();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    let csv = JointsCsv::read(&csv);
+    let (mcap, csv) = record_digit_world(folder.path(), &["--profile", "ros2"]);
     let rows = &csv.rows;
     assert!(rows.len() > 300, "{} rows", rows.len());
     let duration = rows.last().unwrap()[0];

@@ -50,8 +50,8 @@ pub(super) struct SimSample {
 
 #[derive(Debug, Default)]
 struct Channels {
-    joint_states: Option<u16>,
-    transforms: Option<u16>,
+    /// In `sim`: joint states and transforms.
+    sim: Option<(u16, u16)>,
     clock: Option<u16>,
     log: u16,
     images: Vec<u16>,
@@ -118,9 +118,10 @@ impl McapFile {
         }
         if layout.sim.is_some() {
             let none = BTreeMap::new();
-            file.channels.joint_states =
-                Some(file.channel(MessageKind::JointState, "/joint_states", &none)?);
-            file.channels.transforms = Some(file.channel(MessageKind::Transforms, "/tf", &none)?);
+            file.channels.sim = Some((
+                file.channel(MessageKind::JointState, "/joint_states", &none)?,
+                file.channel(MessageKind::Transforms, "/tf", &none)?,
+            ));
         }
         if file.profile.schema(MessageKind::Clock).is_some() {
             file.channels.clock =
@@ -170,11 +171,8 @@ impl McapFile {
         if let (Some(channel), Some(message)) = (self.channels.clock, self.profile.clock(time)) {
             self.write(channel, time, &message)?;
         }
-        let (Some(sample), Some(names)) = (sim, &self.layout.sim) else {
-            return Ok(());
-        };
-        let (Some(joint_states), Some(transforms)) =
-            (self.channels.joint_states, self.channels.transforms)
+        let (Some(sample), Some(names), Some((joint_states, transforms))) =
+            (sim, &self.layout.sim, self.channels.sim)
         else {
             return Ok(());
         };

@@ -107,10 +107,7 @@ impl Writer {
                 STALL.as_secs()
             )
             .into(),
-            Refused::Gone => self
-                .finish()
-                .err()
-                .unwrap_or_else(|| "the recording's writer has ended".into()),
+            Refused::Gone => self.why_it_ended(),
         })
     }
 
@@ -131,11 +128,15 @@ impl Writer {
                 FINISH.as_secs()
             )
             .into()),
-            Err(RecvTimeoutError::Disconnected) => Err(self
-                .finish()
-                .err()
-                .unwrap_or_else(|| "the recording's writer has ended".into())),
+            Err(RecvTimeoutError::Disconnected) => Err(self.why_it_ended()),
         }
+    }
+
+    /// Why the writer, found gone, ended: its error.
+    fn why_it_ended(&mut self) -> BoxError {
+        self.finish()
+            .err()
+            .unwrap_or_else(|| "the recording's writer has ended".into())
     }
 
     /// Ends the queue and waits (at most [`FINISH`]) for the writer to write what is queued and

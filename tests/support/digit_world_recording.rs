@@ -1,0 +1,33 @@
+//! `yarok run digit_world --record FILE` with a `joints_csv` file beside the recording, which
+//! what others' tools read back from the recording is checked against.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use crate::joints_csv::JointsCsv;
+
+/// Runs `yarok run digit_world --record {folder}/run.mcap` with `options` and a `joints_csv`
+/// row every 10 ticks; the recording and the CSV, once the run succeeded.
+pub(crate) fn record_digit_world(folder: &Path, options: &[&str]) -> (PathBuf, JointsCsv) {
+    let mcap = folder.join("run.mcap");
+    let csv = folder.join("joints.csv");
+    let output = Command::new(env!("CARGO_BIN_EXE_yarok"))
+        .current_dir(folder)
+        .args(["run", "digit_world", "--record"])
+        .arg(&mcap)
+        .args(options)
+        .arg("--set")
+        .arg(format!(
+            "plugins/joints_csv/path={:?}",
+            csv.display().to_string()
+        ))
+        .args(["--set", "plugins/joints_csv/every=10"])
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    (mcap, JointsCsv::read(&csv))
+}
