@@ -90,6 +90,7 @@ impl Plugin for Seen {
                 Happening::Logged(line) => format!("{} @{}", line.text, line.tick),
                 Happening::EpisodeBegan(e) => format!("{} began @{}", e.number, e.start_tick),
                 Happening::EpisodeEnded(e) => format!("{} ended @{}", e.number, e.start_tick),
+                Happening::TaskSet(task) => format!("task: {task}"),
             });
         }
         Ok(())
@@ -119,6 +120,7 @@ fn an_episode_puts_every_component_back_and_plugins_see_it_among_the_lines() {
             assert_eq!(episode.time_at(pl.ticks(), pl.timestep()), 0.02);
             pl.log("still in 5");
             pl.begin_episode(6)?;
+            pl.set_task("count again");
             pl.log("in 6");
             pl.end_episode();
             assert_eq!(pl.episode(), None);
@@ -137,6 +139,7 @@ fn an_episode_puts_every_component_back_and_plugins_see_it_among_the_lines() {
             "still in 5 @5",
             "5 ended @3",
             "6 began @5",
+            "task: count again",
             "in 6 @5",
             "6 ended @5",
             "after @5"

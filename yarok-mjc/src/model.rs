@@ -464,6 +464,24 @@ impl Model {
         self.name_of(ObjectKind::Camera, self.index_of(camera))
     }
 
+    /// Every actuator, in MuJoCo's order (the order of [`Data::ctrl`](crate::Data::ctrl)).
+    pub fn actuators(&self) -> impl Iterator<Item = ActuatorId> + '_ {
+        (0..self.count(ObjectKind::Actuator)).map(|index| ActuatorId {
+            index,
+            signature: self.signature(),
+        })
+    }
+
+    /// An actuator's name in the model (`arm/shoulder_pan`), or `None` when it has none.
+    ///
+    /// # Panics
+    ///
+    /// When `actuator` was resolved in a different model.
+    #[track_caller]
+    pub fn actuator_name(&self, actuator: ActuatorId) -> Option<String> {
+        self.name_of(ObjectKind::Actuator, self.index_of(actuator))
+    }
+
     /// The name of object `index` of `kind`, if it has one.
     pub(crate) fn name_of(&self, kind: ObjectKind, index: usize) -> Option<String> {
         let index = i32::try_from(index).ok()?;

@@ -123,6 +123,16 @@ fn cameras_are_listed_with_their_names_and_poses() {
 }
 
 #[test]
+fn actuators_are_listed_in_the_order_of_the_controls_with_their_names() {
+    let (model, mut data) = setup();
+    let actuators: Vec<_> = model.actuators().collect();
+    assert_eq!(actuators, vec![model.actuator("torque").unwrap()]);
+    assert_eq!(model.actuator_name(actuators[0]).as_deref(), Some("torque"));
+    data.set_ctrl(actuators[0], 0.5);
+    assert_eq!(data.ctrl()[actuators[0].index()], 0.5);
+}
+
+#[test]
 fn control_moves_the_joint_and_reset_restores_it() {
     let (model, mut data) = setup();
     let hinge = model.joint("hinge").unwrap();

@@ -34,7 +34,7 @@ impl Episode {
 
 /// What a behaviour did that plugins see, in the order it happened
 /// ([`World::happenings`](super::World::happenings)): a line it logged, an episode it began or
-/// ended.
+/// ended, the task it set.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Happening {
     /// A line logged with [`Pl::log`](super::Pl::log).
@@ -43,6 +43,8 @@ pub enum Happening {
     EpisodeBegan(Episode),
     /// An episode ended ([`Pl::end_episode`](super::Pl::end_episode), or the next one began).
     EpisodeEnded(Episode),
+    /// The behaviour said what it is doing from now on ([`Pl::set_task`](super::Pl::set_task)).
+    TaskSet(String),
 }
 
 /// Why an episode could not begin.

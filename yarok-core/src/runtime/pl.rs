@@ -153,6 +153,23 @@ impl Pl {
         self.keep(Happening::Logged(line));
     }
 
+    /// Says, in words, what the behaviour is doing from now on (`"pick up the block"`): a
+    /// dataset recorder labels the frames it takes from now with it, as the task a policy
+    /// learns to do. Plugins see it among the [happenings](super::World::happenings).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// # async fn behaviour(pl: yarok_core::runtime::Pl) -> yarok_core::runtime::BehaviourResult {
+    /// pl.set_task("pick up the block and put it down to the right");
+    /// pl.wait_seconds(0.1).await?;
+    /// # Ok(())
+    /// # }
+    /// ```
+    pub fn set_task(&self, task: impl Into<String>) {
+        self.keep(Happening::TaskSet(task.into()));
+    }
+
     /// What behaviours did since their last turn began.
     pub(crate) fn happenings(&self) -> std::cell::Ref<'_, [Happening]> {
         std::cell::Ref::map(self.inner.happenings.borrow(), Vec::as_slice)

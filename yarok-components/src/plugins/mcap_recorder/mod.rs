@@ -303,6 +303,7 @@ impl McapRecorder {
                     self.writer()?.send(Job::BeginEpisode(Box::new(file)))?;
                 }
                 Happening::EpisodeEnded(_) => self.end_episode()?,
+                Happening::TaskSet(_) => {}
             }
         }
         Ok(())
