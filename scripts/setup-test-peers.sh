@@ -19,7 +19,9 @@
 #    files are used, so it is installed without its dependencies; and rosbags (Apache-2.0)
 #    and mcap-ros2-support (MIT), the ROS 2 readers the `ros2` recording profile is read back
 #    with; and jsonschema (MIT), the validator the `foxglove` profile's messages are checked
-#    with;
+#    with; and pyarrow (Apache-2.0), PyAV (BSD-3-Clause; its wheels bundle FFmpeg, LGPL) and
+#    pandas (BSD-3-Clause), with which the dataset recorder's LeRobot datasets are read back
+#    as LeRobot reads them;
 #  - from the npm registry, into $peers/node: @foxglove/schemas (MIT), Foxglove's own JSON
 #    Schemas of its well-known messages, which the `foxglove` profile's messages are checked
 #    against (written out as files by Node.js, Debian's nodejs when the machine has none).
@@ -64,6 +66,9 @@ robosuite --no-deps robosuite==1.5.2
 rosbags rosbags==0.11.9
 mcap_ros2 mcap-ros2-support==0.6.0
 jsonschema jsonschema==4.25.1
+pyarrow pyarrow==26.0.1
+av av==18.1.0
+pandas pandas==3.1.1
 PEERS
 
 foxglove_schemas="$peers/node/foxglove-schemas-2.1.0"

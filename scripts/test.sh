@@ -16,32 +16,32 @@ echo "== import circles"
 python3 .ci/check-import-circles.py
 echo "== clippy"
 cargo clippy --workspace --all-targets --locked -- -D warnings
-cargo clippy --workspace --all-targets --features yarok/camera,yarok/viewer,yarok/zenoh --locked -- -D warnings
+cargo clippy --workspace --all-targets --features yarok/camera,yarok/viewer,yarok/zenoh,yarok/dataset --locked -- -D warnings
 echo "== tests"
 if cargo nextest --version >/dev/null 2>&1; then
   echo "runner: cargo nextest (one process per test, no retries)"
   cargo nextest run --workspace --locked --no-fail-fast --retries 0
-  echo "runner: cargo nextest, the camera, viewer and zenoh features' tests"
-  cargo nextest run --workspace --features yarok/camera,yarok/viewer,yarok/zenoh --locked --no-fail-fast \
+  echo "runner: cargo nextest, the camera, viewer, zenoh and dataset features' tests"
+  cargo nextest run --workspace --features yarok/camera,yarok/viewer,yarok/zenoh,yarok/dataset --locked --no-fail-fast \
     --retries 0 \
-    -E 'binary(camera_decode) | binary(video_device) | binary(cam_real) | binary(tactile_real) | binary(viewer) | binary(zenoh_bridge)'
+    -E 'binary(camera_decode) | binary(video_device) | binary(cam_real) | binary(tactile_real) | binary(viewer) | binary(zenoh_bridge) | binary(dataset_lerobot)'
 else
   echo "runner: cargo test (cargo-nextest is not installed)"
   cargo test --workspace --locked --no-fail-fast
-  cargo test --features camera,viewer,zenoh --locked --no-fail-fast --test cam_real \
-    --test tactile_real --test viewer --test zenoh_bridge
+  cargo test --features camera,viewer,zenoh,dataset --locked --no-fail-fast --test cam_real \
+    --test tactile_real --test viewer --test zenoh_bridge --test dataset_lerobot
   cargo test -p yarok-hw --features camera --locked --no-fail-fast --test camera_decode \
     --test video_device
 fi
 echo "== the Zenoh example: a world driven from another process through the bridge"
-cargo run --locked --features yarok/camera,yarok/viewer,yarok/zenoh --example zenoh_remote
+cargo run --locked --features yarok/camera,yarok/viewer,yarok/zenoh,yarok/dataset --example zenoh_remote
 echo "== tests of process-wide state, as threads of one process (as cargo test runs them)"
 cargo test --workspace --locked --test render_offscreen
 cargo test --workspace --locked --test runtime_interrupt
 cargo test --workspace --locked --test warnings_visible
-cargo test --workspace --features yarok/camera,yarok/viewer,yarok/zenoh --doc --locked
+cargo test --workspace --features yarok/camera,yarok/viewer,yarok/zenoh,yarok/dataset --doc --locked
 echo "== docs"
-RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --features yarok/camera,yarok/viewer,yarok/zenoh
+RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --features yarok/camera,yarok/viewer,yarok/zenoh,yarok/dataset
 echo "== example binary, started directly"
 cargo build --examples --locked
 examples="${CARGO_TARGET_DIR:-target}/debug/examples"

@@ -57,7 +57,8 @@ pub const MOCK_TIMESTEP: f64 = 0.002;
 /// backend, 2 ms ticks); plugins `joints_csv` ([`components::plugins::JointRecorder`]), `mcap`
 /// ([`components::plugins::McapRecorder`]) and `video` ([`components::plugins::VideoRecorder`]);
 /// with the feature `viewer`, `viewer` and `inspector` (the windows); with `zenoh`, `zenoh`
-/// ([`components::plugins::ZenohBridge`]).
+/// ([`components::plugins::ZenohBridge`]); with `dataset`, `dataset`
+/// ([`components::plugins::DatasetRecorder`]).
 ///
 /// # Examples
 ///
@@ -90,5 +91,7 @@ pub fn platform() -> PlatformBuilder {
         .plugin_factory("inspector", components::plugins::Inspector::new);
     #[cfg(feature = "zenoh")]
     let builder = builder.plugin_factory("zenoh", components::plugins::ZenohBridge::new);
+    #[cfg(feature = "dataset")]
+    let builder = builder.plugin_factory("dataset", components::plugins::DatasetRecorder::new);
     builder
 }

@@ -3,7 +3,8 @@
 //! ```text
 //! yarok --help
 //! yarok run WORLD [--behaviour NAME] [--viewer] [--inspect] [--record FILE.mcap]
-//!           [--profile foxglove|ros2] [--video FILE.mp4] [--shard I/N] [--bridge] [--env ENV]
+//!           [--profile foxglove|ros2] [--dataset DIR] [--video FILE.mp4] [--shard I/N] [--bridge]
+//!           [--env ENV]
 //!           [--set TARGET=VALUE]... [--config FILE]
 //! yarok run --list
 //! yarok compose WORLD [--set [/PATH/]KEY=VALUE]... [--out FILE]
@@ -16,7 +17,8 @@
 //! `run` runs a bundled world (`pick_and_place_world`, …; `--list` lists them) with one of its
 //! demo behaviours (the first by default), optionally watched in a window (`--viewer`; the
 //! probes' images in another, `--inspect`: feature `viewer`), recorded in MCAP (`--profile ros2`:
-//! as CDR-encoded ROS 2 messages that `ros2 bag` reads) and filmed; while
+//! as CDR-encoded ROS 2 messages that `ros2 bag` reads), recorded as a LeRobot v3 dataset
+//! (`--dataset DIR`: feature `dataset`; `yarok::components::plugins::DatasetRecorder`) and filmed; while
 //! standard error is a terminal it shows platform time, the real-time factor and ticks per
 //! second. `--shard I/N` runs shard I (from 0) of N of the behaviour's work (see
 //! `yarok::core::config::Shard`). `--bridge` publishes the world over Zenoh and takes commands
@@ -44,8 +46,8 @@ mod tactile;
 use std::process::ExitCode;
 
 const USAGE: &str = "usage: yarok run WORLD [--behaviour NAME] [--viewer] [--inspect] [--record FILE.mcap]
-                 [--profile foxglove|ros2] [--video FILE.mp4] [--shard I/N] [--bridge] [--env ENV]
-                 [--set TARGET=VALUE]... [--config FILE]
+                 [--profile foxglove|ros2] [--dataset DIR] [--video FILE.mp4] [--shard I/N] [--bridge]
+                 [--env ENV] [--set TARGET=VALUE]... [--config FILE]
        yarok run --list
        yarok compose WORLD [--set [/PATH/]KEY=VALUE]... [--out FILE]
        yarok tactile digit|gelsight|geltip DEPTH OUT.png [--background PNG] [--noise SIGMA] [--seed N]

@@ -10,10 +10,11 @@ use yarok::core::suggest::did_you_mean;
 use super::{Failure, USAGE};
 
 /// The options `yarok run` reads itself; the platform reads `--env`, `--set` and `--config`.
-const OWN_OPTIONS: [&str; 6] = [
+const OWN_OPTIONS: [&str; 7] = [
     "--behaviour",
     "--record",
     "--profile",
+    "--dataset",
     "--video",
     "--viewer",
     "--inspect",
@@ -25,7 +26,7 @@ const PLATFORM_OPTIONS: [&str; 3] = ["--env", "--set", "--config"];
 struct Args {
     world: Option<String>,
     behaviour: Option<String>,
-    /// The settings `--record`, `--video`, `--viewer`, `--inspect`, `--shard` and `--bridge` stand for, as `--set`
+    /// The settings `--record`, `--dataset`, `--video`, `--viewer`, `--inspect`, `--shard` and `--bridge` stand for, as `--set`
     /// arguments: before the user's, which may refine them.
     plugins: Vec<String>,
     /// For the platform: `--env`, `--set` and `--config` with their values.
@@ -55,6 +56,7 @@ fn parse(args: &[String]) -> Result<Args, String> {
             }
             "--profile" => parsed.profile = Some(value()?),
             "--video" => parsed.set(&format!("plugins/video/path={:?}", value()?)),
+            "--dataset" => parsed.set(&dataset(&value()?)?),
             "--shard" => parsed.set(&format!("platform/shard={:?}", value()?)),
             "--bridge" => parsed.set(&bridge()?),
             "--viewer" => parsed.set(&windows("viewer", "paused=false")?),
@@ -89,6 +91,19 @@ impl Args {
     fn set(&mut self, assignment: &str) {
         self.plugins
             .extend(["--set".to_owned(), assignment.to_owned()]);
+    }
+}
+
+/// The setting that records a LeRobot dataset in `folder`, if this `yarok` can.
+fn dataset(folder: &str) -> Result<String, String> {
+    if cfg!(feature = "dataset") {
+        Ok(format!("plugins/dataset/path={folder:?}"))
+    } else {
+        Err(
+            "this yarok was built without the dataset recorder: build it with the `dataset` \
+             feature (cargo run --release --features dataset --bin yarok -- run …)"
+                .into(),
+        )
     }
 }
 

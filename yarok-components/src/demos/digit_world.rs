@@ -26,6 +26,7 @@ pub async fn feel(pl: Pl) -> BehaviourResult {
     // The TCP pointing down, `z` above the table, in the arm's base frame.
     let down = |[x, y, _]: [f64; 3], z: f64| pose_from_vector([x, y, z, PI, 0.0, 0.0]);
 
+    pl.set_task("pick up the block and put it on the target");
     gripper.open().await?;
     arm.move_j_pose(down(block.position(), 0.15)).await?;
     arm.move_l(down(block.position(), 0.026)).await?;

@@ -46,6 +46,7 @@ pub async fn stack_with(pl: &Pl, arm: &Arm, gripper: &ParallelGripper) -> Behavi
         .map(|path| pl.get(path))
         .collect::<Result<_, _>>()?;
     let table = target.position()[2];
+    pl.set_task("stack the blocks on the target, largest first");
     gripper.open().await?;
     // Round the base to the table with a joint motion; straight lines from then on.
     let [x, y, _] = blocks[0].position();

@@ -21,6 +21,44 @@ const STALL: Duration = Duration::from_secs(5);
 /// How long the encoder may take to write the file once its input has ended.
 const FINISH: Duration = Duration::from_secs(60);
 
+/// How an [`H264`] video is encoded.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct H264 {
+    /// Width and height (even numbers, as `yuv420p` needs).
+    pub(super) size: [u32; 2],
+    /// Frames a second.
+    pub(super) fps: f64,
+    /// Frames from one keyframe to the next (`None`: the encoder's choice).
+    pub(super) keyframe_interval: Option<u32>,
+    /// x264's constant rate factor (`None`: its default, 23); lower is closer to the input.
+    pub(super) crf: Option<u32>,
+}
+
+impl H264 {
+    /// The pixel format the video is stored in.
+    pub(super) const PIXEL_FORMAT: &str = "yuv420p";
+
+    /// `ffmpeg` reading raw RGB frames on its standard input and writing them to `path` as
+    /// H.264 in MP4, its index at the front.
+    pub(super) fn ffmpeg(&self, path: &std::path::Path) -> Command {
+        let [width, height] = self.size;
+        let mut command = Command::new("ffmpeg");
+        command
+            .args(["-loglevel", "error", "-y", "-f", "rawvideo"])
+            .args(["-pix_fmt", "rgb24", "-s", &format!("{width}x{height}")])
+            .args(["-r", &self.fps.to_string(), "-i", "-"])
+            .args(["-c:v", "libx264", "-pix_fmt", Self::PIXEL_FORMAT]);
+        if let Some(interval) = self.keyframe_interval {
+            command.args(["-g", &interval.to_string()]);
+        }
+        if let Some(crf) = self.crf {
+            command.args(["-crf", &crf.to_string()]);
+        }
+        command.args(["-movflags", "+faststart"]).arg(path);
+        command
+    }
+}
+
 /// An encoder process writing `path` from the frames it is sent; killed and reaped when
 /// dropped unfinished.
 #[derive(Debug)]

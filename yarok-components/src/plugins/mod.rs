@@ -2,6 +2,8 @@
 
 mod bounded_wait;
 mod cdr;
+#[cfg(feature = "dataset")]
+mod dataset_recorder;
 mod encoder;
 #[cfg(feature = "viewer")]
 mod inspector;
@@ -16,6 +18,8 @@ mod viewer;
 #[cfg(feature = "zenoh")]
 mod zenoh_bridge;
 
+#[cfg(feature = "dataset")]
+pub use dataset_recorder::{DatasetRecorder, DatasetRecorderSettings};
 #[cfg(feature = "viewer")]
 pub use inspector::{Inspector, InspectorSettings};
 pub use joint_recorder::{JointRecorder, JointRecorderSettings};

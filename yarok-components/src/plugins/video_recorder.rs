@@ -1,13 +1,12 @@
 //! [`VideoRecorder`]: a camera of the model filmed to an MP4 file through `ffmpeg`.
 
 use std::path::PathBuf;
-use std::process::Command;
 
 use yarok_core::BoxError;
 use yarok_core::runtime::{Plugin, World};
 use yarok_mjc::{CameraId, Renderer, SimBackend};
 
-use super::encoder::Encoder;
+use super::encoder::{Encoder, H264};
 use super::preset;
 
 /// What a [`VideoRecorder`] films (`[plugins.video]`).
@@ -86,32 +85,14 @@ impl VideoRecorder {
         })
     }
 
-    /// `ffmpeg` encoding raw RGB frames of the settings' size and rate to the video file.
-    fn ffmpeg(&self) -> Command {
-        let [width, height] = self.settings.size;
-        let mut command = Command::new("ffmpeg");
-        command
-            .args([
-                "-loglevel",
-                "error",
-                "-y",
-                "-f",
-                "rawvideo",
-                "-pix_fmt",
-                "rgb24",
-            ])
-            .args(["-s", &format!("{width}x{height}")])
-            .args(["-r", &self.settings.fps.to_string(), "-i", "-"])
-            .args([
-                "-c:v",
-                "libx264",
-                "-pix_fmt",
-                "yuv420p",
-                "-movflags",
-                "+faststart",
-            ])
-            .arg(&self.settings.path);
-        command
+    /// The H.264 video the settings ask for.
+    fn video(&self) -> H264 {
+        H264 {
+            size: self.settings.size,
+            fps: self.settings.fps,
+            keyframe_interval: None,
+            crf: None,
+        }
     }
 
     /// Ends the video: the encoder reads to the end of its input and writes the file.
@@ -148,7 +129,10 @@ impl Plugin for VideoRecorder {
             .size(width, height)
             .preset(preset(self.settings.quality))
             .build(sim.model())?;
-        let encoder = Encoder::start(self.ffmpeg(), self.settings.path.clone())?;
+        let encoder = Encoder::start(
+            self.video().ffmpeg(&self.settings.path),
+            self.settings.path.clone(),
+        )?;
         self.filming = Some(Filming {
             camera,
             renderer,

@@ -1,0 +1,233 @@
+//! `yarok run … --dataset DIR` (feature `dataset`) read back as LeRobot reads a v3 dataset, in a
+//! process of its own (`scripts/peers/lerobot_read.py`: pyarrow, pandas, PyAV and numpy, written
+//! from LeRobot's code): every episode's rows and indices, timestamps at the declared fps, every
+//! video frame decoded and equal (to within H.264's loss) to the image an MCAP recording of the
+//! same run holds of the same tick, and every statistic equal to the one recomputed from the
+//! data and the decoded frames.
+#![cfg(feature = "dataset")]
+
+#[path = "../yarok-hw/tests/support/peers.rs"]
+mod peers;
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn yarok(folder: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_yarok"))
+        .current_dir(folder)
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn succeeded(output: &Output) {
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+}
+
+/// `lerobot_read.py`'s `matched` line for `key`: the lowest PSNR of a frame against its
+/// recorded image, and the mean PSNR against its own image and against the next one.
+fn matched(read: &str, key: &str) -> (f64, f64, f64) {
+    let line = peers::field(read, &format!("matched {key}"));
+    let words: Vec<&str> = line.split_whitespace().collect();
+    let number = |name: &str| -> f64 {
+        let at = words.iter().position(|w| *w == name).unwrap();
+        words[at + 1].parse().unwrap()
+    };
+    (number("min_psnr"), number("own"), number("next"))
+}
+
+/// `lerobot_read.py`'s first line: episodes, frames, tasks and fps.
+fn totals(read: &str) -> [u64; 4] {
+    let words: Vec<&str> = read.lines().next().unwrap().split_whitespace().collect();
+    let number = |name: &str| -> u64 {
+        let at = words.iter().position(|w| *w == name).unwrap();
+        words[at + 1].parse().unwrap()
+    };
+    ["episodes", "frames", "tasks", "fps"].map(number)
+}
+
+#[test]
+fn a_digit_world_run_is_a_lerobot_dataset_whose_videos_are_the_recorded_images() {
+    let folder = tempfile::tempdir().unwrap();
+    let run = yarok(
+        folder.path(),
+        &[
+            "run",
+            "digit_world",
+            "--dataset",
+            "dataset",
+            "--record",
+            "run.mcap",
+            "--set",
+            "plugins/mcap/image_hz=30.0",
+            "--set",
+            "plugins/mcap/cameras=[\"overview\"]",
+            "--set",
+            "plugins/mcap/size=[320, 240]",
+            "--set",
+            "plugins/dataset/cameras=[\"overview\"]",
+            "--set",
+            "plugins/dataset/size=[320, 240]",
+        ],
+    );
+    succeeded(&run);
+    let dataset = folder.path().join("dataset");
+    let mcap = folder.path().join("run.mcap");
+    let read = peers::run(
+        "lerobot_read.py",
+        &[dataset.to_str().unwrap(), mcap.to_str().unwrap()],
+    );
+
+    // One episode (the behaviour begins none), at 30 frames a second of its 8.8 s.
+    let [episodes, frames, tasks, fps] = totals(&read);
+    assert_eq!((episodes, tasks, fps), (1, 1, 30), "{read}");
+    assert!((250..300).contains(&frames), "{read}");
+    assert_eq!(
+        peers::field(&read, "episode 0"),
+        format!("length {frames} tasks pick up the block and put it on the target"),
+    );
+    let keys = [
+        "observation.images.arm.gripper.left_digit.image",
+        "observation.images.arm.gripper.right_digit.image",
+        "observation.images.overview",
+    ];
+    for key in keys {
+        assert_eq!(
+            peers::field(&read, &format!("video {key}")),
+            format!("frames {frames} codec h264 pix_fmt yuv420p"),
+        );
+        let (lowest, own, next) = matched(&read, key);
+        assert!(lowest >= 35.0, "{key}: {read}");
+        // Each frame is its own tick's image: the next tick's matches it less well (the
+        // camera sees the arm move; a tactile image changes little, but never matches better).
+        assert!(own >= next, "{key}: {read}");
+        if key.ends_with("overview") {
+            assert!(own > next + 2.0, "{key}: {read}");
+        }
+    }
+    for feature in [
+        "observation.state",
+        "action",
+        "timestamp",
+        "frame_index",
+        "episode_index",
+        "index",
+        "task_index",
+    ]
+    .into_iter()
+    .chain(keys)
+    {
+        assert!(
+            read.lines().any(|l| l == format!("stats {feature} ok")),
+            "{feature}: {read}"
+        );
+    }
+
+    // The features are named as the model names its joints and actuators.
+    let info: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dataset.join("meta/info.json")).unwrap())
+            .unwrap();
+    let features = &info["features"];
+    assert_eq!(
+        features["observation.state"]["names"][0],
+        "arm/shoulder_pan"
+    );
+    assert_eq!(features["action"]["names"][6], "arm/gripper/fingers");
+    assert_eq!(info["robot_type"], "digit_world");
+}
+
+#[test]
+fn each_shard_of_a_run_of_episodes_is_a_dataset_of_its_episodes() {
+    let folder = tempfile::tempdir().unwrap();
+    for shard in ["0/2", "1/2"] {
+        let run = yarok(
+            folder.path(),
+            &[
+                "run",
+                "tactile_rig_world",
+                "--behaviour",
+                "collect",
+                "--shard",
+                shard,
+                "--dataset",
+                "presses",
+                "--record",
+                "run.mcap",
+                "--set",
+                "behaviour/out=\"samples\"",
+                "--set",
+                "behaviour/points=2",
+                "--set",
+                "plugins/dataset/fps=100",
+                "--set",
+                "plugins/mcap/image_hz=100.0",
+            ],
+        );
+        succeeded(&run);
+    }
+    // 2 × 2 points at 3 depths: presses 0, 2, … are shard 0's, 1, 3, … shard 1's; each an
+    // episode of its shard's dataset, matched with the episode's own recording.
+    for (index, numbers) in [(0, [0, 2, 4, 6, 8, 10]), (1, [1, 3, 5, 7, 9, 11])] {
+        let dataset = folder.path().join(format!("presses_{index}_of_2"));
+        let recordings: Vec<String> = numbers
+            .iter()
+            .map(|n| {
+                let path = folder.path().join(format!("run_episode_{n:04}.mcap"));
+                path.to_str().unwrap().to_owned()
+            })
+            .collect();
+        let mut args = vec![dataset.to_str().unwrap()];
+        args.extend(recordings.iter().map(String::as_str));
+        let read = peers::run("lerobot_read.py", &args);
+        assert_eq!(totals(&read)[0], 6, "shard {index}: {read}");
+        for episode in 0..6 {
+            let line = peers::field(&read, &format!("episode {episode}"));
+            assert!(line.ends_with("tasks tactile_rig_world"), "{read}");
+        }
+        let key = "observation.images.sensor.image";
+        let (lowest, _, _) = matched(&read, key);
+        assert!(lowest >= 35.0, "shard {index}: {read}");
+    }
+}
+
+#[test]
+fn a_folder_holding_other_files_is_not_overwritten() {
+    let folder = tempfile::tempdir().unwrap();
+    let precious = folder.path().join("notes/thesis.tex");
+    std::fs::create_dir_all(precious.parent().unwrap()).unwrap();
+    std::fs::write(&precious, "chapter 1").unwrap();
+    let run = yarok(folder.path(), &["run", "digit_world", "--dataset", "notes"]);
+    assert!(!run.status.success());
+    let said = String::from_utf8_lossy(&run.stderr);
+    assert!(said.contains("notes holds files but no dataset"), "{said}");
+    assert_eq!(std::fs::read_to_string(&precious).unwrap(), "chapter 1");
+}
+
+#[test]
+fn a_dataset_is_replaced_by_the_next_run_into_its_folder() {
+    let folder = tempfile::tempdir().unwrap();
+    let args = [
+        "run",
+        "tactile_rig_world",
+        "--dataset",
+        "presses",
+        "--set",
+        "behaviour/out=\"samples\"",
+    ];
+    succeeded(&yarok(folder.path(), &args));
+    let stale = folder
+        .path()
+        .join("presses/videos/observation.images.sensor.image/chunk-000/file-999.mp4");
+    std::fs::write(&stale, "from an older run").unwrap();
+    succeeded(&yarok(folder.path(), &args));
+    assert!(!stale.exists(), "the older dataset's files are gone");
+    let read = peers::run(
+        "lerobot_read.py",
+        &[folder.path().join("presses").to_str().unwrap()],
+    );
+    assert_eq!(totals(&read)[0], 1, "{read}");
+}

@@ -1,0 +1,490 @@
+//! [`DatasetRecorder`]: a run as a LeRobot v3 dataset — the joints' positions, the actuators'
+//! commands and the cameras' and tactile sensors' images, frame by frame, episode by episode —
+//! that LeRobot trains on.
+
+mod episode;
+mod meta;
+mod stats;
+mod tables;
+
+use std::path::{Path, PathBuf};
+
+use serde_json::{Value, json};
+use yarok_core::BoxError;
+use yarok_core::component::ProbeImage;
+use yarok_core::runtime::{Episode, Happening, Plugin, World};
+use yarok_mjc::{CameraId, Renderer, SimBackend};
+
+use self::episode::{EpisodeRecording, Frame};
+use self::meta::{Feature, INDEX_FEATURES, Info, stats_json, write_json};
+use self::stats::FeatureStats;
+use self::tables::{DataFiles, EpisodeRow, Widths, write_episodes, write_tasks};
+use super::encoder::H264;
+use super::preset;
+use super::sim_state::SimState;
+
+/// What and how a [`DatasetRecorder`] records (`[plugins.dataset]`).
+#[derive(Debug, Clone, PartialEq, serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct DatasetRecorderSettings {
+    /// The dataset's folder: created, or replaced if it holds a dataset; a folder holding
+    /// anything else is refused.
+    pub path: PathBuf,
+    /// Frames a second of platform time (LeRobot's `fps`).
+    pub fps: u32,
+    /// Cameras of the model to record as videos, by name (`overview`); components' RGB images
+    /// (tactile sensors, cameras) are recorded through their probes anyway.
+    pub cameras: Vec<String>,
+    /// Width and height of the cameras' images (even numbers, as H.264 needs).
+    pub size: [u32; 2],
+    /// Render the cameras with MuJoCo's shadows, reflections and multisampling (default:
+    /// without).
+    pub quality: bool,
+    /// x264's constant rate factor: 0 is lossless; 18, the default, is near it.
+    pub crf: u32,
+    /// What `info.json` names the robot (default: the world's tag).
+    pub robot_type: Option<String>,
+}
+
+impl Default for DatasetRecorderSettings {
+    fn default() -> Self {
+        Self {
+            path: PathBuf::from("dataset"),
+            fps: 30,
+            cameras: Vec::new(),
+            size: [640, 480],
+            quality: false,
+            crf: 18,
+            robot_type: None,
+        }
+    }
+}
+
+/// Frames from one keyframe to the next: LeRobot's default, so that training reads any frame
+/// quickly.
+const KEYFRAME_INTERVAL: u32 = 2;
+
+/// Where a video feature's images come from.
+#[derive(Debug, Clone, Copy)]
+enum Source {
+    /// The world's probe of this index.
+    Probe(usize),
+    /// A camera of the model, rendered.
+    Camera(CameraId),
+}
+
+/// Records a run as a [LeRobot](https://github.com/huggingface/lerobot) v3 dataset, as
+/// LeRobot's own code lays it out: `meta/info.json` (features, `fps`, totals),
+/// `meta/stats.json`, `meta/tasks.parquet`, `meta/episodes/chunk-000/file-000.parquet` (each
+/// episode's frames, files, tasks and statistics), `data/chunk-000/file-000.parquet` (the
+/// frames) and `videos/{key}/chunk-000/file-{episode}.mp4`.
+///
+/// Every frame, `fps` times a second of platform time, holds:
+/// - `observation.state`: every hinge's and slide's position (a gripper's fingers among them),
+///   named as in the model;
+/// - `action`: every actuator's control input, as the components set it from the behaviour's
+///   commands (a position servo's target, a motor's torque), named as in the model;
+/// - `observation.images.{probe}` for every RGB probe (`observation.images.arm.gripper.left_digit.image`:
+///   a tactile sensor's image) and `observation.images.{camera}` for each camera asked for:
+///   H.264 MP4 videos (`yuv420p`, a keyframe every 2 frames, `crf` as set), through `ffmpeg`;
+/// - `timestamp` (`frame_index / fps`), `frame_index`, `episode_index`, `index` and
+///   `task_index`: the task the behaviour last set ([`Pl::set_task`](yarok_core::runtime::Pl::set_task);
+///   before any, the world's tag).
+///
+/// Frame `i` of an episode is taken at the first tick at or after `i / fps` from the episode's
+/// start. Each episode a behaviour begins ([`Pl::begin_episode`](yarok_core::runtime::Pl::begin_episode))
+/// is an episode of the dataset, numbered from 0 in the order they ran; what happens outside
+/// them is not recorded. A run that begins none is one episode. Statistics (`min`, `max`,
+/// `mean`, `std`, `count`, quantiles `q01` … `q99`) are exact: of every frame's numbers and every
+/// pixel (colours from 0 to 1). Depth images are not recorded.
+///
+/// A sharded run (`[platform] shard = "1/3"`) writes its share as a dataset of its own beside
+/// `path` (`dataset_1_of_3`); LeRobot's `aggregate_datasets` merges the shards' datasets into
+/// one (see the README).
+///
+/// Registered by `yarok::platform()` as `dataset`, with the feature `dataset`:
+///
+/// ```toml
+/// [plugins.dataset]
+/// path = "out/pick_and_place"
+/// fps = 30
+/// cameras = ["overview"]
+/// ```
+#[derive(Debug)]
+pub struct DatasetRecorder {
+    settings: DatasetRecorderSettings,
+    /// The dataset's folder (the shard's).
+    root: PathBuf,
+    robot_type: String,
+    sim: Option<SimState>,
+    renderer: Option<Renderer>,
+    widths: Widths,
+    /// Every feature, in frame order, and where each video feature's images come from.
+    features: Vec<(String, Feature)>,
+    videos: Vec<(String, H264, Source)>,
+    data: Option<DataFiles>,
+    /// The dataset's tasks, in the order they were first set, and the one frames are of now.
+    tasks: Vec<String>,
+    task: Option<usize>,
+    episodes: Vec<EpisodeRow>,
+    stats: Vec<(String, FeatureStats)>,
+    frames: u64,
+    /// The episode being taken, and when it began (`None`: the run's start, for a run that
+    /// begins no episode of its own).
+    recording: Option<(EpisodeRecording, Option<Episode>)>,
+}
+
+impl DatasetRecorder {
+    /// A recorder with these settings; the dataset is begun when the run starts.
+    ///
+    /// # Errors
+    ///
+    /// When `fps` is 0, or the size is not even and positive.
+    pub fn new(settings: DatasetRecorderSettings) -> Result<Self, BoxError> {
+        if settings.fps == 0 {
+            return Err("`fps` must be at least 1".into());
+        }
+        if settings.size.iter().any(|s| *s == 0 || s % 2 == 1) {
+            return Err(format!("`size` {:?} must be even numbers above 0", settings.size).into());
+        }
+        Ok(Self {
+            root: settings.path.clone(),
+            settings,
+            robot_type: String::new(),
+            sim: None,
+            renderer: None,
+            widths: Widths {
+                state: 0,
+                action: 0,
+            },
+            features: Vec::new(),
+            videos: Vec::new(),
+            data: None,
+            tasks: Vec::new(),
+            task: None,
+            episodes: Vec::new(),
+            stats: Vec::new(),
+            frames: 0,
+            recording: None,
+        })
+    }
+
+    /// The H.264 video of `width` × `height` images, as the settings encode it.
+    fn video(&self, key: &str, width: u32, height: u32) -> Result<H264, BoxError> {
+        if width % 2 == 1 || height % 2 == 1 {
+            return Err(format!(
+                "{key}'s images are {width}×{height}: H.264 in yuv420p needs even sizes"
+            )
+            .into());
+        }
+        Ok(H264 {
+            size: [width, height],
+            fps: f64::from(self.settings.fps),
+            keyframe_interval: Some(KEYFRAME_INTERVAL),
+            crf: Some(self.settings.crf),
+        })
+    }
+
+    /// Finds the features of `sim`'s world: its joints, actuators, RGB probes and the cameras
+    /// asked for.
+    fn find_features(&mut self, world: &World<'_>, sim: &SimBackend) -> Result<(), BoxError> {
+        let model = sim.model();
+        let state = SimState::of(sim);
+        let actions: Vec<String> = model
+            .actuators()
+            .enumerate()
+            .map(|(index, actuator)| {
+                model
+                    .actuator_name(actuator)
+                    .unwrap_or_else(|| format!("actuator{index}"))
+            })
+            .collect();
+        self.widths = Widths {
+            state: state.joint_names().len(),
+            action: actions.len(),
+        };
+        if self.widths.state > 0 {
+            let feature = Feature::vector(state.joint_names());
+            self.features.push(("observation.state".into(), feature));
+        }
+        if !actions.is_empty() {
+            self.features
+                .push(("action".into(), Feature::vector(&actions)));
+        }
+        self.sim = Some(state);
+        for (index, probe) in world.probes().iter().enumerate() {
+            if let ProbeImage::Rgb { width, height, .. } = probe.read()? {
+                let key = image_key(&probe.path());
+                let video = self.video(&key, width, height)?;
+                self.videos.push((key, video, Source::Probe(index)));
+            }
+        }
+        if !self.settings.cameras.is_empty() {
+            let [width, height] = self.settings.size;
+            self.renderer = Some(
+                Renderer::builder()
+                    .size(width, height)
+                    .preset(preset(self.settings.quality))
+                    .build(model)?,
+            );
+        }
+        for name in &self.settings.cameras {
+            let camera = model
+                .camera(name)
+                .map_err(|e| format!("camera {name:?} to record: {e}"))?;
+            let [width, height] = self.settings.size;
+            let key = image_key(name);
+            let video = self.video(&key, width, height)?;
+            self.videos.push((key, video, Source::Camera(camera)));
+        }
+        let encoding = json!({"video.g": KEYFRAME_INTERVAL, "video.crf": self.settings.crf});
+        for (key, video, _) in &self.videos {
+            let [width, height] = video.size;
+            let feature = Feature::video(width, height, self.settings.fps, &encoding);
+            self.features.push((key.clone(), feature));
+        }
+        for (name, dtype) in INDEX_FEATURES {
+            self.features.push((name.into(), Feature::scalar(dtype)));
+        }
+        Ok(())
+    }
+
+    /// The index of `task` among the dataset's tasks, added if new.
+    fn task_index(&mut self, task: &str) -> usize {
+        match self.tasks.iter().position(|known| known == task) {
+            Some(index) => index,
+            None => {
+                self.tasks.push(task.to_owned());
+                self.tasks.len() - 1
+            }
+        }
+    }
+
+    /// Begins the dataset's next episode.
+    fn begin(&mut self, episode: Option<Episode>) -> Result<(), BoxError> {
+        let videos: Vec<(String, H264)> = self
+            .videos
+            .iter()
+            .map(|(key, video, _)| (key.clone(), *video))
+            .collect();
+        let recording = EpisodeRecording::begin(
+            &self.root,
+            self.episodes.len() as u64,
+            self.frames,
+            self.settings.fps,
+            self.widths,
+            &videos,
+        )?;
+        self.recording = Some((recording, episode));
+        Ok(())
+    }
+
+    /// Writes the episode being taken, if it has a frame.
+    fn finish(&mut self) -> Result<(), BoxError> {
+        let Some((recording, _)) = self.recording.take() else {
+            return Ok(());
+        };
+        if recording.len() == 0 {
+            recording.abandon();
+            return Ok(());
+        }
+        let data = self.data.as_mut().ok_or("the dataset has not been begun")?;
+        let (row, stats) = recording.finish(data, &self.tasks)?;
+        self.frames += row.length;
+        self.episodes.push(row);
+        if self.stats.is_empty() {
+            self.stats = stats;
+        } else {
+            for ((_, mine), (_, theirs)) in self.stats.iter_mut().zip(&stats) {
+                mine.merge(theirs);
+            }
+        }
+        Ok(())
+    }
+
+    /// Follows the tasks set and the episodes begun and ended since the last step.
+    fn follow(&mut self, world: &World<'_>) -> Result<(), BoxError> {
+        for happening in world.happenings().iter() {
+            match happening {
+                Happening::TaskSet(task) => self.task = Some(self.task_index(task)),
+                Happening::EpisodeBegan(episode) => {
+                    match self.recording.take() {
+                        // The run is not one episode: what came before this one is not kept.
+                        Some((whole_run, None)) => whole_run.abandon(),
+                        ended => {
+                            self.recording = ended;
+                            self.finish()?;
+                        }
+                    }
+                    self.begin(Some(*episode))?;
+                }
+                Happening::EpisodeEnded(_) => self.finish()?,
+                Happening::Logged(_) => {}
+            }
+        }
+        Ok(())
+    }
+
+    /// The frame of the world now.
+    fn take_frame(&mut self, world: &World<'_>, sim: &SimBackend) -> Result<(), BoxError> {
+        let (positions, _) = self
+            .sim
+            .as_ref()
+            .map(|state| state.joint_values(sim))
+            .unwrap_or_default();
+        let action = sim.data().ctrl().to_vec();
+        let mut images = Vec::with_capacity(self.videos.len());
+        for (key, _, source) in &self.videos {
+            let image = match *source {
+                Source::Probe(index) => match world.probes()[index].read()? {
+                    ProbeImage::Rgb { pixels, .. } => pixels,
+                    _ => return Err(format!("{key}'s probe no longer gives RGB images").into()),
+                },
+                Source::Camera(camera) => {
+                    let renderer = self.renderer.as_mut().ok_or("no renderer")?;
+                    renderer.render_rgb(&mut sim.data_mut(), camera)?.into_raw()
+                }
+            };
+            images.push(image);
+        }
+        let task = match self.task {
+            Some(task) => task,
+            None => {
+                let world_tag = world.composition().instances[0].tag.clone();
+                let task = self.task_index(&world_tag);
+                self.task = Some(task);
+                task
+            }
+        };
+        let Some((recording, _)) = &mut self.recording else {
+            return Ok(());
+        };
+        recording.add(Frame {
+            state: &positions,
+            action: &action,
+            task,
+            images,
+        })
+    }
+
+    /// Writes the dataset's tables and `meta` files.
+    fn write_meta(&self) -> Result<(), BoxError> {
+        write_tasks(&self.root, &self.tasks)?;
+        write_episodes(&self.root, &self.episodes)?;
+        let info = Info::new(
+            &self.robot_type,
+            self.settings.fps,
+            &self.features,
+            self.episodes.len() as u64,
+            self.frames,
+            self.tasks.len() as u64,
+        );
+        write_json(&self.root.join("meta/info.json"), &info)?;
+        let mut stats = serde_json::Map::new();
+        for (name, feature) in &self.stats {
+            let (summary, image) = feature.summary();
+            stats.insert(name.clone(), stats_json(&summary, image));
+        }
+        write_json(&self.root.join("meta/stats.json"), &Value::Object(stats))
+    }
+}
+
+/// The key of a video feature of images from `path` (a probe's `/arm/left/image`, a camera's
+/// `overview`): `observation.images.arm.left.image`.
+fn image_key(path: &str) -> String {
+    format!(
+        "observation.images.{}",
+        path.trim_start_matches('/').replace('/', ".")
+    )
+}
+
+/// Makes `root` ready for a new dataset: created, or emptied of the dataset it holds.
+fn prepare_folder(root: &Path) -> Result<(), BoxError> {
+    let holds_dataset = root.join("meta/info.json").is_file();
+    if holds_dataset {
+        for part in ["meta", "data", "videos"] {
+            let folder = root.join(part);
+            if folder.exists() {
+                std::fs::remove_dir_all(&folder)
+                    .map_err(|e| format!("cannot replace {}: {e}", folder.display()))?;
+            }
+        }
+    } else if std::fs::read_dir(root).is_ok_and(|mut entries| entries.next().is_some()) {
+        return Err(format!(
+            "{} holds files but no dataset (no meta/info.json): give a new or empty folder",
+            root.display()
+        )
+        .into());
+    }
+    std::fs::create_dir_all(root)
+        .map_err(|e| format!("cannot create {}: {e}", root.display()).into())
+}
+
+impl Plugin for DatasetRecorder {
+    fn writes(&self) -> Vec<PathBuf> {
+        vec![self.settings.path.clone()]
+    }
+
+    fn name(&self) -> String {
+        format!("dataset ({})", self.settings.path.display())
+    }
+
+    fn start(&mut self, world: &World<'_>) -> Result<(), BoxError> {
+        let sim = world.backend::<SimBackend>().ok_or_else(|| {
+            format!(
+                "records datasets in `sim`, not in `{}`",
+                world.pl().environment()
+            )
+        })?;
+        let shard = world.pl().shard();
+        if !shard.is_whole() {
+            let mut name = self
+                .settings
+                .path
+                .file_name()
+                .unwrap_or_default()
+                .to_owned();
+            name.push(format!("_{}_of_{}", shard.index, shard.count));
+            self.root = self.settings.path.with_file_name(name);
+        }
+        self.robot_type = match &self.settings.robot_type {
+            Some(robot_type) => robot_type.clone(),
+            None => world.composition().instances[0].tag.clone(),
+        };
+        self.find_features(world, sim)?;
+        prepare_folder(&self.root)?;
+        self.data = Some(DataFiles::new(&self.root, self.widths));
+        self.begin(None)
+    }
+
+    fn step(&mut self, world: &World<'_>) -> Result<(), BoxError> {
+        self.follow(world)?;
+        let (Some(sim), Some((recording, episode))) =
+            (world.backend::<SimBackend>(), &self.recording)
+        else {
+            return Ok(());
+        };
+        // The platform steps plugins before it counts the tick and advances its clock.
+        let tick = world.pl().ticks() + 1;
+        let time = match episode {
+            Some(episode) => episode.time_at(tick, world.pl().timestep()),
+            None => sim.data().time(),
+        };
+        if time + 1e-9 >= recording.next_frame_time() {
+            self.take_frame(world, sim)?;
+        }
+        Ok(())
+    }
+
+    fn end(&mut self, world: &World<'_>) -> Result<(), BoxError> {
+        if self.data.is_none() {
+            return Ok(());
+        }
+        self.follow(world)?;
+        self.finish()?;
+        if let Some(data) = &mut self.data {
+            data.close()?;
+        }
+        self.write_meta()
+    }
+}
