@@ -1,12 +1,14 @@
 //! What watching and recording cost, in PickAndPlaceWorld while the arm stacks blocks: ticks per
 //! second without a plugin, with the MCAP recorder in its Foxglove and its ROS 2 profile (joint
 //! states and poses every 10 ticks; then also the overview camera at 320×240, 10 images a
-//! second), measured side by side; and, with
+//! second) and with the LeRobot dataset writer (joint positions and actuator commands 30 frames
+//! a second; then also the overview camera at 320×240 as an H.264 video), measured side by side;
+//! and, with
 //! the viewer's window (800×600, under Xvfb when no display is set) pacing the run to the wall
 //! clock, the share of wall time the viewer spends drawing.
 //!
 //! ```text
-//! cargo bench --features viewer --bench see_and_record
+//! cargo bench --features viewer,dataset --bench see_and_record
 //! ```
 
 use std::cell::Cell;
@@ -15,7 +17,10 @@ use std::rc::Rc;
 use std::time::{Duration, Instant};
 
 use yarok::components::demos;
-use yarok::components::plugins::{McapRecorder, McapRecorderSettings, Viewer, ViewerSettings};
+use yarok::components::plugins::{
+    DatasetRecorder, DatasetRecorderSettings, McapRecorder, McapRecorderSettings, Viewer,
+    ViewerSettings,
+};
 use yarok::components::worlds::PickAndPlaceWorld;
 use yarok::{BoxError, Plugin, World};
 
@@ -120,19 +125,30 @@ fn recorder(folder: &std::path::Path, profile: &str, cameras: Vec<String>) -> Bo
     Box::new(McapRecorder::new(settings).expect("valid settings"))
 }
 
+fn dataset(folder: &std::path::Path, cameras: Vec<String>) -> Box<dyn Plugin> {
+    let settings = DatasetRecorderSettings {
+        path: folder.join("dataset"),
+        cameras,
+        size: [320, 240],
+        ..DatasetRecorderSettings::default()
+    };
+    Box::new(DatasetRecorder::new(settings).expect("valid settings"))
+}
+
 fn main() {
     let mut xvfb = display();
     let folder = tempfile::tempdir().unwrap();
     let ticks = run(RUN, None);
-    let [bare, foxglove, ros2, filmed] = mean_times(|variant| match variant {
-        0 => run(RUN, None),
-        1 => run(RUN, Some(recorder(folder.path(), "foxglove", Vec::new()))),
-        2 => run(RUN, Some(recorder(folder.path(), "ros2", Vec::new()))),
-        _ => run(
-            RUN,
-            Some(recorder(folder.path(), "foxglove", vec!["overview".into()])),
-        ),
-    });
+    let overview = || vec!["overview".to_owned()];
+    let [bare, foxglove, ros2, filmed, lerobot, lerobot_filmed] =
+        mean_times(|variant| match variant {
+            0 => run(RUN, None),
+            1 => run(RUN, Some(recorder(folder.path(), "foxglove", Vec::new()))),
+            2 => run(RUN, Some(recorder(folder.path(), "ros2", Vec::new()))),
+            3 => run(RUN, Some(recorder(folder.path(), "foxglove", overview()))),
+            4 => run(RUN, Some(dataset(folder.path(), Vec::new()))),
+            _ => run(RUN, Some(dataset(folder.path(), overview()))),
+        });
     let rate = |time: Duration| ticks as f64 / time.as_secs_f64();
     println!("PickAndPlaceWorld stacking, {RUN} s of platform time ({ticks} ticks), side by side:");
     println!(
@@ -143,6 +159,8 @@ fn main() {
         ("MCAP recorder, foxglove (joints, poses)   ", foxglove),
         ("MCAP recorder, ros2 (joints, poses, clock)", ros2),
         ("MCAP recorder, foxglove + camera 320×240  ", filmed),
+        ("dataset writer (joints, actions, 30 fps)  ", lerobot),
+        ("dataset writer + camera 320×240 video     ", lerobot_filmed),
     ] {
         println!(
             "  {name} {:>8.0} ticks/s  ({:.1} % of the bare rate)",
