@@ -1,9 +1,10 @@
 //! `yarok run … --dataset DIR` (feature `dataset`) read back as LeRobot reads a v3 dataset, in a
 //! process of its own (`scripts/peers/lerobot_read.py`: pyarrow, pandas, PyAV and numpy, written
 //! from LeRobot's code): every episode's rows and indices, timestamps at the declared fps, every
-//! video frame decoded and equal (to within H.264's loss) to the image an MCAP recording of the
-//! same run holds of the same tick, and every statistic equal to the one recomputed from the
-//! data and the decoded frames.
+//! frame's joint positions bit for bit those an MCAP recording of the same run holds of the same
+//! tick, every video frame decoded and equal (to within H.264's loss) to the image the recording
+//! holds of that tick, and every statistic equal to the one recomputed from the data and the
+//! decoded frames.
 #![cfg(feature = "dataset")]
 
 #[path = "../yarok-hw/tests/support/peers.rs"]
@@ -65,6 +66,8 @@ fn a_digit_world_run_is_a_lerobot_dataset_whose_videos_are_the_recorded_images()
             "--set",
             "plugins/mcap/image_hz=30.0",
             "--set",
+            "plugins/mcap/every=1",
+            "--set",
             "plugins/mcap/cameras=[\"overview\"]",
             "--set",
             "plugins/mcap/size=[320, 240]",
@@ -89,6 +92,11 @@ fn a_digit_world_run_is_a_lerobot_dataset_whose_videos_are_the_recorded_images()
     assert_eq!(
         peers::field(&read, "episode 0"),
         format!("length {frames} tasks pick up the block and put it on the target"),
+    );
+    // Every frame's joint positions are, bit for bit, those recorded at its tick.
+    assert_eq!(
+        peers::field(&read, "states"),
+        format!("{frames} equal to the recording's")
     );
     let keys = [
         "observation.images.arm.gripper.left_digit.image",

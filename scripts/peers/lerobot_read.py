@@ -11,6 +11,9 @@ Prints, a line each:
   `episodes N frames N tasks N fps N`;
   `episode I length N tasks TASK|TASK`;
   `video KEY frames N codec C pix_fmt P` per video feature, over every episode;
+  `states N equal to the recording's`, with MCAP files: the frames whose `observation.state`
+  equals, bit for bit as 32-bit floats, the joint positions recorded at their tick (where the
+  recording has joint states at that tick);
   `matched KEY frames N min_psnr DB own DB next DB` per video feature, with MCAP files: the
   lowest PSNR of a frame against its recorded image, and the mean PSNR of the frames against
   their own recorded image and against the next one (a frame one off would score the second);
@@ -157,6 +160,40 @@ def recorded_images(mcap_path, key):
     return images
 
 
+def recorded_states(mcap_path, names):
+    """Joint positions a yarok MCAP recording holds (`/joint_states`), by log time, in `names`'
+    order."""
+    from mcap.reader import make_reader
+    states, image_times = {}, []
+    with open(mcap_path, "rb") as file:
+        for _, channel, message in make_reader(file).iter_messages():
+            if channel.topic == "/joint_states":
+                joints = {j["name"]: j["position"] for j in json.loads(message.data)["joints"]}
+                states[message.log_time] = [joints[name] for name in names]
+            elif channel.topic.endswith("/image") or channel.topic.startswith("/cameras/"):
+                # The ticks images were taken at: the dataset's frames'.
+                image_times.append(message.log_time)
+    return states, sorted(set(image_times))
+
+
+def check_states(mcap_path, info, columns, episode):
+    """Every frame's `observation.state` against the positions recorded at its tick, bit for bit
+    as 32-bit floats; the number of frames checked."""
+    names = info["features"]["observation.state"]["names"]
+    states, image_times = recorded_states(mcap_path, names)
+    rows = columns["observation.state"][episode["dataset_from_index"]:episode["dataset_to_index"]]
+    expect(len(image_times) == len(rows), f"{mcap_path}: {len(image_times)} image times for {len(rows)} frames")
+    checked = 0
+    for number, (time, row) in enumerate(zip(image_times, rows)):
+        if time not in states:
+            continue
+        want = np.asarray(states[time], dtype=np.float32)
+        expect(np.array_equal(row, want), f"episode {episode['episode_index']}, frame {number}: "
+               f"observation.state {row} is not the recorded {want}")
+        checked += 1
+    return checked
+
+
 def psnr(a, b):
     mse = np.mean((a.astype(np.float64) - b.astype(np.float64)) ** 2)
     return 100.0 if mse == 0 else min(100.0, 10 * np.log10(255.0**2 / mse))
@@ -210,6 +247,8 @@ def main():
         print(f"episode {episode['episode_index']} length {episode['length']} tasks {'|'.join(used)}")
     if mcaps:
         expect(len(mcaps) == len(episodes), f"{len(mcaps)} recordings for {len(episodes)} episodes")
+        checked = sum(check_states(mcap, info, columns, episode) for mcap, episode in zip(mcaps, episodes))
+        print(f"states {checked} equal to the recording's")
     stats_json = json.loads((root / "meta/stats.json").read_text())
     all_pixels = {}
     for name, feature in info["features"].items():
