@@ -2,7 +2,8 @@
 //! third-party X client (python-xlib, a separate process) as a user would: the viewer's window
 //! shows the scene (the table's and the arm's colours), the space bar pauses it (platform time
 //! stops) and resumes it, a drag orbits the camera and Tab switches to the model's camera, and
-//! closing the window ends the run cleanly; the inspector's window
+//! closing the window ends the run cleanly; kept open, the window shows the world as the
+//! behaviour left it until it is closed; the inspector's window
 //! shows the DIGITs' images; without an X server the viewer fails saying so, or runs on when
 //! asked to.
 #![cfg(feature = "viewer")]
@@ -193,6 +194,47 @@ fn the_inspector_shows_the_probes_images() {
     }
     x.window("yarok inspector", &["close"]);
     let (status, stderr) = finished(run, Duration::from_secs(30));
+    assert!(status.success(), "{status}: {stderr}");
+}
+
+#[test]
+fn kept_open_the_viewer_shows_the_ended_world_until_it_is_closed() {
+    let x = Xvfb::start();
+    let mut run = x.yarok(&[
+        "run",
+        "empty_world",
+        "--viewer",
+        "--set",
+        "plugins/viewer/keep_open=true",
+        "--set",
+        "behaviour/seconds=0.5",
+    ]);
+    x.window("yarok - t", &["wait", "60"]);
+    let started = Instant::now();
+    let title = loop {
+        let title = x.window("yarok - t", &["title"]);
+        if title.contains("ended") {
+            break title;
+        }
+        assert!(started.elapsed() < Duration::from_secs(60), "{title}");
+        std::thread::sleep(Duration::from_millis(100));
+    };
+    let (ended_at, _) = title_time(&title);
+    assert!((0.49..0.52).contains(&ended_at), "{title}");
+    // Once the run has ended, the keys that would change it do nothing; the window stays.
+    x.window("yarok - t", &["key", "space"]);
+    x.window("yarok - t", &["key", "BackSpace"]);
+    std::thread::sleep(Duration::from_secs(1));
+    assert!(
+        run.try_wait().unwrap().is_none(),
+        "the run waits for the window"
+    );
+    let title = x.window("yarok - t", &["title"]);
+    assert_eq!(title_time(&title), (ended_at, false), "{title}");
+    assert!(title.contains("ended"), "{title}");
+
+    x.window("yarok - t", &["close"]);
+    let (status, stderr) = finished(run, Duration::from_secs(10));
     assert!(status.success(), "{status}: {stderr}");
 }
 

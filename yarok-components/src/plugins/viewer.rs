@@ -35,6 +35,9 @@ pub struct ViewerSettings {
     pub paused: bool,
     /// Without an X server, run on without a window (paced all the same) instead of failing.
     pub headless: bool,
+    /// Keep the window open once the behaviours have ended, the world as they left it (the
+    /// camera still moves), until it is closed or Ctrl-C.
+    pub keep_open: bool,
 }
 
 impl Default for ViewerSettings {
@@ -45,6 +48,7 @@ impl Default for ViewerSettings {
             speed: 1.0,
             paused: false,
             headless: false,
+            keep_open: false,
         }
     }
 }
@@ -55,7 +59,8 @@ impl Default for ViewerSettings {
 /// back to its start state ([`World::restart`]), change its speed, switch between the free
 /// camera and the model's cameras and show contacts, forces and frames (`H` lists them).
 /// Closing the window ends the run. The window's title says the platform time and whether it is
-/// paused.
+/// paused. With `keep_open`, the window stays open once the behaviours have ended (its title
+/// says `ended`), showing the world as they left it, until it is closed or Ctrl-C.
 ///
 /// Registered by `yarok::platform()` (feature `viewer`) as `viewer`; `yarok run WORLD
 /// --viewer` adds it.
@@ -74,6 +79,8 @@ pub struct Viewer {
     /// The button held and where the pointer was.
     drag: Option<(Button, f64, f64)>,
     closed: bool,
+    /// The run has ended: the window shows the world as it was left.
+    ended: bool,
     /// Time spent drawing, and frames drawn.
     drawing: Duration,
     frames: u64,
@@ -103,6 +110,7 @@ impl Viewer {
             last_frame: None,
             drag: None,
             closed: false,
+            ended: false,
             drawing: Duration::ZERO,
             frames: 0,
         })
@@ -132,6 +140,9 @@ impl Viewer {
         for event in view.events() {
             match event {
                 WindowEvent::Close => self.closed = true,
+                WindowEvent::Key(
+                    Key::Space | Key::Right | Key::Backspace | Key::Char('+' | '=' | '-'),
+                ) if self.ended => {}
                 WindowEvent::Key(key) => match key {
                     Key::Space => {
                         self.paused = !self.paused;
@@ -199,7 +210,13 @@ impl Viewer {
             return Ok(());
         }
         self.last_frame = Some(now);
-        let state = if self.paused { "  paused" } else { "" };
+        let state = if self.ended {
+            "  ended"
+        } else if self.paused {
+            "  paused"
+        } else {
+            ""
+        };
         let status = format!(
             "{time:.2} s\nx{}{state}\n{}",
             self.speed,
@@ -299,6 +316,21 @@ impl Plugin for Viewer {
         self.pace(world, sim, time)?;
         if self.closed {
             world.pl().stop();
+        }
+        Ok(())
+    }
+
+    fn end(&mut self, world: &World<'_>) -> Result<(), BoxError> {
+        if !self.settings.keep_open || self.view.is_none() {
+            return Ok(());
+        }
+        let sim = Self::sim(world)?;
+        let time = sim.data().time();
+        self.ended = true;
+        while !self.closed && !world.pl().stop_requested() {
+            self.handle_events(world)?;
+            self.draw(sim, time, Duration::ZERO)?;
+            std::thread::sleep(PAUSED_NAP);
         }
         Ok(())
     }

@@ -260,4 +260,11 @@ impl Pl {
     pub fn stop(&self) {
         self.inner.stop.store(true, Ordering::Relaxed);
     }
+
+    /// Whether the platform was asked to stop: by [`Pl::stop`], its
+    /// [stop flag](super::Platform::stop_flag) or a signal (Ctrl-C). A plugin that waits at the
+    /// run's end (a viewer kept open) stops waiting then.
+    pub fn stop_requested(&self) -> bool {
+        self.inner.stop.load(Ordering::Relaxed)
+    }
 }
