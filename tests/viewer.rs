@@ -202,7 +202,9 @@ fn kept_open_the_viewer_shows_the_ended_world_until_it_is_closed() {
     let x = Xvfb::start();
     let mut run = x.yarok(&[
         "run",
-        "empty_world",
+        "digit_world",
+        "--behaviour",
+        "idle",
         "--viewer",
         "--set",
         "plugins/viewer/keep_open=true",
@@ -232,6 +234,29 @@ fn kept_open_the_viewer_shows_the_ended_world_until_it_is_closed() {
     let title = x.window("yarok - t", &["title"]);
     assert_eq!(title_time(&title), (ended_at, false), "{title}");
     assert!(title.contains("ended"), "{title}");
+    // The camera still moves, and S shows the cameras (the DIGITs' on the fingers among them)
+    // with their frames.
+    let folder = tempfile::tempdir().unwrap();
+    let shoot = |name: &str| {
+        std::thread::sleep(Duration::from_millis(300));
+        let path = folder.path().join(name);
+        x.window("yarok - t", &["screenshot", path.to_str().unwrap()]);
+        image::open(&path).unwrap().to_rgb8()
+    };
+    let still = shoot("ended.png");
+    x.window("yarok - t", &["key", "s"]);
+    let cameras = shoot("cameras.png");
+    let changed = still
+        .pixels()
+        .zip(cameras.pixels())
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!(changed > 200, "{changed} pixels changed by S");
+    x.window("yarok - t", &["drag", "1", "400", "300", "550", "300"]);
+    assert!(
+        shoot("orbited.png") != cameras,
+        "the drag orbits the camera"
+    );
 
     x.window("yarok - t", &["close"]);
     let (status, stderr) = finished(run, Duration::from_secs(10));

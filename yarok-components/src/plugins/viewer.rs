@@ -17,8 +17,8 @@ const BEHIND_FRAME_RATE: f64 = 4.0;
 /// How long a paused viewer sleeps between looks at its window.
 const PAUSED_NAP: Duration = Duration::from_millis(10);
 
-const HELP: &str = "Space\nRight\nBackspace\n+ / -\nTab\nC / F / T\nH or F1\nLeft drag\nRight drag\nWheel, middle drag\nClose the window";
-const HELP_WHAT: &str = "pause, resume\nstep (paused)\nback to the start\nfaster, slower\nnext camera\ncontacts, forces, frames\nthis help\norbit\npan\nzoom\nend the run";
+const HELP: &str = "Space\nRight\nBackspace\n+ / -\nTab\nC / F / T\nS\nH or F1\nLeft drag\nRight drag\nWheel, middle drag\nClose the window";
+const HELP_WHAT: &str = "pause, resume\nstep (paused)\nback to the start\nfaster, slower\nnext camera\ncontacts, forces, frames\ncameras and sensors, with frames\nthis help\norbit\npan\nzoom\nend the run";
 
 /// How a [`Viewer`] looks (`[plugins.viewer]`).
 #[derive(Debug, Clone, PartialEq, serde::Deserialize)]
@@ -57,7 +57,8 @@ impl Default for ViewerSettings {
 /// 60 times a second and paces the simulation to the wall clock (times `speed`), never slower;
 /// the mouse orbits, pans and zooms the free camera; keys pause, resume, step and put the world
 /// back to its start state ([`World::restart`]), change its speed, switch between the free
-/// camera and the model's cameras and show contacts, forces and frames (`H` lists them).
+/// camera and the model's cameras and show contacts, forces, frames, and the cameras and
+/// tactile sensors' cameras with their frames (`H` lists them).
 /// Closing the window ends the run. The window's title says the platform time and whether it is
 /// paused. With `keep_open`, the window stays open once the behaviours have ended (its title
 /// says `ended`), showing the world as they left it, until it is closed or Ctrl-C.
@@ -167,6 +168,9 @@ impl Viewer {
                     }
                     Key::Char('t') => {
                         view.toggle(Visual::Frames);
+                    }
+                    Key::Char('s') => {
+                        view.toggle(Visual::Cameras);
                     }
                     Key::Char('h') | Key::F1 => self.help = !self.help,
                     _ => {}

@@ -19,6 +19,8 @@ pub enum Visual {
     Forces,
     /// Every body's frame.
     Frames,
+    /// Every camera (a tactile sensor's among them), with its frame.
+    Cameras,
 }
 
 /// A corner of the view, for [`View::draw`]'s overlays.
@@ -251,18 +253,23 @@ impl View {
         let flag = match visual {
             Visual::Contacts => &mut self.option.flags[sys::mjVIS_CONTACTPOINT as usize],
             Visual::Forces => &mut self.option.flags[sys::mjVIS_CONTACTFORCE as usize],
-            Visual::Frames => {
-                let shown = self.option.frame == sys::mjFRAME_BODY as i32;
-                self.option.frame = if shown {
-                    sys::mjFRAME_NONE as i32
-                } else {
-                    sys::mjFRAME_BODY as i32
-                };
-                return !shown;
+            Visual::Frames => return self.toggle_frames(sys::mjFRAME_BODY),
+            Visual::Cameras => {
+                let shown = self.toggle_frames(sys::mjFRAME_CAMERA);
+                self.option.flags[sys::mjVIS_CAMERA as usize] = u8::from(shown);
+                return shown;
             }
         };
         *flag = u8::from(*flag == 0);
         *flag != 0
+    }
+
+    /// Shows the frames of `kind` (bodies', cameras') instead of any other, or hides them if
+    /// shown; whether they are shown now.
+    fn toggle_frames(&mut self, kind: sys::mjtFrame_) -> bool {
+        let shown = self.option.frame == kind as i32;
+        self.option.frame = if shown { sys::mjFRAME_NONE } else { kind } as i32;
+        !shown
     }
 }
 
