@@ -2,7 +2,8 @@
 //! third-party X client (python-xlib, a separate process) as a user would: the viewer's window
 //! shows the scene (the table's and the arm's colours), the space bar pauses it (platform time
 //! stops) and resumes it, a drag orbits the camera and Tab switches to the model's camera, and
-//! closing the window ends the run cleanly; kept open, the window shows the world as the
+//! closing the window ends the run cleanly; Backspace puts the world back under a behaviour in
+//! motion, which ends saying its motion was stopped; kept open, the window shows the world as the
 //! behaviour left it until it is closed; the inspector's window
 //! shows the DIGITs' images; without an X server the viewer fails saying so, or runs on when
 //! asked to.
@@ -195,6 +196,29 @@ fn the_inspector_shows_the_probes_images() {
     x.window("yarok inspector", &["close"]);
     let (status, stderr) = finished(run, Duration::from_secs(30));
     assert!(status.success(), "{status}: {stderr}");
+}
+
+#[test]
+fn backspace_puts_the_world_back_under_a_behaviour_in_motion_which_ends_saying_so() {
+    let x = Xvfb::start();
+    let run = x.yarok(&["run", "pick_and_place_world", "--viewer"]);
+    x.window("yarok - t", &["wait", "60"]);
+    // 1.5 s in, the arm is on its way to the first block.
+    let started = Instant::now();
+    loop {
+        let (time, _) = title_time(&x.window("yarok - t", &["title"]));
+        if time >= 1.5 {
+            break;
+        }
+        assert!(started.elapsed() < Duration::from_secs(60), "at {time} s");
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    x.window("yarok - t", &["key", "BackSpace"]);
+    // As the README says: the behaviour is not restarted; its motion is stopped and the run
+    // ends with that error.
+    let (status, stderr) = finished(run, Duration::from_secs(30));
+    assert!(!status.success(), "{stderr}");
+    assert!(stderr.contains("the motion was stopped"), "{stderr}");
 }
 
 #[test]
