@@ -1,6 +1,7 @@
 //! The secondary interface: the client against the fake controller in both profiles (the
 //! version message, joints, the arm's kinematics from its controller, a `movej` that runs in
-//! time with the program flag up, `stopj`); 100 000 generated packets — real layouts mutated,
+//! time with the program flag up, `stopj`); a script sent as the program exits reaching a
+//! controller that writes before it reads and drops a connection it cannot write to; 100 000 generated packets — real layouts mutated,
 //! unknown and malformed sub-packages, arbitrary bytes — through the parser, never a panic;
 //! and python-urx (a third-party client, run as a separate process) reading and moving the
 //! fake CB3 arm, and reading its joints from the real-time interface (port 30003) in both
@@ -98,6 +99,67 @@ async fn stopj_stops_the_arm_where_it_is() {
 }
 
 /// A robot state of sub-packages with the given content sizes and types.
+/// A controller that writes to a connection before it reads from it, as UR's does (the version
+/// message, then robot states), and drops a connection it cannot write to — here 100 ms in,
+/// when the client may have closed; the line it read, or why it read none.
+async fn greeting_controller(listener: tokio::net::TcpListener) -> Result<String, String> {
+    use tokio::io::{AsyncBufReadExt, AsyncWriteExt};
+    let (mut stream, _) = listener.accept().await.map_err(|e| e.to_string())?;
+    let _greeted = stream.write_all(&[0; 2048]).await;
+    tokio::time::sleep(Duration::from_millis(100)).await;
+    stream
+        .write_all(&[0; 2048])
+        .await
+        .map_err(|e| format!("dropped before reading: {e}"))?;
+    let mut line = String::new();
+    let mut reader = tokio::io::BufReader::new(stream);
+    match reader.read_line(&mut line).await {
+        Ok(_) if !line.is_empty() => Ok(line),
+        Ok(_) => Err("the connection closed with no line".into()),
+        Err(error) => Err(error.to_string()),
+    }
+}
+
+#[tokio::test]
+async fn a_script_sent_as_the_program_exits_reaches_a_controller_that_greets_first() {
+    let listener = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
+    let address = listener.local_addr().unwrap();
+    let controller = tokio::spawn(greeting_controller(listener));
+    let mut stream = TcpStream::connect(address).await.unwrap();
+    // The greeting arrives before the client sends; the controller writes again before it reads.
+    tokio::time::sleep(Duration::from_millis(20)).await;
+    yarok_hw::ur::secondary::send_script_and_close(
+        &mut stream,
+        "stopj(2.0)",
+        Duration::from_millis(250),
+    )
+    .await
+    .unwrap();
+    drop(stream);
+    assert_eq!(controller.await.unwrap(), Ok("stopj(2.0)\n".to_owned()));
+}
+
+#[tokio::test]
+async fn without_draining_the_greeting_the_controller_loses_the_script() {
+    // What `send_script_and_close` exists for: the same exchange, closed at once, with the
+    // greeting unread (the connection is reset, and the controller's next write fails).
+    let listener = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
+    let address = listener.local_addr().unwrap();
+    let controller = tokio::spawn(greeting_controller(listener));
+    let mut stream = TcpStream::connect(address).await.unwrap();
+    tokio::time::sleep(Duration::from_millis(20)).await;
+    yarok_hw::ur::secondary::send_script(&mut stream, "stopj(2.0)")
+        .await
+        .unwrap();
+    drop(stream);
+    let read = controller.await.unwrap();
+    assert!(
+        read.as_ref()
+            .is_err_and(|e| e.starts_with("dropped before reading")),
+        "{read:?}"
+    );
+}
+
 fn robot_state(sub_packages: &[(u8, usize)], generator: &mut Generator) -> Vec<u8> {
     let mut body = Vec::new();
     for &(kind, size) in sub_packages {

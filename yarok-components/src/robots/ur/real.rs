@@ -15,7 +15,7 @@ use yarok_core::component::{Bind, BindError};
 use yarok_hw::ur::dashboard::{Dashboard, RobotMode, SafetyStatus};
 use yarok_hw::ur::rtde::{Rtde, RtdeError, RtdeSettings, Value};
 use yarok_hw::ur::script;
-use yarok_hw::ur::secondary::{KinematicsInfo, Secondary, send_script};
+use yarok_hw::ur::secondary::{KinematicsInfo, Secondary, send_script_and_close};
 use yarok_hw::{Real, connect_within, reopen};
 
 use super::error::MotionError;
@@ -25,6 +25,9 @@ use super::payload::Payload;
 const RTDE_PORT: u16 = 30004;
 const SECONDARY_PORT: u16 = 30002;
 const DASHBOARD_PORT: u16 = 29999;
+
+/// How long the stop's connection waits, once `stopj` is sent, for the controller to close it.
+const STOP_LINGER: Duration = Duration::from_millis(250);
 
 /// What the arm streams over RTDE, in this order.
 const OUTPUTS: [&str; 4] = ["actual_q", "actual_qd", "robot_mode", "safety_mode"];
@@ -367,7 +370,7 @@ pub(super) async fn connect(
         // for a robot state (the interface may be what fell silent).
         let stopping = async {
             let mut stream = TcpStream::connect((host.as_str(), SECONDARY_PORT)).await?;
-            send_script(&mut stream, &script::stopj(2.0)).await
+            send_script_and_close(&mut stream, &script::stopj(2.0), STOP_LINGER).await
         };
         tokio::time::timeout(reply, stopping).await.map_err(|_| {
             format!("controller {host}: no connection to send stopj within {reply:?}")

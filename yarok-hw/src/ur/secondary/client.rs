@@ -3,7 +3,7 @@
 
 use std::time::Duration;
 
-use tokio::io::{AsyncRead, AsyncWrite, AsyncWriteExt};
+use tokio::io::{AsyncRead, AsyncReadExt, AsyncWrite, AsyncWriteExt};
 
 use super::packet::{Packet, PacketError, RobotState, VersionMessage, parse, take_packet};
 use crate::reading::{Unread, read_more};
@@ -65,6 +65,51 @@ pub async fn send_script<T: AsyncWrite + Unpin>(
     let text = format!("{}\n", script.trim_end());
     transport.write_all(text.as_bytes()).await?;
     transport.flush().await
+}
+
+/// Sends URScript over a connection of its own, then closes it cleanly: the sending side shut
+/// and what the controller sends (its version message, robot states) drained until it closes
+/// too, for at most `linger`. The controller writes before and while it reads; a client gone
+/// at once makes its next write fail, and a controller that then drops the connection may do
+/// so before it has read the line: the `stopj` a program sends as it exits would be lost.
+///
+/// ```
+/// # async fn run() -> std::io::Result<()> {
+/// use std::time::Duration;
+/// use tokio::io::AsyncReadExt;
+///
+/// let (mut ours, mut theirs) = tokio::io::duplex(64);
+/// let controller = async move {
+///     let mut received = String::new();
+///     theirs.read_to_string(&mut received).await?;
+///     drop(theirs);
+///     Ok::<_, std::io::Error>(received)
+/// };
+/// let sending = yarok_hw::ur::secondary::send_script_and_close(
+///     &mut ours,
+///     "stopj(2.0)",
+///     Duration::from_millis(250),
+/// );
+/// let (sent, received) = tokio::join!(sending, controller);
+/// sent?;
+/// assert_eq!(received?, "stopj(2.0)\n");
+/// # Ok(()) }
+/// ```
+///
+/// # Errors
+///
+/// When the transport cannot be written or shut. What it reads, and how, does not matter.
+pub async fn send_script_and_close<T: AsyncRead + AsyncWrite + Unpin>(
+    transport: &mut T,
+    script: &str,
+    linger: Duration,
+) -> std::io::Result<()> {
+    send_script(transport, script).await?;
+    transport.shutdown().await?;
+    let mut unread = [0; 4096];
+    let drained = async { while let Ok(1..) = transport.read(&mut unread).await {} };
+    let _closed_or_lingered = tokio::time::timeout(linger, drained).await;
+    Ok(())
 }
 
 /// A client of the UR controller's secondary interface over any byte transport (a TCP stream

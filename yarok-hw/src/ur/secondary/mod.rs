@@ -4,7 +4,7 @@
 mod client;
 mod packet;
 
-pub use client::{Secondary, SecondaryError, send_script};
+pub use client::{Secondary, SecondaryError, send_script, send_script_and_close};
 pub use packet::{
     CartesianInfo, JointData, KinematicsInfo, MAX_PACKET, Packet, PacketError, RobotModeData,
     RobotState, VersionMessage, parse, take_packet,
