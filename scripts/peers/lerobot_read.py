@@ -21,6 +21,7 @@ Prints, a line each:
 Exits non-zero naming the file, the episode, the feature and the rule when anything fails.
 """
 
+import base64
 import io
 import json
 import sys
@@ -29,7 +30,10 @@ from pathlib import Path
 import av
 import numpy as np
 import pandas as pd
+import pyarrow as pa
 import pyarrow.parquet as pq
+from mcap.reader import make_reader
+from PIL import Image
 
 QUANTILES = {"q01": 0.01, "q10": 0.10, "q50": 0.50, "q90": 0.90, "q99": 0.99}
 # LeRobot's `check_timestamps_sync` tolerance.
@@ -101,14 +105,12 @@ def read_data(root, info, episodes):
         shape = feature["shape"]
         if shape == [1]:
             expected = INDEX_DTYPES.get(name, feature["dtype"])
-            expect(str(kind) == expected or (expected == "float" and str(kind) == "float"),
-                   f"{name} is {kind}, not {expected}")
+            expect(str(kind) == expected, f"{name} is {kind}, not {expected}")
         else:
             # A datasets Sequence of known length: Arrow's fixed-size list.
             expect(str(kind) == f"fixed_size_list<item: {'float' if feature['dtype'] == 'float32' else feature['dtype']}>[{shape[0]}]",
                    f"{name} is {kind}, not a fixed-size list of {shape[0]} {feature['dtype']}")
             expect(len(feature["names"]) == shape[0], f"{name} has {len(feature['names'])} names")
-    import pyarrow as pa
     table = pa.concat_tables(tables)
     columns = {name: table.column(name).to_numpy() if table.schema.field(name).type.num_fields == 0
                else np.stack(table.column(name).to_pylist()).astype(np.float32)
@@ -145,8 +147,6 @@ def decode(path):
 
 def recorded_images(mcap_path, key):
     """The images of a video feature's probe in a yarok MCAP recording, in order."""
-    from mcap.reader import make_reader
-    from PIL import Image
     # A probe's topic is its path (`/arm/left/image`), a model camera's `/cameras/{name}`.
     path = "/" + key.removeprefix("observation.images.").replace(".", "/")
     topics = [path, "/cameras" + path]
@@ -154,7 +154,6 @@ def recorded_images(mcap_path, key):
     with open(mcap_path, "rb") as file:
         for _, channel, message in make_reader(file).iter_messages(topics=topics):
             data = json.loads(message.data)["data"]
-            import base64
             images.append(np.asarray(Image.open(io.BytesIO(base64.b64decode(data))).convert("RGB")))
     expect(images, f"{mcap_path} has no images on {' or '.join(topics)}")
     return images
@@ -163,7 +162,6 @@ def recorded_images(mcap_path, key):
 def recorded_states(mcap_path, names):
     """Joint positions a yarok MCAP recording holds (`/joint_states`), by log time, in `names`'
     order."""
-    from mcap.reader import make_reader
     states, image_times = {}, []
     with open(mcap_path, "rb") as file:
         for _, channel, message in make_reader(file).iter_messages():

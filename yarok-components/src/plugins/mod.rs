@@ -9,6 +9,7 @@ mod encoder;
 mod inspector;
 mod joint_recorder;
 mod mcap_recorder;
+mod model_cameras;
 mod recording_profile;
 mod sim_state;
 mod status_line;
@@ -30,13 +31,3 @@ pub use video_recorder::{VideoRecorder, VideoRecorderSettings};
 pub use viewer::{Viewer, ViewerSettings};
 #[cfg(feature = "zenoh")]
 pub use zenoh_bridge::{ZenohBridge, ZenohBridgeSettings};
-
-/// The render preset of a recorder's cameras: MuJoCo's defaults when `quality` is asked for,
-/// else the fast one (software GL renders it several times faster).
-fn preset(quality: bool) -> yarok_mjc::RenderPreset {
-    if quality {
-        yarok_mjc::RenderPreset::Quality
-    } else {
-        yarok_mjc::RenderPreset::Fast
-    }
-}

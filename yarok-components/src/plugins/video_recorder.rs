@@ -4,10 +4,10 @@ use std::path::PathBuf;
 
 use yarok_core::BoxError;
 use yarok_core::runtime::{Plugin, World};
-use yarok_mjc::{CameraId, Renderer, SimBackend};
+use yarok_mjc::SimBackend;
 
 use super::encoder::{Encoder, H264};
-use super::preset;
+use super::model_cameras::ModelCameras;
 
 /// What a [`VideoRecorder`] films (`[plugins.video]`).
 #[derive(Debug, Clone, PartialEq, serde::Deserialize)]
@@ -57,11 +57,10 @@ pub struct VideoRecorder {
     next_frame: f64,
 }
 
-/// The camera, its renderer and the encoder being fed.
+/// The camera, with its renderer, and the encoder being fed.
 #[derive(Debug)]
 struct Filming {
-    camera: CameraId,
-    renderer: Renderer,
+    camera: ModelCameras,
     encoder: Encoder,
 }
 
@@ -120,24 +119,18 @@ impl Plugin for VideoRecorder {
                 world.pl().environment()
             )
         })?;
-        let camera = sim
-            .model()
-            .camera(&self.settings.camera)
-            .map_err(|e| format!("camera to film: {e}"))?;
-        let [width, height] = self.settings.size;
-        let renderer = Renderer::builder()
-            .size(width, height)
-            .preset(preset(self.settings.quality))
-            .build(sim.model())?;
+        let settings = &self.settings;
+        let camera = ModelCameras::find(
+            sim,
+            std::slice::from_ref(&settings.camera),
+            settings.size,
+            settings.quality,
+        )?;
         let encoder = Encoder::start(
             self.video().ffmpeg(&self.settings.path),
             self.settings.path.clone(),
         )?;
-        self.filming = Some(Filming {
-            camera,
-            renderer,
-            encoder,
-        });
+        self.filming = Some(Filming { camera, encoder });
         Ok(())
     }
 
@@ -150,14 +143,14 @@ impl Plugin for VideoRecorder {
             return Ok(());
         }
         self.next_frame += 1.0 / self.settings.fps;
-        let frame = filming
-            .renderer
-            .render_rgb(&mut sim.data_mut(), filming.camera)?;
-        let sent = filming.encoder.send(frame.into_raw());
-        if sent.is_err() {
-            self.filming = None;
+        for frame in filming.camera.render(sim)? {
+            let sent = filming.encoder.send(frame);
+            if sent.is_err() {
+                self.filming = None;
+                return sent;
+            }
         }
-        sent
+        Ok(())
     }
 
     fn end(&mut self, _: &World<'_>) -> Result<(), BoxError> {

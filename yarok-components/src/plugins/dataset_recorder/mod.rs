@@ -13,14 +13,14 @@ use serde_json::{Value, json};
 use yarok_core::BoxError;
 use yarok_core::component::ProbeImage;
 use yarok_core::runtime::{Episode, Happening, Plugin, World};
-use yarok_mjc::{CameraId, Renderer, SimBackend};
+use yarok_mjc::SimBackend;
 
 use self::episode::{EpisodeRecording, Frame};
 use self::meta::{Feature, INDEX_FEATURES, Info, stats_json, write_json};
 use self::stats::FeatureStats;
 use self::tables::{DataFiles, EpisodeRow, Widths, write_episodes, write_tasks};
 use super::encoder::H264;
-use super::preset;
+use super::model_cameras::ModelCameras;
 use super::sim_state::SimState;
 
 /// What and how a [`DatasetRecorder`] records (`[plugins.dataset]`).
@@ -63,15 +63,6 @@ impl Default for DatasetRecorderSettings {
 /// Frames from one keyframe to the next: LeRobot's default, so that training reads any frame
 /// quickly.
 const KEYFRAME_INTERVAL: u32 = 2;
-
-/// Where a video feature's images come from.
-#[derive(Debug, Clone, Copy)]
-enum Source {
-    /// The world's probe of this index.
-    Probe(usize),
-    /// A camera of the model, rendered.
-    Camera(CameraId),
-}
 
 /// Records a run as a [LeRobot](https://github.com/huggingface/lerobot) v3 dataset, as
 /// LeRobot's own code lays it out: `meta/info.json` (features, `fps`, totals),
@@ -117,11 +108,14 @@ pub struct DatasetRecorder {
     root: PathBuf,
     robot_type: String,
     sim: Option<SimState>,
-    renderer: Option<Renderer>,
     widths: Widths,
-    /// Every feature, in frame order, and where each video feature's images come from.
+    /// Every feature, in frame order.
     features: Vec<(String, Feature)>,
-    videos: Vec<(String, H264, Source)>,
+    /// The video features: the RGB probes' (the world's probes of these indices), then the
+    /// cameras'.
+    videos: Vec<(String, H264)>,
+    probes: Vec<usize>,
+    cameras: ModelCameras,
     data: Option<DataFiles>,
     /// The dataset's tasks, in the order they were first set, and the one frames are of now.
     tasks: Vec<String>,
@@ -152,13 +146,14 @@ impl DatasetRecorder {
             settings,
             robot_type: String::new(),
             sim: None,
-            renderer: None,
             widths: Widths {
                 state: 0,
                 action: 0,
             },
             features: Vec::new(),
             videos: Vec::new(),
+            probes: Vec::new(),
+            cameras: ModelCameras::default(),
             data: None,
             tasks: Vec::new(),
             task: None,
@@ -216,29 +211,20 @@ impl DatasetRecorder {
             if let ProbeImage::Rgb { width, height, .. } = probe.read()? {
                 let key = image_key(&probe.path());
                 let video = self.video(&key, width, height)?;
-                self.videos.push((key, video, Source::Probe(index)));
+                self.videos.push((key, video));
+                self.probes.push(index);
             }
         }
-        if !self.settings.cameras.is_empty() {
-            let [width, height] = self.settings.size;
-            self.renderer = Some(
-                Renderer::builder()
-                    .size(width, height)
-                    .preset(preset(self.settings.quality))
-                    .build(model)?,
-            );
-        }
+        let settings = &self.settings;
+        self.cameras = ModelCameras::find(sim, &settings.cameras, settings.size, settings.quality)?;
+        let [width, height] = self.settings.size;
         for name in &self.settings.cameras {
-            let camera = model
-                .camera(name)
-                .map_err(|e| format!("camera {name:?} to record: {e}"))?;
-            let [width, height] = self.settings.size;
             let key = image_key(name);
             let video = self.video(&key, width, height)?;
-            self.videos.push((key, video, Source::Camera(camera)));
+            self.videos.push((key, video));
         }
         let encoding = json!({"video.g": KEYFRAME_INTERVAL, "video.crf": self.settings.crf});
-        for (key, video, _) in &self.videos {
+        for (key, video) in &self.videos {
             let [width, height] = video.size;
             let feature = Feature::video(width, height, self.settings.fps, &encoding);
             self.features.push((key.clone(), feature));
@@ -262,18 +248,13 @@ impl DatasetRecorder {
 
     /// Begins the dataset's next episode.
     fn begin(&mut self, episode: Option<Episode>) -> Result<(), BoxError> {
-        let videos: Vec<(String, H264)> = self
-            .videos
-            .iter()
-            .map(|(key, video, _)| (key.clone(), *video))
-            .collect();
         let recording = EpisodeRecording::begin(
             &self.root,
             self.episodes.len() as u64,
             self.frames,
             self.settings.fps,
             self.widths,
-            &videos,
+            &self.videos,
         )?;
         self.recording = Some((recording, episode));
         Ok(())
@@ -334,19 +315,13 @@ impl DatasetRecorder {
             .unwrap_or_default();
         let action = sim.data().ctrl().to_vec();
         let mut images = Vec::with_capacity(self.videos.len());
-        for (key, _, source) in &self.videos {
-            let image = match *source {
-                Source::Probe(index) => match world.probes()[index].read()? {
-                    ProbeImage::Rgb { pixels, .. } => pixels,
-                    _ => return Err(format!("{key}'s probe no longer gives RGB images").into()),
-                },
-                Source::Camera(camera) => {
-                    let renderer = self.renderer.as_mut().ok_or("no renderer")?;
-                    renderer.render_rgb(&mut sim.data_mut(), camera)?.into_raw()
-                }
-            };
-            images.push(image);
+        for (index, (key, _)) in self.probes.iter().zip(&self.videos) {
+            match world.probes()[*index].read()? {
+                ProbeImage::Rgb { pixels, .. } => images.push(pixels),
+                _ => return Err(format!("{key}'s probe no longer gives RGB images").into()),
+            }
         }
+        images.extend(self.cameras.render(sim)?);
         let task = match self.task {
             Some(task) => task,
             None => {

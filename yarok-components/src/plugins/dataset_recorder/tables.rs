@@ -41,19 +41,25 @@ pub(super) struct Widths {
     pub(super) action: usize,
 }
 
+/// The elements of a vector column, as `datasets` names them.
+fn float_item() -> Arc<Field> {
+    Arc::new(Field::new("item", DataType::Float32, true))
+}
+
 fn fixed_size_list(values: &[f32], width: usize) -> Result<ArrayRef, BoxError> {
-    let item = Arc::new(Field::new("item", DataType::Float32, true));
     let size = i32::try_from(width)?;
     let values = Arc::new(Float32Array::from(values.to_vec()));
     Ok(Arc::new(FixedSizeListArray::try_new(
-        item, size, values, None,
+        float_item(),
+        size,
+        values,
+        None,
     )?))
 }
 
 /// The frames' schema: each vector as a fixed-size list of 32-bit floats (a `datasets`
 /// `Sequence` of known length), then LeRobot's index columns.
 fn frame_schema(widths: Widths) -> SchemaRef {
-    let item = Arc::new(Field::new("item", DataType::Float32, true));
     let mut fields = Vec::new();
     for (name, width) in [
         ("observation.state", widths.state),
@@ -61,7 +67,7 @@ fn frame_schema(widths: Widths) -> SchemaRef {
     ] {
         if width > 0 {
             let width = i32::try_from(width).unwrap_or(i32::MAX);
-            let list = DataType::FixedSizeList(Arc::clone(&item), width);
+            let list = DataType::FixedSizeList(float_item(), width);
             fields.push(Field::new(name, list, true));
         }
     }

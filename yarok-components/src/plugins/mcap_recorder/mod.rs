@@ -12,11 +12,11 @@ use std::sync::Arc;
 use yarok_core::BoxError;
 use yarok_core::component::ProbeImage;
 use yarok_core::runtime::{Episode, Happening, Plugin, World};
-use yarok_mjc::{CameraId, Renderer, SimBackend};
+use yarok_mjc::SimBackend;
 
 use self::file::{ImageChannel, Layout, McapFile, SimNames, SimSample};
 use self::writer::{Job, Writer};
-use super::preset;
+use super::model_cameras::ModelCameras;
 use super::recording_profile::{self, MessageKind, RecordingProfile};
 use super::sim_state::{SimState, optical_frame};
 use crate::probe_images;
@@ -152,10 +152,9 @@ pub struct McapRecorder {
     /// The run's file's clock, and the current episode's.
     run: FileClock,
     episode: Option<FileClock>,
-    /// In `sim`: the joints and frames, and the renderer of the cameras asked for.
+    /// In `sim`: the joints and frames, and the cameras asked for.
     sim: Option<SimState>,
-    renderer: Option<Renderer>,
-    cameras: Vec<(String, CameraId)>,
+    cameras: ModelCameras,
 }
 
 impl std::fmt::Debug for McapRecorder {
@@ -190,8 +189,7 @@ impl McapRecorder {
             run: FileClock::default(),
             episode: None,
             sim: None,
-            renderer: None,
-            cameras: Vec::new(),
+            cameras: ModelCameras::default(),
         })
     }
 
@@ -207,28 +205,14 @@ impl McapRecorder {
 
     /// Finds what `sim` records: joints, frames and the cameras asked for.
     fn start_sim(&mut self, sim: &SimBackend) -> Result<(), BoxError> {
-        let model = sim.model();
         let state = SimState::of(sim);
         self.layout.sim = Some(SimNames {
             joints: state.joint_names().into(),
             frames: state.frame_names().into(),
         });
         self.sim = Some(state);
-        if !self.settings.cameras.is_empty() {
-            let [width, height] = self.settings.size;
-            self.renderer = Some(
-                Renderer::builder()
-                    .size(width, height)
-                    .preset(preset(self.settings.quality))
-                    .build(model)?,
-            );
-        }
-        for name in &self.settings.cameras {
-            let camera = model
-                .camera(name)
-                .map_err(|e| format!("camera {name:?} to record: {e}"))?;
-            self.cameras.push((name.clone(), camera));
-        }
+        let settings = &self.settings;
+        self.cameras = ModelCameras::find(sim, &settings.cameras, settings.size, settings.quality)?;
         Ok(())
     }
 
@@ -257,7 +241,7 @@ impl McapRecorder {
                 frame,
             });
         }
-        for (name, _) in &self.cameras {
+        for name in self.cameras.names() {
             channels.push(ImageChannel {
                 topic: format!("/cameras/{name}"),
                 kind: MessageKind::Image,
@@ -322,14 +306,13 @@ impl McapRecorder {
         for probe in world.probes() {
             images.push(probe.read()?);
         }
-        if let (Some(sim), Some(renderer)) = (world.backend::<SimBackend>(), &mut self.renderer) {
-            for (_, camera) in &self.cameras {
-                let rgb = renderer.render_rgb(&mut sim.data_mut(), *camera)?;
-                let (width, height) = rgb.dimensions();
+        if let Some(sim) = world.backend::<SimBackend>() {
+            let [width, height] = self.settings.size;
+            for pixels in self.cameras.render(sim)? {
                 images.push(ProbeImage::Rgb {
                     width,
                     height,
-                    pixels: rgb.into_raw(),
+                    pixels,
                 });
             }
         }
