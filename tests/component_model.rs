@@ -186,6 +186,8 @@ fn a_plugin_reads_qpos_from_the_sim_backend_every_tick() {
         .plugin(move |world: &World<'_>| {
             let sim = world.backend::<SimBackend>().ok_or("not in sim")?;
             let hinge = sim.model().joint("lamp/hinge")?;
+            // The clock has advanced to the step the plugin follows.
+            assert_eq!(world.pl().time(), sim.data().time());
             log.borrow_mut()
                 .push((world.pl().ticks(), sim.data().qpos(hinge)[0]));
             Ok(())
@@ -205,7 +207,7 @@ fn a_plugin_reads_qpos_from_the_sim_backend_every_tick() {
     let seen = seen.borrow();
     assert_eq!(
         seen.iter().map(|(tick, _)| *tick).collect::<Vec<_>>(),
-        [0, 1, 2, 3, 4]
+        [1, 2, 3, 4, 5]
     );
     assert!(
         seen.windows(2).all(|w| w[1].1.abs() > w[0].1.abs()),

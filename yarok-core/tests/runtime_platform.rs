@@ -250,7 +250,7 @@ impl Plugin for Recorder {
         self.log
             .borrow_mut()
             .push(format!("{} {}", self.name, pl.ticks()));
-        if self.name == "failing" && pl.ticks() == 1 {
+        if self.name == "failing" && pl.ticks() == 2 {
             return Err("disk full".into());
         }
         Ok(())
@@ -283,10 +283,11 @@ fn plugins_step_in_order_and_always_see_the_end() {
         [
             "first start",
             "second start",
-            "first 0",
-            "second 0",
+            // A plugin steps after the clock has counted the tick.
             "first 1",
             "second 1",
+            "first 2",
+            "second 2",
             "first end",
             "second end"
         ]
@@ -308,9 +309,9 @@ fn plugins_step_in_order_and_always_see_the_end() {
         [
             "failing start",
             "after start",
-            "failing 0",
-            "after 0",
             "failing 1",
+            "after 1",
+            "failing 2",
             "failing end",
             "after end"
         ]

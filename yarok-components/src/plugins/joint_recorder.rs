@@ -121,8 +121,7 @@ impl Plugin for JointRecorder {
     }
 
     fn step(&mut self, world: &World<'_>) -> Result<(), BoxError> {
-        // The platform steps plugins before it counts the tick.
-        let tick = world.pl().ticks() + 1;
+        let tick = world.pl().ticks();
         let Some(file) = &mut self.file else {
             return Ok(());
         };

@@ -383,8 +383,7 @@ impl TactileSensor {
         bind.on_restart(move || restarting.frame(restarting.clock.time(), true));
         let ticking = Rc::clone(&inner);
         bind.on_tick(move || {
-            // After a step the clock still reads the time before it.
-            ticking.frame(ticking.clock.time() + ticking.clock.timestep(), false);
+            ticking.frame(ticking.clock.time(), false);
             match ticking.state.borrow_mut().failed.take() {
                 Some(error) => Err(error.into()),
                 None => Ok(()),

@@ -283,7 +283,9 @@ impl<E: Environment> Bind<E> {
         self.context.seed
     }
 
-    /// Registers work to do after every backend step (children's before their parents').
+    /// Registers work to do after every backend step (children's before their parents'). The
+    /// clock has advanced before it runs: [`Clock::time`](crate::time::Clock::time) reads the time
+    /// the step reached.
     pub fn on_tick(&mut self, step: impl FnMut() -> Result<(), BoxError> + 'static) {
         let span = tracing::info_span!("component", path = %self.context.path);
         self.context.lifecycle.borrow_mut().ticks.push((

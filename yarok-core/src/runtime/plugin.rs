@@ -78,6 +78,10 @@ impl<'a> World<'a> {
 ///
 /// 1. [`Plugin::start`] once, after components are bound and before behaviours start;
 /// 2. [`Plugin::step`] after every tick's backend and component steps, before behaviours see it;
+///    the clock has already advanced, so [`Clock::time`](crate::time::Clock::time) and
+///    [`Clock::ticks`](crate::time::Clock::ticks) read the tick being stepped (the backend's time
+///    and its count of steps), as they do for components' [`on_tick`](crate::component::Bind::on_tick)
+///    and for behaviours woken by it;
 /// 3. [`Plugin::end`] once at shutdown, whatever ended the run, before the components' stop
 ///    actions.
 ///

@@ -439,8 +439,7 @@ impl Plugin for DatasetRecorder {
         else {
             return Ok(());
         };
-        // The platform steps plugins before it counts the tick and advances its clock.
-        let tick = world.pl().ticks() + 1;
+        let tick = world.pl().ticks();
         let time = match episode {
             Some(episode) => episode.time_at(tick, world.pl().timestep()),
             None => sim.data().time(),

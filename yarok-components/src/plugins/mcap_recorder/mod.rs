@@ -356,8 +356,7 @@ impl Plugin for McapRecorder {
 
     fn step(&mut self, world: &World<'_>) -> Result<(), BoxError> {
         self.follow_episodes(world)?;
-        // The platform steps plugins before it counts the tick and advances its clock.
-        let tick = world.pl().ticks() + 1;
+        let tick = world.pl().ticks();
         let sim = world.backend::<SimBackend>();
         let now = sim.map_or(world.pl().time(), |sim| sim.data().time());
         let (every, image_period) = (self.settings.every, 1.0 / self.settings.image_hz);

@@ -207,8 +207,7 @@ impl Controller {
 
     /// After a step: the reference for the next one, and whether the motion has ended.
     pub(super) fn tick(&self) {
-        let now = self.clock.time() + self.clock.timestep();
-        self.advance(now);
+        self.advance(self.clock.time());
         self.integrate();
         self.command();
     }
