@@ -27,8 +27,7 @@ mod measure;
 #[allow(dead_code)]
 #[path = "../examples/sim/menagerie/world.rs"]
 mod menagerie;
-#[path = "../yarok-hw/tests/support/peers.rs"]
-mod peers;
+use yarok_test::peers;
 mod versus_raw;
 use measure::mean_times;
 use versus_raw::compare;

@@ -14,8 +14,7 @@ use std::time::{Duration, Instant};
 use tokio::net::TcpStream;
 use yarok::hw::ur::rtde::{Rtde, RtdeSettings, Value};
 
-#[path = "../yarok-hw/tests/support/ur_controller/mod.rs"]
-mod ur_controller;
+use yarok_test::ur_controller;
 
 use ur_controller::{FakeController, Profile, RTDE_PORT};
 

@@ -8,13 +8,12 @@
 use yarok::components::robots::AnetA30;
 use yarok::{Component, Declaration};
 
-#[path = "../yarok-hw/tests/support/printer.rs"]
-mod support;
-#[path = "../yarok-hw/tests/support/virtual_printer.rs"]
-mod virtual_printer;
+use yarok_test::scripted_printer;
+use yarok_test::virtual_printer;
 
-use support::Step::{Expect, Send, Sleep};
-use support::{printer, pseudo_terminal};
+use scripted_printer::Step::{Expect, Send, Sleep};
+use scripted_printer::{printer, pseudo_terminal};
+use yarok_test::assert_says;
 
 /// Just the printer.
 struct PrinterOnly;
@@ -109,10 +108,7 @@ fn a_missing_port_is_an_error_naming_the_component_and_the_port() {
         .run()
         .unwrap_err()
         .to_string();
-    assert!(
-        error.contains("/printer") && error.contains("/dev/ttyNOPE7"),
-        "{error}"
-    );
+    assert_says(&error, &["/printer", "/dev/ttyNOPE7"]);
 }
 
 async fn far_corner(pl: yarok::Pl) -> yarok::BehaviourResult {

@@ -6,6 +6,7 @@
 
 use yarok::components::cameras::{Cam, CamError};
 use yarok::{Component, Declaration};
+use yarok_test::assert_says;
 
 /// One 320×240 camera.
 struct CameraOnly;
@@ -93,9 +94,6 @@ fn a_bad_source_is_an_error_naming_the_camera() {
             .run()
             .unwrap_err()
             .to_string();
-        assert!(
-            error.contains("/cam") && error.contains(device) && error.contains(says),
-            "{error}"
-        );
+        assert_says(&error, &["/cam", device, says]);
     }
 }

@@ -1,18 +1,19 @@
 //! `yarok compose` dumps composed MJCF from a bundled component or a template file.
 
-#[path = "support/yarok_binary.rs"]
-mod yarok_binary;
+mod support;
+use support::yarok_binary;
 
-use yarok_binary::yarok;
+use yarok_binary::{yarok, yarok_fails};
+use yarok_test::assert_says;
 
 #[test]
 fn composes_a_bundled_component_with_overrides() {
     let (code, xml, _) = yarok(&["compose", "tumble-tower", "--set", "rows=2"]);
     assert_eq!(code, 0);
     assert_eq!(xml.matches("<freejoint/>").count(), 6);
-    assert!(
-        xml.contains(r#"<body name="block_1_2" pos="0.58 0.5640000000000001 0.0915""#),
-        "{xml}"
+    assert_says(
+        &xml,
+        &[r#"<body name="block_1_2" pos="0.58 0.5640000000000001 0.0915""#],
     );
 }
 
@@ -61,14 +62,14 @@ fn errors_exit_with_2_and_say_where() {
         stderr.contains(&format!("{}:3:7", file.display())),
         "{stderr}"
     );
-    assert!(stderr.contains("name `missing` is not defined"), "{stderr}");
+    assert_says(&stderr, &["name `missing` is not defined"]);
 
-    let (code, _, stderr) = yarok(&["compose", "tumble-tower", "--set", "rowz=2"]);
-    assert_eq!(code, 2);
-    assert!(stderr.contains("did you mean `rows`?"), "{stderr}");
-    let (code, _, stderr) = yarok(&["compose", "no-such-world"]);
-    assert_eq!(code, 2);
-    assert!(stderr.contains("tumble-tower"), "{stderr}");
+    yarok_fails(
+        &["compose", "tumble-tower", "--set", "rowz=2"],
+        2,
+        &["did you mean `rows`?"],
+    );
+    yarok_fails(&["compose", "no-such-world"], 2, &["tumble-tower"]);
 }
 
 #[test]
@@ -88,7 +89,7 @@ fn help_goes_to_stdout_and_succeeds() {
     }
     let (code, out, err) = yarok(&[]);
     assert_eq!((code, out.as_str()), (2, ""));
-    assert!(err.contains("usage: yarok run"), "{err}");
+    assert_says(&err, &["usage: yarok run"]);
 }
 
 #[test]

@@ -2,13 +2,13 @@
 //! in MCAP, and refuses a world, a behaviour or an option it does not know with the nearest
 //! name. (Every world's run is in `scripts/test.sh`, in release.)
 
-#[path = "../yarok-hw/tests/support/peers.rs"]
-mod peers;
-#[path = "support/yarok_binary.rs"]
-mod yarok_binary;
+use yarok_test::peers;
+mod support;
+use support::yarok_binary;
 
 use yarok::components::demos;
-use yarok_binary::yarok;
+use yarok_binary::{yarok, yarok_fails};
+use yarok_test::assert_says;
 
 #[test]
 fn lists_every_bundled_world_with_its_behaviours() {
@@ -40,7 +40,7 @@ fn records_a_run_in_mcap() {
         "/tower/rows=2",
     ]);
     assert_eq!(code, 0, "{stderr}");
-    assert!(stdout.contains("t = 0.50 s: 250 ticks"), "{stdout}");
+    assert_says(&stdout, &["t = 0.50 s: 250 ticks"]);
     let bytes = std::fs::read(&file).unwrap();
     let magic = b"\x89MCAP0\r\n";
     assert!(bytes.starts_with(magic) && bytes.ends_with(magic));
@@ -60,26 +60,23 @@ fn records_a_run_in_mcap() {
 
 #[test]
 fn unknown_names_get_the_nearest() {
-    let (code, _, stderr) = yarok(&["run", "pick_and_plac_world"]);
-    assert_eq!(code, 2);
-    assert!(
-        stderr.contains("did you mean `pick_and_place_world`"),
-        "{stderr}"
+    yarok_fails(
+        &["run", "pick_and_plac_world"],
+        2,
+        &["did you mean `pick_and_place_world`"],
     );
     let (code, _, stderr) = yarok(&["run", "pick_and_place_world", "--behaviour", "stak"]);
     assert_eq!(code, 2);
-    assert!(
-        stderr.contains("no behaviour \"stak\"; did you mean `stack`"),
-        "{stderr}"
+    assert_says(&stderr, &["no behaviour \"stak\"; did you mean `stack`"]);
+    yarok_fails(
+        &["run", "empty_world", "--recrd", "x.mcap"],
+        2,
+        &["did you mean `--record`"],
     );
-    let (code, _, stderr) = yarok(&["run", "empty_world", "--recrd", "x.mcap"]);
-    assert_eq!(code, 2);
-    assert!(stderr.contains("did you mean `--record`"), "{stderr}");
-    let (code, _, stderr) = yarok(&["run", "empty_world", "--set", "behaviour/out=\"x\""]);
-    assert_eq!(code, 2);
-    assert!(
-        stderr.contains("no config key `out` (it has seconds)"),
-        "{stderr}"
+    yarok_fails(
+        &["run", "empty_world", "--set", "behaviour/out=\"x\""],
+        2,
+        &["no config key `out` (it has seconds)"],
     );
 }
 
@@ -145,7 +142,7 @@ fn two_recorders_on_one_file_are_refused_before_the_run() {
             .unwrap();
         let stderr = String::from_utf8_lossy(&output.stderr);
         assert_eq!(output.status.code(), Some(2), "{args:?}: {stderr}");
-        assert!(stderr.contains("would both write"), "{stderr}");
+        assert_says(&stderr, &["would both write"]);
         assert!(
             !std::path::Path::new(file).exists(),
             "{args:?} wrote the file"
@@ -253,18 +250,19 @@ fn interface_settings_nothing_reads_are_warned_about() {
 /// the file and why, whichever thread of the recorder met it.
 #[test]
 fn a_recording_on_a_full_disk_ends_the_run_naming_the_file() {
-    let (code, _, stderr) = yarok(&[
-        "run",
-        "tower_world",
-        "--record",
-        "/dev/full",
-        "--set",
-        "behaviour/seconds=2",
-    ]);
-    assert_eq!(code, 2, "{stderr}");
-    assert!(
-        stderr.contains("plugin mcap (/dev/full) failed: cannot write /dev/full")
-            && stderr.contains("No space left on device"),
-        "{stderr}"
+    yarok_fails(
+        &[
+            "run",
+            "tower_world",
+            "--record",
+            "/dev/full",
+            "--set",
+            "behaviour/seconds=2",
+        ],
+        2,
+        &[
+            "plugin mcap (/dev/full) failed: cannot write /dev/full",
+            "No space left on device",
+        ],
     );
 }

@@ -2,8 +2,8 @@
 
 use std::path::PathBuf;
 
-#[path = "support/yarok_binary.rs"]
-mod yarok_binary;
+mod support;
+use support::yarok_binary;
 
 use yarok_binary::yarok;
 

@@ -7,11 +7,11 @@
 //! decoded frames.
 #![cfg(feature = "dataset")]
 
-#[path = "../yarok-hw/tests/support/peers.rs"]
-mod peers;
+use yarok_test::peers;
 
 use std::path::Path;
 use std::process::{Command, Output};
+use yarok_test::assert_says;
 
 fn yarok(folder: &Path, args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_yarok"))
@@ -211,7 +211,7 @@ fn a_folder_holding_other_files_is_not_overwritten() {
     let run = yarok(folder.path(), &["run", "digit_world", "--dataset", "notes"]);
     assert!(!run.status.success());
     let said = String::from_utf8_lossy(&run.stderr);
-    assert!(said.contains("notes holds files but no dataset"), "{said}");
+    assert_says(&said, &["notes holds files but no dataset"]);
     assert_eq!(std::fs::read_to_string(&precious).unwrap(), "chapter 1");
 }
 

@@ -6,8 +6,7 @@
 use yarok::components::probe_images::png;
 use yarok::core::component::ProbeImage;
 
-#[path = "../yarok-hw/tests/support/peers.rs"]
-mod peers;
+use yarok_test::peers;
 
 #[test]
 fn depth_pngs_read_back_in_their_unit() {

@@ -10,6 +10,7 @@ use std::time::{Duration, Instant};
 
 use yarok::core::config::RunConfig;
 use yarok::prelude::*;
+use yarok_test::assert_says;
 
 const CHILD: &str = "YAROK_LONG_COMPILE_CHILD";
 
@@ -64,10 +65,7 @@ fn a_long_compile_says_so_and_an_interrupt_ends_it() {
         );
     }
     let noticed = started.elapsed();
-    assert!(
-        notice.contains("20000 bodies") && notice.contains("can take minutes"),
-        "{notice}"
-    );
+    assert_says(&notice, &["20000 bodies", "can take minutes"]);
     let interrupted = Command::new("kill")
         .args(["-INT", &child.id().to_string()])
         .status()

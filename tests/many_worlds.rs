@@ -5,12 +5,12 @@
 use yarok::components::worlds::{Press, TactileRigWorld};
 use yarok::core::runtime::run_parallel;
 
-#[path = "../yarok-hw/tests/support/peers.rs"]
-mod peers;
-#[path = "support/yarok_binary.rs"]
-mod yarok_binary;
+use yarok_test::peers;
+mod support;
+use support::yarok_binary;
 
-use yarok_binary::yarok;
+use yarok_binary::{yarok, yarok_fails};
+use yarok_test::assert_says;
 
 /// A DIGIT rig (its texture noise seeded by the platform) pressed `depth` metres deep: the
 /// tactile image's bytes.
@@ -133,7 +133,7 @@ fn the_shards_of_a_collection_are_the_whole_collection() {
                     "{name:?} records {topic}:\n{summary}"
                 );
             }
-            assert!(summary.contains("\njoint_state "), "{summary}");
+            assert_says(&summary, &["\njoint_state "]);
         }
     }
     assert_eq!(episodes, rows.len(), "one recording per press");
@@ -141,10 +141,9 @@ fn the_shards_of_a_collection_are_the_whole_collection() {
         let run = shards[0].join(format!("rig_{i}_of_3.mcap"));
         assert!(run.exists(), "shard {i}'s own recording, named apart");
     }
-    let (code, _, stderr) = yarok(&["run", "empty_world", "--shard", "3/3"]);
-    assert_eq!(code, 2);
-    assert!(
-        stderr.contains("\"3/3\": expected I/N with 0 ≤ I < N"),
-        "{stderr}"
+    yarok_fails(
+        &["run", "empty_world", "--shard", "3/3"],
+        2,
+        &["\"3/3\": expected I/N with 0 ≤ I < N"],
     );
 }

@@ -13,16 +13,15 @@ use yarok::components::grippers::Robotiq2f85;
 use yarok::components::robots::ur::Ur5e;
 use yarok::components::worlds::PickAndPlaceWorld;
 
-#[path = "support/example_binary.rs"]
-mod example_binary;
-#[path = "support/simulated_ur.rs"]
-mod simulated_ur;
-#[path = "../yarok-hw/tests/support/ur_controller/mod.rs"]
-mod ur_controller;
+mod support;
+use support::example_binary;
+use support::simulated_ur;
+use yarok_test::ur_controller;
 
 use example_binary::example_binary;
 use simulated_ur::SimulatedArm;
 use ur_controller::{FakeController, Profile};
+use yarok_test::assert_says;
 
 #[test]
 fn pick_and_place_runs_on_the_fake_controller() {
@@ -47,10 +46,7 @@ fn pick_and_place_runs_on_the_fake_controller() {
         String::from_utf8_lossy(&output.stderr)
     );
     assert_eq!(stdout.matches("stacked").count(), 3 + 1, "{stdout}");
-    assert!(
-        stdout.contains("every motion and grasp completed"),
-        "{stdout}"
-    );
+    assert_says(&stdout, &["every motion and grasp completed"]);
     let scripts = fake.scripts();
     let moves = scripts
         .iter()
@@ -150,10 +146,7 @@ fn a_typo_in_the_arms_settings_is_reported_before_the_gripper_is_touched() {
         .run()
         .unwrap_err()
         .to_string();
-    assert!(
-        error.contains("/arm") && error.contains("hots") && error.contains("host"),
-        "{error}"
-    );
+    assert_says(&error, &["/arm", "hots", "host"]);
     let fingers = fake.fingers();
     assert!(
         fingers.commands.is_empty() && fingers.sta == 0,

@@ -7,13 +7,12 @@ use std::io::{BufRead, BufReader};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-#[path = "support/example_binary.rs"]
-mod example_binary;
-#[path = "../yarok-hw/tests/support/virtual_printer.rs"]
 mod support;
+use support::example_binary;
+use yarok_test::virtual_printer;
 
 use example_binary::example_binary;
-use support::VirtualPrinter;
+use virtual_printer::VirtualPrinter;
 
 fn real(printer: &VirtualPrinter, laps: u32) -> Command {
     let mut command = Command::new(example_binary("printer_square"));

@@ -6,12 +6,10 @@
 
 use std::process::Command;
 
-#[path = "support/example_binary.rs"]
-mod example_binary;
-#[path = "support/joints_csv.rs"]
-mod joints_csv;
-#[path = "../yarok-hw/tests/support/peers.rs"]
-mod peers;
+mod support;
+use support::example_binary;
+use support::joints_csv;
+use yarok_test::peers;
 
 use example_binary::example_binary;
 use joints_csv::JointsCsv;

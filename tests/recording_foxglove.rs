@@ -7,12 +7,9 @@
 //! names them, the images are in the cameras' optical frames that `/tf` carries, and the joint
 //! positions (read by PyPI's `mcap`) are, bit for bit, those of the run's `joints_csv` file.
 
-#[path = "support/digit_world_recording.rs"]
-mod digit_world_recording;
-#[path = "support/joints_csv.rs"]
-mod joints_csv;
-#[path = "../yarok-hw/tests/support/peers.rs"]
-mod peers;
+mod support;
+use support::digit_world_recording;
+use yarok_test::peers;
 
 use digit_world_recording::record_digit_world;
 

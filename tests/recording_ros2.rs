@@ -7,14 +7,12 @@
 
 use std::process::Command;
 
-#[path = "support/digit_world_recording.rs"]
-mod digit_world_recording;
-#[path = "support/joints_csv.rs"]
-mod joints_csv;
-#[path = "../yarok-hw/tests/support/peers.rs"]
-mod peers;
+mod support;
+use support::digit_world_recording;
+use yarok_test::peers;
 
 use digit_world_recording::record_digit_world;
+use yarok_test::assert_says;
 
 /// Lines of `output` that start with `name `, without it.
 fn lines<'a>(output: &'a str, name: &str) -> Vec<&'a str> {
@@ -129,7 +127,7 @@ fn a_profile_without_a_recording_is_refused() {
         .unwrap();
     assert!(!output.status.success());
     let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(stderr.contains("give --record FILE.mcap too"), "{stderr}");
+    assert_says(&stderr, &["give --record FILE.mcap too"]);
 }
 
 #[test]

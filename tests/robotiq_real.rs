@@ -8,10 +8,10 @@ use std::time::Duration;
 use yarok::components::grippers::Robotiq2f85;
 use yarok::{Component, Declaration};
 
-#[path = "../yarok-hw/tests/support/ur_controller/mod.rs"]
-mod ur_controller;
+use yarok_test::ur_controller;
 
 use ur_controller::{FakeController, Profile};
+use yarok_test::assert_says;
 
 /// Just the gripper.
 struct GripperOnly;
@@ -81,8 +81,5 @@ fn a_gripper_fault_ends_the_run_naming_it() {
             .run()
     });
     let error = faulting.unwrap_err().to_string();
-    assert!(
-        error.contains("/gripper") && error.contains("overcurrent"),
-        "{error}"
-    );
+    assert_says(&error, &["/gripper", "overcurrent"]);
 }

@@ -6,6 +6,7 @@ use std::rc::Rc;
 use yarok::components::cameras::Cam;
 use yarok::components::robots::AnetA30;
 use yarok::components::worlds::PrinterWorld;
+use yarok_test::assert_says;
 
 /// Moves the printer through a few poses, recording where the head is on every tick.
 fn trajectory(environment: &str) -> Vec<[f64; 3]> {
@@ -140,8 +141,5 @@ fn a_fast_camera_gives_colour_and_depth_of_one_instant_from_one_draw() {
         .run()
         .unwrap_err()
         .to_string();
-    assert!(
-        error.contains("/printer/cam") && error.contains("\"pretty\""),
-        "{error}"
-    );
+    assert_says(&error, &["/printer/cam", "\"pretty\""]);
 }

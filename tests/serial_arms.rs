@@ -14,8 +14,7 @@ use yarok::components::robots::serial::{
 use yarok::nalgebra::{Isometry3, Vector3};
 use yarok::prelude::*;
 
-#[path = "../yarok-hw/tests/support/peers.rs"]
-mod peers;
+use yarok_test::peers;
 
 /// A robot file of robosuite's, from the installed package.
 fn robosuite(robot: &str) -> PathBuf {

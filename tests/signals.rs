@@ -9,12 +9,11 @@ use std::os::unix::process::CommandExt;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
-#[path = "../yarok-hw/tests/support/peers.rs"]
-mod peers;
-#[path = "../yarok-hw/tests/support/ur_controller/mod.rs"]
-mod ur_controller;
+use yarok_test::peers;
+use yarok_test::ur_controller;
 
 use ur_controller::{FakeController, Profile};
+use yarok_test::assert_says;
 
 /// `yarok run` with `arguments`, in a process group of its own (as a scheduler's job is), its
 /// standard error kept.
@@ -110,7 +109,7 @@ fn sigterm_ends_a_recorded_run_with_its_files_whole() {
     let pid = child.id().to_string();
     let (code, stderr, took) = terminate(child, &pid);
     assert_eq!(code, Some(143), "{stderr}");
-    assert!(stderr.contains("SIGTERM"), "{stderr}");
+    assert_says(&stderr, &["SIGTERM"]);
     println!("from SIGTERM to exit, files closed: {took:?}");
 
     let summary = peers::run("mcap_summary.py", &[mcap.to_str().unwrap()]);
@@ -171,7 +170,7 @@ fn sigterm_to_a_filmed_runs_whole_job_leaves_a_playable_mp4() {
         "{probed}{}",
         String::from_utf8_lossy(&probe.stderr)
     );
-    assert!(probed.contains("codec_name=h264"), "{probed}");
+    assert_says(&probed, &["codec_name=h264"]);
     let frames: u32 = probed
         .lines()
         .find_map(|line| line.strip_prefix("nb_read_frames="))
@@ -213,7 +212,7 @@ fn sigterm_stops_a_real_arm_and_closes_its_recording() {
     let pid = child.id().to_string();
     let (code, stderr, took) = terminate(child, &pid);
     assert_eq!(code, Some(143), "{stderr}");
-    assert!(stderr.contains("SIGTERM"), "{stderr}");
+    assert_says(&stderr, &["SIGTERM"]);
     println!("from SIGTERM to exit, arm stopped: {took:?}");
     // yarok wrote stopj before it exited; the fake reads it on a task of its own.
     let stopped = |scripts: &[String]| scripts.iter().any(|s| s == "stopj(2.0)");
@@ -284,7 +283,7 @@ fn an_encoder_that_stops_reading_neither_blocks_the_run_nor_outlives_it() {
     let pid = child.id().to_string();
     let (code, stderr, took) = signal(child, "-INT", &pid, Duration::from_secs(30));
     assert_ne!(code, Some(0), "{stderr}");
-    assert!(stderr.contains("encoder took no frame"), "{stderr}");
+    assert_says(&stderr, &["encoder took no frame"]);
     println!("ended {took:?} after Ctrl-C: {stderr}");
     let alive = Command::new("kill")
         .args(["-0", &encoder])

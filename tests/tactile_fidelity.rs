@@ -11,10 +11,10 @@ use yarok::components::tactile::calibration::{
 use yarok::components::tactile::fidelity::{self, Disc, Scores};
 use yarok::components::tactile::phong::{PhongModel, PhongParams};
 
-#[path = "../yarok-hw/tests/support/peers.rs"]
-mod peers;
-#[path = "support/yarok_binary.rs"]
-mod yarok_binary;
+use yarok_test::peers;
+mod support;
+use support::yarok_binary;
+use yarok_test::assert_says;
 
 /// Every 3rd press (0002, 0005, …) is held out of calibration.
 const HOLD_OUT: u32 = 3;
@@ -55,7 +55,7 @@ fn the_bundled_digit_calibration_is_what_calibrate_makes_of_the_shipped_frames()
         "18",
     ]);
     assert_eq!(status, 0, "{stdout}{stderr}");
-    assert!(stdout.contains("fitted to 14 of 21 presses"), "{stdout}");
+    assert_says(&stdout, &["fitted to 14 of 21 presses"]);
     let bundled = std::fs::read(format!(
         "{}/yarok-components/src/tactile/calibration/digit.json",
         env!("CARGO_MANIFEST_DIR")

@@ -9,6 +9,7 @@ use std::process::Command;
 
 use yarok::components::tactile_sensors::{Digit, GelTip, TactileError};
 use yarok::{Component, Declaration};
+use yarok_test::assert_says;
 
 /// A DIGIT and a GelTip side by side.
 struct TwoSensors;
@@ -177,8 +178,5 @@ fn a_real_sensor_without_a_camera_is_an_error_naming_it() {
         .run()
         .unwrap_err()
         .to_string();
-    assert!(
-        error.contains("/digit") && error.contains("/dev/video97"),
-        "{error}"
-    );
+    assert_says(&error, &["/digit", "/dev/video97"]);
 }

@@ -6,6 +6,7 @@
 use yarok::components::tactile_sensors::{Contact, Digit, TactileSensor};
 use yarok::components::worlds::EmptyWorld;
 use yarok::prelude::*;
+use yarok_test::assert_says;
 
 /// A DIGIT facing up with its gel's face at z = 0.118 m, and a 5 mm sphere pressed `press`
 /// metres into the gel at (`dx`, `dy`) from its centre (it stands still and collides with
@@ -473,10 +474,7 @@ fn the_gel_geometry_of_the_optical_model_cannot_be_changed() {
         .run()
         .unwrap_err()
         .to_string();
-    assert!(
-        error.contains("/digit") && error.contains("gel_face") && error.contains("0.018"),
-        "{error}"
-    );
+    assert_says(&error, &["/digit", "gel_face", "0.018"]);
     // The housing is the sensor's own and may change.
     let (_, contact) =
         first_frame::<PressWorld, Digit>("/digit", &["/digit/housing=[0.015, 0.012]"]);

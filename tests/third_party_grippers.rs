@@ -15,8 +15,7 @@ use yarok::components::toys::Block;
 use yarok::mjc::{Actuator, Sim};
 use yarok::prelude::*;
 
-#[path = "../yarok-hw/tests/support/peers.rs"]
-mod peers;
+use yarok_test::peers;
 
 /// Menagerie's `robotiq_2f85/2f85.xml` as it is.
 #[derive(Clone)]

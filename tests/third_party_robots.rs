@@ -22,12 +22,12 @@ use yarok::mjc::{Data, Model, Sim, Site};
 use yarok::nalgebra::Vector3;
 use yarok::prelude::*;
 
-#[path = "support/example_binary.rs"]
-mod example_binary;
-#[path = "../yarok-hw/tests/support/peers.rs"]
-mod peers;
+mod support;
+use support::example_binary;
+use yarok_test::peers;
 
 use example_binary::example_binary;
+use yarok_test::assert_says;
 
 const HOME: Joints = [0.0, -FRAC_PI_2, FRAC_PI_2, -FRAC_PI_2, -FRAC_PI_2, 0.0];
 
@@ -274,9 +274,9 @@ fn a_name_the_file_lacks_is_an_error_listing_the_names_it_has() {
         .run()
         .unwrap_err()
         .to_string();
-    assert!(
-        error.contains(r#"no actuator named "fingers"; it has `fingers_actuator`"#),
-        "{error}"
+    assert_says(
+        &error,
+        &[r#"no actuator named "fingers"; it has `fingers_actuator`"#],
     );
 }
 
@@ -323,6 +323,6 @@ fn a_payload_set_as_on_the_real_arm_is_held_without_sagging() {
             .run()
     };
     let sagged = reach(None).unwrap_err().to_string();
-    assert!(sagged.contains("did not"), "{sagged}");
+    assert_says(&sagged, &["did not"]);
     reach(Some(3.0)).unwrap();
 }

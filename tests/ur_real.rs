@@ -13,13 +13,13 @@ use std::time::Duration;
 use yarok::Component;
 use yarok::components::robots::ur::{MotionError, Ur5, Ur5e, pose_from_vector, pose_to_vector};
 
-#[path = "support/simulated_ur.rs"]
-mod simulated_ur;
-#[path = "../yarok-hw/tests/support/ur_controller/mod.rs"]
-mod ur_controller;
+mod support;
+use support::simulated_ur;
+use yarok_test::ur_controller;
 
 use simulated_ur::{SimulatedArm, Ur5Alone, Ur5eAlone};
 use ur_controller::{FakeController, Profile};
+use yarok_test::assert_says;
 
 /// Where the arms start.
 const START: [f64; 6] = [0.0, -1.3, 1.2, -1.5, -1.57, 0.0];
@@ -89,12 +89,7 @@ fn a_ur5_configured_on_a_ur5e_is_refused_naming_both() {
         .run()
         .unwrap_err()
         .to_string();
-    assert!(
-        error.contains("/arm")
-            && error.contains("a UR5e (d1 0.1625")
-            && error.contains("a UR5 (d1 0.0892"),
-        "{error}"
-    );
+    assert_says(&error, &["/arm", "a UR5e (d1 0.1625", "a UR5 (d1 0.0892"]);
 }
 
 #[test]
@@ -292,27 +287,18 @@ fn a_controller_in_local_control_powered_off_or_stopped_is_refused_in_words() {
     let local = fake_ur5e();
     local.set_remote_control(false);
     let error = real::<Ur5eAlone>(&local).run().unwrap_err().to_string();
-    assert!(
-        error.contains("/arm") && error.contains("local control") && error.contains("remote"),
-        "{error}"
-    );
+    assert_says(&error, &["/arm", "local control", "remote"]);
 
     let off = fake_ur5e();
     off.power_off();
     let error = real::<Ur5eAlone>(&off).run().unwrap_err().to_string();
-    assert!(
-        error.contains("/arm") && error.contains("powered off"),
-        "{error}"
-    );
+    assert_says(&error, &["/arm", "powered off"]);
     assert!(off.scripts().iter().all(|s| !s.starts_with("move")));
 
     let stopped = fake_ur5e();
     stopped.protective_stop(Duration::from_secs(1));
     let error = real::<Ur5eAlone>(&stopped).run().unwrap_err().to_string();
-    assert!(
-        error.contains("safety system holds it (PROTECTIVE_STOP)"),
-        "{error}"
-    );
+    assert_says(&error, &["safety system holds it (PROTECTIVE_STOP)"]);
 }
 
 /// Powered off during a 2-second motion, the arm's motion fails at once, naming the mode,
@@ -365,7 +351,7 @@ fn a_mute_rtde_is_named_without_a_tight_loop_of_reconnections() {
         .unwrap_err()
         .to_string();
     let took = started.elapsed();
-    assert!(error.contains("RTDE") && error.contains("mute"), "{error}");
+    assert_says(&error, &["RTDE", "mute"]);
     assert!(!error.contains("did not reach"), "{error}");
     assert!(took < Duration::from_secs(10), "{took:?}");
     // Waits doubling from 0.1 s within the 2 s reply time leave room for five attempts.

@@ -13,8 +13,8 @@ use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
-#[path = "../yarok-hw/tests/support/peers.rs"]
-mod peers;
+use yarok_test::assert_says;
+use yarok_test::peers;
 
 /// An X server of its own, on a display no other test uses, killed when dropped.
 struct Xvfb {
@@ -218,7 +218,7 @@ fn backspace_puts_the_world_back_under_a_behaviour_in_motion_which_ends_saying_s
     // ends with that error.
     let (status, stderr) = finished(run, Duration::from_secs(30));
     assert!(!status.success(), "{stderr}");
-    assert!(stderr.contains("the motion was stopped"), "{stderr}");
+    assert_says(&stderr, &["the motion was stopped"]);
 }
 
 #[test]
@@ -257,7 +257,7 @@ fn kept_open_the_viewer_shows_the_ended_world_until_it_is_closed() {
     );
     let title = x.window("yarok - t", &["title"]);
     assert_eq!(title_time(&title), (ended_at, false), "{title}");
-    assert!(title.contains("ended"), "{title}");
+    assert_says(&title, &["ended"]);
     // The camera still moves, and S shows the cameras (the DIGITs' on the fingers among them)
     // with their frames.
     let folder = tempfile::tempdir().unwrap();
@@ -307,9 +307,9 @@ fn without_an_x_server_the_viewer_says_so_or_runs_on_when_asked() {
     let failed = run(&[]);
     let stderr = String::from_utf8_lossy(&failed.stderr);
     assert_eq!(failed.status.code(), Some(2), "{stderr}");
-    assert!(
-        stderr.contains("viewer") && stderr.contains("no window can open on display \":9999\""),
-        "{stderr}"
+    assert_says(
+        &stderr,
+        &["viewer", "no window can open on display \":9999\""],
     );
     let headless = run(&["--set", "plugins/viewer/headless=true"]);
     assert!(

@@ -7,8 +7,7 @@
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-#[path = "../yarok-hw/tests/support/peers.rs"]
-mod peers;
+use yarok_test::peers;
 
 #[test]
 fn a_third_party_client_reads_the_world_and_moves_the_arm() {

@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use crate::joints_csv::JointsCsv;
+use super::joints_csv::JointsCsv;
 
 /// Runs `yarok run digit_world --record {folder}/run.mcap` with `options` and a `joints_csv`
 /// row every 10 ticks; the recording and the CSV, once the run succeeded.

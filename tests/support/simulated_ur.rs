@@ -13,7 +13,7 @@ use yarok::components::robots::ur::{Arm, Ur5, Ur5e, pose_from_vector};
 use yarok::core::runtime::PlatformThread;
 use yarok::{Component, Declaration};
 
-use crate::ur_controller::motion::{ArmCommand, ArmMotion, ArmState};
+use yarok_test::ur_controller::motion::{ArmCommand, ArmMotion, ArmState};
 
 /// A UR5e alone, at `/arm`.
 pub(crate) struct Ur5eAlone;

@@ -15,3 +15,15 @@ pub(crate) fn yarok(args: &[&str]) -> (i32, String, String) {
         text(output.stderr),
     )
 }
+
+/// Runs `yarok ARGS`, asserts that it exits with `code` and that its standard error names every
+/// one of `parts` (the place and the nearest name); returns the standard error.
+#[track_caller]
+pub(crate) fn yarok_fails(args: &[&str], code: i32, parts: &[&str]) -> String {
+    let (exited, _, stderr) = yarok(args);
+    assert_eq!(
+        exited, code,
+        "yarok {args:?} exited with {exited}: {stderr}"
+    );
+    yarok_test::assert_says(stderr, parts)
+}

@@ -10,10 +10,8 @@ use tokio::io::AsyncWriteExt;
 use tokio::net::TcpStream;
 use yarok_hw::ur::dashboard::{Dashboard, DashboardError, RobotMode, SafetyStatus};
 
-#[path = "support/peers.rs"]
-mod peers;
-#[path = "support/ur_controller/mod.rs"]
-mod ur_controller;
+use yarok_test::peers;
+use yarok_test::ur_controller;
 
 use ur_controller::{DASHBOARD_PORT, FakeController, Profile};
 

@@ -10,10 +10,8 @@ use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::TcpStream;
 use yarok_hw::robotiq::{Gripper, GripperError, Motion};
 
-#[path = "support/peers.rs"]
-mod peers;
-#[path = "support/ur_controller/mod.rs"]
-mod ur_controller;
+use yarok_test::peers;
+use yarok_test::ur_controller;
 
 use ur_controller::{FakeController, GRIPPER_PORT, Profile};
 

@@ -9,8 +9,7 @@ use tokio::io::{AsyncBufReadExt, AsyncWriteExt, BufReader, DuplexStream};
 use yarok_hw::robotiq::{Gripper, GripperError};
 use yarok_hw::ur::dashboard::{Dashboard, DashboardError, RobotMode};
 
-#[path = "support/generator.rs"]
-mod generator;
+use yarok_test::generator;
 
 use generator::Generator;
 

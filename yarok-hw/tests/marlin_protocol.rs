@@ -8,11 +8,10 @@ use std::time::Duration;
 use tokio::io::DuplexStream;
 use yarok_hw::marlin::{Marlin, MarlinError, MarlinSettings, Position};
 
-#[path = "support/printer.rs"]
-mod support;
+use yarok_test::scripted_printer;
 
-use support::Step::{Bytes, Close, Expect, Send, Sleep};
-use support::{Step, printer, pseudo_terminal};
+use scripted_printer::Step::{Bytes, Close, Expect, Send, Sleep};
+use scripted_printer::{Step, printer, pseudo_terminal};
 
 /// A driver connected to a printer playing `script` after its boot (`start`, an `echo:` line,
 /// then quiet) and the `M110` handshake.

@@ -4,8 +4,7 @@
 
 use yarok_hw::marlin::Reply;
 
-#[path = "support/generator.rs"]
-mod generator;
+use yarok_test::generator;
 
 use generator::Generator;
 

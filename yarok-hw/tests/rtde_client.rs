@@ -10,8 +10,7 @@ use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::TcpStream;
 use yarok_hw::ur::rtde::{Reply, Rtde, RtdeError, RtdeSettings, Value};
 
-#[path = "support/ur_controller/mod.rs"]
-mod ur_controller;
+use yarok_test::ur_controller;
 
 use ur_controller::{FakeController, Profile, RTDE_PORT};
 

@@ -3,8 +3,7 @@
 //! then 100 000 generated packets — well-formed ones mutated, and arbitrary bytes — through the
 //! framing and both decoders, never a panic, and every well-formed message decoding to itself.
 
-#[path = "support/generator.rs"]
-mod generator;
+use yarok_test::generator;
 
 use generator::Generator;
 use yarok_hw::ur::rtde::{

@@ -8,10 +8,8 @@
 
 use yarok_hw::ur::rtde::Value;
 
-#[path = "support/peers.rs"]
-mod peers;
-#[path = "support/ur_controller/mod.rs"]
-mod ur_controller;
+use yarok_test::peers;
+use yarok_test::ur_controller;
 
 use ur_controller::{FakeController, Profile};
 

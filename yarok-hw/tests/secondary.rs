@@ -12,12 +12,9 @@ use std::time::{Duration, Instant};
 use tokio::net::TcpStream;
 use yarok_hw::ur::secondary::{Packet, PacketError, Secondary, parse, take_packet};
 
-#[path = "support/generator.rs"]
-mod generator;
-#[path = "support/peers.rs"]
-mod peers;
-#[path = "support/ur_controller/mod.rs"]
-mod ur_controller;
+use yarok_test::generator;
+use yarok_test::peers;
+use yarok_test::ur_controller;
 
 use generator::Generator;
 use ur_controller::{FakeController, Profile, SECONDARY_PORT};

@@ -14,10 +14,9 @@ use std::time::Duration;
 use yarok_hw::SerialPort;
 use yarok_hw::marlin::{Marlin, MarlinError, MarlinSettings, Reconnecting};
 
-#[path = "support/virtual_printer.rs"]
-mod support;
+use yarok_test::virtual_printer;
 
-use support::VirtualPrinter;
+use virtual_printer::VirtualPrinter;
 
 #[tokio::test]
 async fn homing_and_a_square_whose_corners_m114_confirms() {

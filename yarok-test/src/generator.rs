@@ -1,11 +1,13 @@
 //! A small deterministic generator (xorshift64*) for the parsers' generated-input tests: the
 //! same seed gives the same inputs on every machine.
-#![allow(dead_code)]
 
-pub(crate) struct Generator(pub(crate) u64);
+/// The generator; its `u64` is the state (the seed, which must not be 0).
+#[derive(Debug, Clone)]
+pub struct Generator(pub u64);
 
 impl Generator {
-    pub(crate) fn next(&mut self) -> u64 {
+    /// The next number.
+    pub fn next(&mut self) -> u64 {
         self.0 ^= self.0 >> 12;
         self.0 ^= self.0 << 25;
         self.0 ^= self.0 >> 27;
@@ -13,15 +15,17 @@ impl Generator {
     }
 
     /// A number below `n`.
-    pub(crate) fn below(&mut self, n: usize) -> usize {
+    pub fn below(&mut self, n: usize) -> usize {
         (self.next() % n as u64) as usize
     }
 
-    pub(crate) fn pick<'a>(&mut self, from: &[&'a str]) -> &'a str {
+    /// One of `from`.
+    pub fn pick<'a>(&mut self, from: &[&'a str]) -> &'a str {
         from[self.below(from.len())]
     }
 
-    pub(crate) fn bytes(&mut self, n: usize) -> Vec<u8> {
+    /// `n` bytes.
+    pub fn bytes(&mut self, n: usize) -> Vec<u8> {
         (0..n).map(|_| self.next() as u8).collect()
     }
 }

@@ -11,24 +11,24 @@ use super::Shared;
 
 /// The gripper's registers and its fingers' motion.
 #[derive(Debug, Clone)]
-pub(crate) struct Fingers {
+pub struct Fingers {
     act: u8,
     gto: u8,
-    pub(crate) sta: u8,
-    pub(crate) flt: u8,
-    pub(crate) obj: u8,
-    pub(crate) pre: u8,
+    pub sta: u8,
+    pub flt: u8,
+    pub obj: u8,
+    pub pre: u8,
     target: u8,
     speed: u8,
-    pub(crate) force: u8,
+    pub force: u8,
     /// Finger position, 0 … 255, as a real number while moving.
     position: f64,
     activating_since: Option<Instant>,
     updated: Instant,
     /// Where closing fingers meet an object, if one is between them.
-    pub(crate) object_at: Option<u8>,
+    pub object_at: Option<u8>,
     /// Every SET command, in order.
-    pub(crate) commands: Vec<String>,
+    pub commands: Vec<String>,
 }
 
 impl Fingers {
@@ -52,7 +52,7 @@ impl Fingers {
         }
     }
 
-    pub(crate) fn position(&self) -> u8 {
+    pub fn position(&self) -> u8 {
         self.position.round() as u8
     }
 

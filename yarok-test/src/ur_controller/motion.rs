@@ -7,8 +7,9 @@ use std::time::Instant;
 
 /// What a script asks of the arm.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) enum ArmCommand {
+pub enum ArmCommand {
     /// `movej`: to joints `to`, the leading joint at `speed` rad/s and `acceleration` rad/s².
+    #[allow(missing_docs)]
     Joints {
         to: [f64; 6],
         speed: f64,
@@ -16,6 +17,7 @@ pub(crate) enum ArmCommand {
     },
     /// `movel`: the TCP `tcp` (a pose vector in the flange frame, as `set_tcp` set it) along a
     /// line to `pose` (a pose vector in the base frame), at `speed` m/s and `acceleration` m/s².
+    #[allow(missing_docs)]
     Line {
         pose: [f64; 6],
         tcp: [f64; 6],
@@ -28,19 +30,19 @@ pub(crate) enum ArmCommand {
 
 /// The arm as its controller reports it.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct ArmState {
+pub struct ArmState {
     /// Joint angles (radians).
-    pub(crate) q: [f64; 6],
+    pub q: [f64; 6],
     /// Joint speeds (rad/s).
-    pub(crate) qd: [f64; 6],
+    pub qd: [f64; 6],
     /// The joints the motion under way ends at (`q` at rest).
-    pub(crate) target: [f64; 6],
+    pub target: [f64; 6],
     /// Whether a motion is under way.
-    pub(crate) moving: bool,
+    pub moving: bool,
 }
 
 /// The arm behind the fake controller's interfaces.
-pub(crate) trait ArmMotion: Send {
+pub trait ArmMotion: Send {
     /// Where the arm is now.
     fn state(&self) -> ArmState;
     /// Runs a command from a script.
@@ -52,7 +54,7 @@ pub(crate) trait ArmMotion: Send {
 /// Joints at rest or moving linearly from one position to another at the speed asked for;
 /// `movel` is kept unanswered (no kinematics here); a stop is instant.
 #[derive(Debug, Clone)]
-pub(crate) struct Interpolated {
+pub struct Interpolated {
     from: [f64; 6],
     to: [f64; 6],
     started: Instant,
@@ -60,7 +62,8 @@ pub(crate) struct Interpolated {
 }
 
 impl Interpolated {
-    pub(crate) fn at(q: [f64; 6]) -> Self {
+    /// Standing at `q`.
+    pub fn at(q: [f64; 6]) -> Self {
         Self {
             from: q,
             to: q,

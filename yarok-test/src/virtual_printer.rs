@@ -1,7 +1,6 @@
 //! OctoPrint's VirtualPrinter on a pseudo-terminal, through `scripts/peers/virtual_printer_bridge.py`
 //! (installed by `scripts/setup-test-peers.sh`), for tests: shared by yarok-hw's tests and the
 //! workspace's.
-#![allow(dead_code)]
 
 use std::io::{BufRead, BufReader, Write};
 use std::process::{Child, ChildStdin, Command, Stdio};
@@ -11,28 +10,28 @@ use std::time::{Duration, Instant};
 use yarok_hw::SerialPort;
 use yarok_hw::marlin::{Marlin, MarlinSettings};
 
-#[path = "peers.rs"]
-mod peers;
+use crate::peers;
 
 /// The VirtualPrinter behind a pseudo-terminal, stopped when dropped.
-pub(crate) struct VirtualPrinter {
+#[derive(Debug)]
+pub struct VirtualPrinter {
     bridge: Child,
     input: Mutex<ChildStdin>,
     /// A stable link to the device, as `/dev/serial/by-id/` names are.
-    pub(crate) path: String,
+    pub path: String,
     /// What the bridge reported after the path: received lines (`> …`) and events.
     reports: Arc<Mutex<Vec<String>>>,
 }
 
 impl VirtualPrinter {
     /// Starts one with these settings (JSON) over the plugin's defaults.
-    pub(crate) fn start(settings: &str) -> Self {
+    pub fn start(settings: &str) -> Self {
         Self::launch(&[settings])
     }
 
     /// Starts one that comes back `seconds` after it drops the connection, as a printer whose
     /// USB cable is unplugged and plugged back in.
-    pub(crate) fn replugging(settings: &str, seconds: f64) -> Self {
+    pub fn replugging(settings: &str, seconds: f64) -> Self {
         Self::launch(&[settings, &seconds.to_string()])
     }
 
@@ -67,19 +66,19 @@ impl VirtualPrinter {
 
     /// Sends `line` to the printer as if it came down the line (a `!!DEBUG:` fault), whatever
     /// the client is doing.
-    pub(crate) fn inject(&self, line: &str) {
+    pub fn inject(&self, line: &str) {
         let mut input = self.input.lock().unwrap();
         writeln!(input, "{line}").expect("the bridge takes the line");
         input.flush().expect("the bridge takes the line");
     }
 
     /// The lines the printer ignored while it booted.
-    pub(crate) fn ignored(&self) -> Vec<String> {
+    pub fn ignored(&self) -> Vec<String> {
         self.lines_reported("~ ")
     }
 
     /// The lines the printer has received so far.
-    pub(crate) fn received(&self) -> Vec<String> {
+    pub fn received(&self) -> Vec<String> {
         self.lines_reported("> ")
     }
 
@@ -94,7 +93,7 @@ impl VirtualPrinter {
 
     /// Waits up to `limit` for the bridge to report `event` (`closed`, `dropped`,
     /// `replugged`); whether it did.
-    pub(crate) fn saw(&self, event: &str, limit: Duration) -> bool {
+    pub fn saw(&self, event: &str, limit: Duration) -> bool {
         let until = Instant::now() + limit;
         loop {
             if self
@@ -113,7 +112,8 @@ impl VirtualPrinter {
         }
     }
 
-    pub(crate) async fn connect(&self) -> Marlin<SerialPort> {
+    /// Yarok's Marlin driver, connected to it at 250000 baud.
+    pub async fn connect(&self) -> Marlin<SerialPort> {
         let port = SerialPort::open(&self.path, 250_000).expect("the device opens");
         Marlin::connect(port, self.settings())
             .await
@@ -121,7 +121,7 @@ impl VirtualPrinter {
     }
 
     /// The driver's settings for it: quick to boot, quick to call it silent.
-    pub(crate) fn settings(&self) -> MarlinSettings {
+    pub fn settings(&self) -> MarlinSettings {
         let mut settings = MarlinSettings::new(self.path.clone());
         settings.boot_quiet = Duration::from_millis(300);
         settings.silence = Duration::from_secs(2);
