@@ -42,11 +42,11 @@ impl ReplyLines for Generator {
             "",
         ];
         let mut line = Vec::new();
-        for _ in 0..(self.next() % 5) {
+        for _ in 0..(self.next_u64() % 5) {
             line.extend_from_slice(self.pick(&parts).as_bytes());
         }
-        if self.next().is_multiple_of(9) {
-            line.push(self.next() as u8 | 0x80);
+        if self.next_u64().is_multiple_of(9) {
+            line.push(self.next_u64() as u8 | 0x80);
         }
         line.retain(|byte| *byte != b'\n');
         line

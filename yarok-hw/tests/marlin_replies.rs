@@ -17,8 +17,8 @@ trait Lines {
 impl Lines for Generator {
     /// A number as a printer might print it, or something almost like one.
     fn number(&mut self) -> String {
-        let value = (self.next() % 200_000) as f64 / 100.0 - 1000.0;
-        match self.next() % 4 {
+        let value = (self.next_u64() % 200_000) as f64 / 100.0 - 1000.0;
+        match self.next_u64() % 4 {
             0 => format!("{value:.2}"),
             1 => format!("{value}"),
             2 => format!("{}", value as i64),
@@ -27,9 +27,9 @@ impl Lines for Generator {
     }
 
     fn line(&mut self) -> String {
-        if self.next().is_multiple_of(5) {
+        if self.next_u64().is_multiple_of(5) {
             // A position report in either firmware's form, possibly cut short.
-            let ok = if self.next().is_multiple_of(2) {
+            let ok = if self.next_u64().is_multiple_of(2) {
                 "ok "
             } else {
                 ""
@@ -41,7 +41,7 @@ impl Lines for Generator {
                 self.number(),
                 self.number()
             );
-            let cut = (self.next() as usize % (line.len() + 1)).max(line.len() / 2);
+            let cut = (self.next_u64() as usize % (line.len() + 1)).max(line.len() / 2);
             return line[..cut].to_owned();
         }
         const PIECES: &[&str] = &[
@@ -94,10 +94,12 @@ impl Lines for Generator {
             "\"",
         ];
         let mut line = String::new();
-        for _ in 0..self.next() % 12 {
-            if self.next().is_multiple_of(10) {
+        for _ in 0..self.next_u64() % 12 {
+            if self.next_u64().is_multiple_of(10) {
                 // Arbitrary bytes, decoded as the driver decodes them.
-                let bytes: Vec<u8> = (0..self.next() % 6).map(|_| self.next() as u8).collect();
+                let bytes: Vec<u8> = (0..self.next_u64() % 6)
+                    .map(|_| self.next_u64() as u8)
+                    .collect();
                 line.push_str(&String::from_utf8_lossy(&bytes));
             } else {
                 line.push_str(self.pick(PIECES));

@@ -257,39 +257,39 @@ impl Replies for Generator {
     fn reply(&mut self) -> Reply {
         match self.below(8) {
             0 => Reply::ProtocolVersion {
-                accepted: self.next().is_multiple_of(2),
+                accepted: self.next_u64().is_multiple_of(2),
             },
             1 => Reply::ControllerVersion(ControllerVersion {
-                major: self.next() as u32,
-                minor: self.next() as u32,
-                bugfix: self.next() as u32,
-                build: self.next() as u32,
+                major: self.next_u64() as u32,
+                minor: self.next_u64() as u32,
+                bugfix: self.next_u64() as u32,
+                build: self.next_u64() as u32,
             }),
             2 => Reply::OutputsSetUp {
-                recipe: self.next() as u8,
+                recipe: self.next_u64() as u8,
                 types: self.words(),
             },
             3 => Reply::InputsSetUp {
-                recipe: self.next() as u8,
+                recipe: self.next_u64() as u8,
                 types: self.words(),
             },
             4 => Reply::Started {
-                accepted: self.next().is_multiple_of(2),
+                accepted: self.next_u64().is_multiple_of(2),
             },
             5 => Reply::Paused {
-                accepted: self.next().is_multiple_of(2),
+                accepted: self.next_u64().is_multiple_of(2),
             },
             6 => {
                 let length = self.below(64);
                 Reply::Data {
-                    recipe: self.next() as u8,
+                    recipe: self.next_u64() as u8,
                     payload: self.bytes(length),
                 }
             }
             _ => Reply::Text(Text {
                 message: self.word(),
                 source: self.word(),
-                level: self.next() as u8,
+                level: self.next_u64() as u8,
             }),
         }
     }
@@ -315,7 +315,7 @@ fn a_hundred_thousand_generated_packets_never_panic() {
             match generator.below(3) {
                 0 => {
                     let at = generator.below(bytes.len());
-                    bytes[at] ^= generator.next() as u8 | 1;
+                    bytes[at] ^= generator.next_u64() as u8 | 1;
                 }
                 1 => bytes.truncate(generator.below(bytes.len())),
                 _ => {

@@ -162,7 +162,7 @@ fn robot_state(sub_packages: &[(u8, usize)], generator: &mut Generator) -> Vec<u
     for &(kind, size) in sub_packages {
         body.extend(((size + 5) as i32).to_be_bytes());
         body.push(kind);
-        body.extend((0..size).map(|_| generator.next() as u8));
+        body.extend((0..size).map(|_| generator.next_u64() as u8));
     }
     let mut out = ((body.len() + 5) as i32).to_be_bytes().to_vec();
     out.push(16);
@@ -205,7 +205,7 @@ fn a_hundred_thousand_generated_packets_never_panic() {
             0 => {}
             1 => {
                 let at = generator.below(bytes.len());
-                bytes[at] ^= generator.next() as u8 | 1;
+                bytes[at] ^= generator.next_u64() as u8 | 1;
             }
             2 => {
                 let keep = generator.below(bytes.len());
@@ -217,7 +217,7 @@ fn a_hundred_thousand_generated_packets_never_panic() {
             }
             _ => {
                 let length = generator.below(64);
-                bytes = (0..length).map(|_| generator.next() as u8).collect();
+                bytes = (0..length).map(|_| generator.next_u64() as u8).collect();
             }
         }
         let mut buffer = bytes;
