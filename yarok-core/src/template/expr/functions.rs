@@ -1,7 +1,4 @@
-//! The `py::` functions evalexpr code calls: Python's semantics for operators and builtins.
-//!
-//! Calls pass their argument count first (`py::len(1, x)`), so a single tuple argument is never
-//! confused with several arguments.
+//! Python's meaning for the operators and builtins expressions use, on evalexpr's values.
 
 use evalexpr::{EvalexprError, EvalexprResult, Value};
 
@@ -157,14 +154,6 @@ fn arithmetic(
     }
 }
 
-fn arguments(argument: &Value) -> EvalexprResult<&[Value]> {
-    match argument {
-        Value::Int(0) => Ok(&[]),
-        Value::Tuple(items) if !items.is_empty() => Ok(&items[1..]),
-        _ => fail("internal: malformed call"),
-    }
-}
-
 fn arity<'a, const N: usize>(name: &str, args: &'a [Value]) -> EvalexprResult<&'a [Value; N]> {
     args.try_into().or_else(|_| {
         fail(format!(
@@ -174,115 +163,24 @@ fn arity<'a, const N: usize>(name: &str, args: &'a [Value]) -> EvalexprResult<&'
     })
 }
 
-pub(super) fn call(identifier: &str, argument: &Value) -> EvalexprResult<Value> {
-    let Some(name) = identifier.strip_prefix("py::") else {
-        return fail(format!("function `{identifier}` is not defined"));
-    };
-    apply(name, arguments(argument)?)
-}
-
-/// The `py::` function `name` applied to `args`.
-fn apply(name: &str, args: &[Value]) -> EvalexprResult<Value> {
+/// The operation or builtin `name` (as [`binary`], [`comparison`] and [`callable`] name them)
+/// applied to `args`.
+pub(super) fn apply(name: &str, args: &[Value]) -> EvalexprResult<Value> {
     match name {
-        "none" => Ok(Value::Empty),
-        "literal" => Ok(Value::Tuple(args.to_vec())),
         "list" | "tuple" => {
             items(&arity::<1>(name, args)?[0]).map(|items| Value::Tuple(items.to_vec()))
         }
-        "neg" => match num(&arity::<1>(name, args)?[0]) {
-            Some(Num::Int(n)) => n
-                .checked_neg()
-                .map(Value::Int)
-                .map_or_else(|| overflow("-"), Ok),
-            Some(Num::Float(x)) => Ok(Value::Float(-x)),
-            None => fail(format!(
-                "bad operand type for unary -: '{}'",
-                type_name(&args[0])
-            )),
-        },
-        "not" => Ok(Value::Boolean(!truthy(&arity::<1>(name, args)?[0]))),
-        "and" => Ok(args
-            .iter()
-            .find(|a| !truthy(a))
-            .or(args.last())
-            .cloned()
-            .unwrap_or(Value::Empty)),
-        "or" => Ok(args
-            .iter()
-            .find(|a| truthy(a))
-            .or(args.last())
-            .cloned()
-            .unwrap_or(Value::Empty)),
-        "chain" => chain(args),
+        "neg" => negate(&arity::<1>(name, args)?[0]),
         "add" => add(arity::<2>(name, args)?),
         "sub" => {
             let [a, b] = arity::<2>(name, args)?;
             arithmetic("-", a, b, i64::checked_sub, |x, y| x - y)
         }
         "mul" => multiply(arity::<2>(name, args)?),
-        "truediv" => {
-            let [a, b] = arity::<2>(name, args)?;
-            let (x, y) = numbers("/", a, b)?;
-            if float(y) == 0.0 {
-                return fail("division by zero");
-            }
-            Ok(Value::Float(float(x) / float(y)))
-        }
-        "floordiv" => {
-            let [a, b] = arity::<2>(name, args)?;
-            if num(b).is_some_and(|y| float(y) == 0.0) {
-                return fail("integer division or modulo by zero");
-            }
-            arithmetic(
-                "//",
-                a,
-                b,
-                |x, y| {
-                    x.checked_div_euclid(y)
-                        .map(|q| if y < 0 && x % y != 0 { q + 1 } else { q })
-                },
-                |x, y| (x / y).floor(),
-            )
-        }
-        "mod" => {
-            let [a, b] = arity::<2>(name, args)?;
-            if num(b).is_some_and(|y| float(y) == 0.0) {
-                return fail("integer division or modulo by zero");
-            }
-            arithmetic(
-                "%",
-                a,
-                b,
-                |x, y| {
-                    x.checked_rem(y).map(|r| {
-                        if r != 0 && (r < 0) != (y < 0) {
-                            r + y
-                        } else {
-                            r
-                        }
-                    })
-                },
-                |x, y| {
-                    let r = x % y;
-                    if r != 0.0 && (r < 0.0) != (y < 0.0) {
-                        r + y
-                    } else {
-                        r
-                    }
-                },
-            )
-        }
-        "pow" => {
-            let [a, b] = arity::<2>(name, args)?;
-            match numbers("**", a, b)? {
-                (Num::Int(x), Num::Int(y)) if y >= 0 => u32::try_from(y)
-                    .ok()
-                    .and_then(|y| x.checked_pow(y))
-                    .map(Value::Int)
-                    .map_or_else(|| overflow("**"), Ok),
-                (x, y) => Ok(Value::Float(float(x).powf(float(y)))),
-            }
-        }
+        "truediv" => true_divide(arity::<2>(name, args)?),
+        "floordiv" => floor_divide(arity::<2>(name, args)?),
+        "mod" => modulo(arity::<2>(name, args)?),
+        "pow" => power(arity::<2>(name, args)?),
         "eq" => Ok(Value::Boolean(equal(arity::<2>(name, args)?))),
         "ne" => Ok(Value::Boolean(!equal(arity::<2>(name, args)?))),
         "lt" | "le" | "gt" | "ge" => compare(name, arity::<2>(name, args)?),
@@ -294,16 +192,83 @@ fn apply(name: &str, args: &[Value]) -> EvalexprResult<Value> {
     }
 }
 
-/// `a op b op c …`, folded from the left: `[a, "add", b, "sub", c]`.
-fn chain(args: &[Value]) -> EvalexprResult<Value> {
-    let Some((first, rest)) = args.split_first() else {
-        return fail("internal: empty chain");
-    };
-    rest.chunks(2)
-        .try_fold(first.clone(), |left, pair| match pair {
-            [Value::String(op), right] => apply(op, &[left, right.clone()]),
-            _ => fail("internal: malformed chain"),
-        })
+fn negate(value: &Value) -> EvalexprResult<Value> {
+    match num(value) {
+        Some(Num::Int(n)) => n
+            .checked_neg()
+            .map(Value::Int)
+            .map_or_else(|| overflow("-"), Ok),
+        Some(Num::Float(x)) => Ok(Value::Float(-x)),
+        None => fail(format!(
+            "bad operand type for unary -: '{}'",
+            type_name(value)
+        )),
+    }
+}
+
+fn true_divide([a, b]: &[Value; 2]) -> EvalexprResult<Value> {
+    let (x, y) = numbers("/", a, b)?;
+    if float(y) == 0.0 {
+        return fail("division by zero");
+    }
+    Ok(Value::Float(float(x) / float(y)))
+}
+
+/// Python's `//`: rounds towards negative infinity.
+fn floor_divide([a, b]: &[Value; 2]) -> EvalexprResult<Value> {
+    if num(b).is_some_and(|y| float(y) == 0.0) {
+        return fail("integer division or modulo by zero");
+    }
+    arithmetic(
+        "//",
+        a,
+        b,
+        |x, y| {
+            x.checked_div_euclid(y)
+                .map(|q| if y < 0 && x % y != 0 { q + 1 } else { q })
+        },
+        |x, y| (x / y).floor(),
+    )
+}
+
+/// Python's `%`: the result has the divisor's sign.
+fn modulo([a, b]: &[Value; 2]) -> EvalexprResult<Value> {
+    if num(b).is_some_and(|y| float(y) == 0.0) {
+        return fail("integer division or modulo by zero");
+    }
+    arithmetic(
+        "%",
+        a,
+        b,
+        |x, y| {
+            x.checked_rem(y).map(|r| {
+                if r != 0 && (r < 0) != (y < 0) {
+                    r + y
+                } else {
+                    r
+                }
+            })
+        },
+        |x, y| {
+            let r = x % y;
+            if r != 0.0 && (r < 0.0) != (y < 0.0) {
+                r + y
+            } else {
+                r
+            }
+        },
+    )
+}
+
+fn power([a, b]: &[Value; 2]) -> EvalexprResult<Value> {
+    match numbers("**", a, b)? {
+        (Num::Int(x), Num::Int(y)) if y >= 0 => u32::try_from(y)
+            .ok()
+            .and_then(|y| x.checked_pow(y))
+            .map(Value::Int)
+            .map_or_else(|| overflow("**"), Ok),
+        (x, y) => Ok(Value::Float(float(x).powf(float(y)))),
+    }
 }
 
 fn builtin(name: &str, args: &[Value]) -> EvalexprResult<Value> {
@@ -333,32 +298,8 @@ fn builtin(name: &str, args: &[Value]) -> EvalexprResult<Value> {
             .iter()
             .try_fold(Value::Int(0), |total, item| add(&[total, item.clone()])),
         "round" => round(args),
-        "int" => match &arity::<1>(name, args)?[0] {
-            Value::String(s) => s
-                .trim()
-                .parse()
-                .map(Value::Int)
-                .or_else(|_| fail(format!("invalid literal for int(): {s:?}"))),
-            other => match num(other) {
-                Some(Num::Float(x)) if x.is_finite() && x.abs() < 9.2e18 => {
-                    Ok(Value::Int(x.trunc() as i64))
-                }
-                Some(Num::Int(n)) => Ok(Value::Int(n)),
-                _ => fail(format!("int() cannot convert '{}'", type_name(other))),
-            },
-        },
-        "float" => match &arity::<1>(name, args)?[0] {
-            Value::String(s) => s
-                .trim()
-                .parse()
-                .map(Value::Float)
-                .or_else(|_| fail(format!("could not convert string to float: {s:?}"))),
-            other => num(other).map(|n| Value::Float(float(n))).map_or_else(
-                || fail(format!("float() cannot convert '{}'", type_name(other))),
-                Ok,
-            ),
-        },
-        "str" => Ok(Value::String(super::format_value(
+        "int" | "float" => convert(name, &arity::<1>(name, args)?[0]),
+        "str" => Ok(Value::String(crate::value::format_value(
             &arity::<1>(name, args)?[0],
         ))),
         "bool" => Ok(Value::Boolean(truthy(&arity::<1>(name, args)?[0]))),
@@ -368,6 +309,33 @@ fn builtin(name: &str, args: &[Value]) -> EvalexprResult<Value> {
             Ok(Value::Float(float(y).atan2(float(x))))
         }
         _ => math(name, args),
+    }
+}
+
+/// `int(value)` or `float(value)`.
+fn convert(name: &str, value: &Value) -> EvalexprResult<Value> {
+    match (name, value) {
+        ("int", Value::String(s)) => s
+            .trim()
+            .parse()
+            .map(Value::Int)
+            .or_else(|_| fail(format!("invalid literal for int(): {s:?}"))),
+        ("int", other) => match num(other) {
+            Some(Num::Float(x)) if x.is_finite() && x.abs() < 9.2e18 => {
+                Ok(Value::Int(x.trunc() as i64))
+            }
+            Some(Num::Int(n)) => Ok(Value::Int(n)),
+            _ => fail(format!("int() cannot convert '{}'", type_name(other))),
+        },
+        (_, Value::String(s)) => s
+            .trim()
+            .parse()
+            .map(Value::Float)
+            .or_else(|_| fail(format!("could not convert string to float: {s:?}"))),
+        (_, other) => num(other).map(|n| Value::Float(float(n))).map_or_else(
+            || fail(format!("float() cannot convert '{}'", type_name(other))),
+            Ok,
+        ),
     }
 }
 
@@ -523,7 +491,7 @@ fn index([target, at]: &[Value; 2]) -> EvalexprResult<Value> {
             Some(i) => Ok(items[i].clone()),
             None => fail(format!(
                 "list index {} out of range (length {})",
-                super::format_value(at),
+                crate::value::format_value(at),
                 items.len()
             )),
         },
@@ -533,7 +501,7 @@ fn index([target, at]: &[Value; 2]) -> EvalexprResult<Value> {
                 Some(i) => Ok(Value::String(chars[i].to_string())),
                 None => fail(format!(
                     "string index {} out of range",
-                    super::format_value(at)
+                    crate::value::format_value(at)
                 )),
             }
         }

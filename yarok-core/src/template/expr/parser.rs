@@ -1,7 +1,7 @@
 //! Parses the Python expression subset into an [`Ast`].
 
-use super::ExprError;
 use super::lexer::{Spanned, Token};
+use super::{ExprError, functions};
 
 /// Nesting deeper than this is refused, so hostile input cannot overflow the stack.
 const MAX_DEPTH: usize = 64;
@@ -32,7 +32,8 @@ pub(super) enum Ast {
         then: Box<Ast>,
         otherwise: Box<Ast>,
     },
-    Call(String, Vec<Ast>),
+    /// A call of one of [`FUNCTIONS`](super::FUNCTIONS), by the name `functions::apply` knows.
+    Call(&'static str, Vec<Ast>),
     Index(Box<Ast>, Box<Ast>),
     Slice(Box<Ast>, Option<Box<Ast>>, Option<Box<Ast>>),
 }
@@ -268,9 +269,13 @@ impl Parser<'_> {
                         "only named functions can be called",
                     ));
                 };
+                let function = functions::callable(&name).ok_or_else(|| ExprError {
+                    offset: None,
+                    message: format!("function `{name}` is not defined"),
+                })?;
                 self.at += 1;
                 let args = self.sequence(")")?;
-                value = Ast::Call(name, args);
+                value = Ast::Call(function, args);
             } else if self.eat_op("[") {
                 value = self.nested(|p| p.subscript(value))?;
             } else {
@@ -360,7 +365,11 @@ impl Parser<'_> {
             _ if self.eat_op(".") => match self.tokens.get(self.at) {
                 Some((Token::Name(attribute), _)) => {
                     self.at += 1;
-                    Ast::Name(format!("{name}.{attribute}"))
+                    let name = format!("{name}.{attribute}");
+                    match functions::constant(&name) {
+                        Some(value) => Ast::Float(value),
+                        None => Ast::Name(name),
+                    }
                 }
                 _ => return Err(ExprError::at(self.offset(), "expected a name after `.`")),
             },

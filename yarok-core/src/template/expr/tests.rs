@@ -2,7 +2,8 @@ use std::collections::HashMap;
 
 use evalexpr::Value;
 
-use super::{Expr, Variables, format_value};
+use super::{Expr, Variables};
+use crate::value::format_value;
 
 struct Vars(HashMap<&'static str, crate::value::Value>);
 
@@ -163,6 +164,20 @@ fn errors_say_what_went_wrong() {
 fn conditionals_nested_in_arithmetic_see_variables() {
     assert_eq!(eval("lst[0] + (0.5 if x else 1)"), Value::Float(0.6));
     assert_eq!(eval("x + (1 if x > 5 else lst[1])"), Value::Float(2.2));
+}
+
+#[test]
+fn and_or_and_chained_comparisons_stop_where_python_stops() {
+    // Python never evaluates what does not decide the result: no error from the part skipped.
+    assert_eq!(eval("0 and 1 / 0"), Value::Int(0));
+    assert_eq!(eval("[] or 7 or undefined_name"), Value::Int(7));
+    assert_eq!(eval("x or undefined_name"), Value::Int(2));
+    assert_eq!(eval("3 < 2 < 1 / 0"), Value::Boolean(false));
+    assert_eq!(eval("'' and 1"), Value::String(String::new()));
+    assert_eq!(
+        error("1 < 2 < undefined_name"),
+        "name `undefined_name` is not defined"
+    );
 }
 
 #[test]
