@@ -62,64 +62,18 @@ impl Loader {
             .take()
             .unwrap_or_else(|| component.declaration());
         let origin = self.origins.len();
-        let (text, label, file_dir) = match &declaration.source {
-            Some(Source::Inline(text)) => (
-                text.clone(),
-                format!("<{}> (inline template)", declaration.tag),
-                None,
-            ),
-            Some(Source::File(file)) => {
-                let text = std::fs::read_to_string(file).map_err(|e| {
-                    ComposeError::from(ErrorDetails {
-                        component: path.to_owned(),
-                        template: file.display().to_string(),
-                        position: None,
-                        element: None,
-                        attribute: None,
-                        expression: None,
-                        message: format!("cannot read the template: {e}"),
-                    })
-                })?;
-                (
-                    text,
-                    file.display().to_string(),
-                    file.parent().map(PathBuf::from),
-                )
-            }
-            None => {
-                return Err(ComposeError::from(ErrorDetails {
-                    component: path.to_owned(),
-                    template: format!("<{}>", declaration.tag),
-                    position: None,
-                    element: None,
-                    attribute: None,
-                    expression: None,
-                    message: format!("{} declares no template", component.type_name()),
-                }));
-            }
-        };
-        let template_error = |position: Option<Position>, message: String| {
-            ComposeError::from(ErrorDetails {
-                component: path.to_owned(),
-                template: label.clone(),
-                position,
-                element: None,
-                attribute: None,
-                expression: None,
-                message,
-            })
-        };
-        let mut tree =
-            Element::parse(&text).map_err(|e| template_error(Some(e.position), e.message))?;
+        let (text, label, file_dir) = template_text(&declaration, component, path)?;
+        let error = |position, message| template_error(path, &label, position, message);
+        let mut tree = Element::parse(&text).map_err(|e| error(Some(e.position), e.message))?;
         if tree.name != "mujoco" {
-            return Err(template_error(
+            return Err(error(
                 Some(tree.position),
                 format!("the root element is <{}>, not <mujoco>", tree.name),
             ));
         }
         let dir = declaration.asset_dir.clone().or(file_dir);
         files::inline_includes(&mut tree, dir.as_deref())
-            .map_err(|(position, message)| template_error(position, message))?;
+            .map_err(|(position, message)| error(position, message))?;
         set_origin(&mut tree, origin);
         self.origins.push(Origin::new(label.clone(), dir, &tree));
         let mut loaded = Loaded {
@@ -130,26 +84,82 @@ impl Loader {
             verbatim: declaration.verbatim,
         };
         if let Some(base) = declaration.extends {
-            self.loading.push(component);
-            if self.loading.iter().any(|c| c.type_id() == base.type_id()) {
-                let chain: Vec<&str> = self.loading.iter().map(|c| c.type_name()).collect();
-                return Err(template_error(
-                    None,
-                    format!(
-                        "{} extends itself: {} → {}",
-                        base.type_name(),
-                        chain.join(" → "),
-                        base.type_name()
-                    ),
-                ));
-            }
-            let base = self.load(base, path);
-            self.loading.pop();
-            loaded = extend(base?, loaded);
+            loaded = extend(self.load_base(component, base, path, &label)?, loaded);
         }
         self.loaded.insert(component.type_id(), loaded.clone());
         Ok(loaded)
     }
+
+    /// The template `component` (from `label`) extends, refused when the chain comes back to a
+    /// template being loaded.
+    fn load_base(
+        &mut self,
+        component: ComponentType,
+        base: ComponentType,
+        path: &str,
+        label: &str,
+    ) -> Result<Loaded, ComposeError> {
+        self.loading.push(component);
+        if self.loading.iter().any(|c| c.type_id() == base.type_id()) {
+            let chain: Vec<&str> = self.loading.iter().map(|c| c.type_name()).collect();
+            let message = format!(
+                "{} extends itself: {} → {}",
+                base.type_name(),
+                chain.join(" → "),
+                base.type_name()
+            );
+            return Err(template_error(path, label, None, message));
+        }
+        let loaded = self.load(base, path);
+        self.loading.pop();
+        loaded
+    }
+}
+
+/// A declaration's template text, the name errors give it, and the folder of its file.
+fn template_text(
+    declaration: &Declaration,
+    component: ComponentType,
+    path: &str,
+) -> Result<(String, String, Option<PathBuf>), ComposeError> {
+    match &declaration.source {
+        Some(Source::Inline(text)) => Ok((
+            text.clone(),
+            format!("<{}> (inline template)", declaration.tag),
+            None,
+        )),
+        Some(Source::File(file)) => {
+            let label = file.display().to_string();
+            let text = std::fs::read_to_string(file).map_err(|e| {
+                template_error(path, &label, None, format!("cannot read the template: {e}"))
+            })?;
+            Ok((text, label, file.parent().map(PathBuf::from)))
+        }
+        None => Err(template_error(
+            path,
+            &format!("<{}>", declaration.tag),
+            None,
+            format!("{} declares no template", component.type_name()),
+        )),
+    }
+}
+
+/// An error in the template `template` of the component at `path`.
+fn template_error(
+    path: &str,
+    template: &str,
+    position: Option<Position>,
+    message: String,
+) -> ComposeError {
+    ComposeError::from(ErrorDetails {
+        component: path.to_owned(),
+        template: template.to_owned(),
+        position,
+        element: None,
+        attribute: None,
+        expression: None,
+        message,
+    })
 }
 
 /// The base's tree with the extending template's content added; one instance, one prefix.

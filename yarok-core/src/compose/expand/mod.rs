@@ -197,20 +197,7 @@ impl<'o> Composer<'o> {
         config: Config,
         depth: usize,
     ) -> Result<Vec<Element>, ComposeError> {
-        let id = self.instances.len();
-        let components = loaded
-            .components
-            .iter()
-            .map(|c| (self.tag_of(*c), *c))
-            .collect();
-        self.instances.push(InstanceState {
-            path: path.to_owned(),
-            tag: loaded.tag.clone(),
-            component,
-            config: config.clone(),
-            components,
-            verbatim: loaded.verbatim,
-        });
+        let id = self.begin_instance(component, &loaded, path, &config);
         let mut tree = loaded.tree;
         set_owner(&mut tree, id);
         let scope = Scope {
@@ -230,62 +217,7 @@ impl<'o> Composer<'o> {
             .children
             .into_iter()
             .partition(|section| section.name == "worldbody");
-        let mut sections = self.expand(sections, &ctx, &scope)?;
-        files::resolve(&mut sections, &self.loader.origins, &mut self.assets)
-            .map_err(|e| self.located(&e))?;
-        super::sections::merge_top_level_defaults(&mut sections);
-        let has_defaults = sections.iter().any(|s| s.name == "default");
-        let unit = angles::unit_of(&sections)
-            .map_err(|(compiler, angle)| {
-                self.error(
-                    compiler,
-                    Some(angle),
-                    None,
-                    format!(
-                        "angle must be \"degree\" or \"radian\", as MuJoCo reads it, not {:?}",
-                        angle.value
-                    ),
-                )
-            })?
-            .to_owned();
-        let conversion = if id == 0 {
-            self.angle_unit = unit;
-            None
-        } else {
-            for compiler in sections.iter_mut().filter(|s| s.name == "compiler") {
-                compiler.take_attribute("angle");
-            }
-            angles::factor(&unit, &self.angle_unit)
-                .map(|factor| angles::Conversion::new(&sections, id, factor))
-        };
-        if let Some(conversion) = &conversion {
-            conversion.defaults(&mut sections);
-        }
-        if id != 0 {
-            for section in &mut sections {
-                if section.name == "default" {
-                    section.set_attribute("class", "main");
-                } else if has_defaults {
-                    set_missing_class(&mut section.children, false);
-                }
-            }
-        }
-        for section in sections {
-            if section.name == "keyframe" {
-                self.keyframes.extend(
-                    section
-                        .children
-                        .into_iter()
-                        .map(|key| (id, key))
-                        .collect::<Vec<_>>(),
-                );
-                continue;
-            }
-            let paths: Vec<String> = self.instances.iter().map(|i| i.path.clone()).collect();
-            self.world
-                .merge(section, id, &paths)
-                .map_err(|e| self.located(&e))?;
-        }
+        let (conversion, has_defaults) = self.compose_sections(sections, &ctx, &scope)?;
         let body_ctx = Ctx {
             in_worldbody: true,
             depth,
@@ -306,6 +238,108 @@ impl<'o> Composer<'o> {
         Ok(body)
     }
 
+    /// Records a new instance of `component` at `path`; its id.
+    fn begin_instance(
+        &mut self,
+        component: ComponentType,
+        loaded: &Loaded,
+        path: &str,
+        config: &Config,
+    ) -> usize {
+        let components = loaded
+            .components
+            .iter()
+            .map(|c| (self.tag_of(*c), *c))
+            .collect();
+        self.instances.push(InstanceState {
+            path: path.to_owned(),
+            tag: loaded.tag.clone(),
+            component,
+            config: config.clone(),
+            components,
+            verbatim: loaded.verbatim,
+        });
+        self.instances.len() - 1
+    }
+
+    /// Expands an instance's sections other than `<worldbody>` and merges them into the world;
+    /// the angle conversion its body needs, and whether it has defaults.
+    fn compose_sections(
+        &mut self,
+        sections: Vec<Element>,
+        ctx: &Ctx<'_>,
+        scope: &Scope<'_>,
+    ) -> Result<(Option<angles::Conversion>, bool), ComposeError> {
+        let id = ctx.owner;
+        let mut sections = self.expand(sections, ctx, scope)?;
+        files::resolve(&mut sections, &self.loader.origins, &mut self.assets)
+            .map_err(|e| self.located(&e))?;
+        super::sections::merge_top_level_defaults(&mut sections);
+        let has_defaults = sections.iter().any(|s| s.name == "default");
+        let conversion = self.angle_conversion(&mut sections, id)?;
+        if let Some(conversion) = &conversion {
+            conversion.defaults(&mut sections);
+        }
+        if id != 0 {
+            for section in &mut sections {
+                if section.name == "default" {
+                    section.set_attribute("class", "main");
+                } else if has_defaults {
+                    set_missing_class(&mut section.children, false);
+                }
+            }
+        }
+        self.merge_sections(sections, id)?;
+        Ok((conversion, has_defaults))
+    }
+
+    /// The world takes the first instance's angle unit; another instance's angles are converted
+    /// to it, and its `<compiler angle>` dropped.
+    fn angle_conversion(
+        &mut self,
+        sections: &mut [Element],
+        id: usize,
+    ) -> Result<Option<angles::Conversion>, ComposeError> {
+        let unit = angles::unit_of(sections)
+            .map_err(|(compiler, angle)| {
+                self.error(
+                    compiler,
+                    Some(angle),
+                    None,
+                    format!(
+                        "angle must be \"degree\" or \"radian\", as MuJoCo reads it, not {:?}",
+                        angle.value
+                    ),
+                )
+            })?
+            .to_owned();
+        if id == 0 {
+            self.angle_unit = unit;
+            return Ok(None);
+        }
+        for compiler in sections.iter_mut().filter(|s| s.name == "compiler") {
+            compiler.take_attribute("angle");
+        }
+        Ok(angles::factor(&unit, &self.angle_unit)
+            .map(|factor| angles::Conversion::new(sections, id, factor)))
+    }
+
+    /// Keyframes are kept for the end; every other section is merged into the world's.
+    fn merge_sections(&mut self, sections: Vec<Element>, id: usize) -> Result<(), ComposeError> {
+        for section in sections {
+            if section.name == "keyframe" {
+                self.keyframes
+                    .extend(section.children.into_iter().map(|key| (id, key)));
+                continue;
+            }
+            let paths: Vec<String> = self.instances.iter().map(|i| i.path.clone()).collect();
+            self.world
+                .merge(section, id, &paths)
+                .map_err(|e| self.located(&e))?;
+        }
+        Ok(())
+    }
+
     fn expand(
         &mut self,
         elements: Vec<Element>,
@@ -324,44 +358,7 @@ impl<'o> Composer<'o> {
                 }
             }
             match element.name.as_str() {
-                "for" => {
-                    let each = required(&element, "each")
-                        .map_err(|m| self.error(&element, None, None, m))?;
-                    let name = required(&element, "as")
-                        .map_err(|m| self.error(&element, None, None, m))?;
-                    if !crate::template::expr::is_variable_name(&name.value) {
-                        return Err(self.error(
-                            &element,
-                            Some(&name),
-                            Some(&name.value),
-                            format!(
-                                "`as` names the loop's variable: {:?} is not a name (letters, \
-                                 digits and _, not starting with a digit, not a keyword)",
-                                name.value
-                            ),
-                        ));
-                    }
-                    let value = self.eval(&each.value, &element, Some(&each), scope)?;
-                    let items = match (value.to_list(), value.as_str()) {
-                        (Some(items), _) => items,
-                        (_, Some(s)) => s.chars().map(|c| c.to_string().into_value()).collect(),
-                        _ => {
-                            return Err(self.error(
-                                &element,
-                                Some(&each),
-                                Some(&each.value),
-                                format!("cannot loop over {value}"),
-                            ));
-                        }
-                    };
-                    for item in items {
-                        let inner = Scope {
-                            parent: Some(scope),
-                            vars: vec![(name.value.clone(), item)],
-                        };
-                        out.extend(self.expand(element.children.clone(), ctx, &inner)?);
-                    }
-                }
+                "for" => out.extend(self.expand_for(&element, ctx, scope)?),
                 "if" => {
                     let the = required(&element, "the")
                         .map_err(|m| self.error(&element, None, None, m))?;
@@ -390,37 +387,87 @@ impl<'o> Composer<'o> {
                             "component tags belong in <worldbody>".into(),
                         ));
                     }
-                    None => {
-                        if !super::elements::is_mjcf_element(tag) {
-                            let message = self.unknown_tag(ctx.owner, tag);
-                            return Err(self.error(&element, None, None, message));
-                        }
-                        self.produced += 1;
-                        if self.produced > MAX_ELEMENTS {
-                            let message =
-                                format!("the world expands to more than {MAX_ELEMENTS} elements");
-                            return Err(self.error(&element, None, None, message));
-                        }
-                        if ctx.depth >= MAX_WORLD_DEPTH {
-                            let message = format!(
-                                "the composed world nests elements deeper than {MAX_WORLD_DEPTH}"
-                            );
-                            return Err(self.error(&element, None, None, message));
-                        }
-                        self.interpolate(&mut element, scope)?;
-                        let children = std::mem::take(&mut element.children);
-                        let inner = Ctx {
-                            depth: ctx.depth + 1,
-                            ..*ctx
-                        };
-                        element.children =
-                            crate::stack::deep(|| self.expand(children, &inner, scope))?;
-                        out.push(element);
-                    }
+                    None => out.push(self.expand_mjcf(element, ctx, scope)?),
                 },
             }
         }
         Ok(out)
+    }
+
+    /// `<for each="…" as="name">`: its children once per item, `name` bound to the item.
+    fn expand_for(
+        &mut self,
+        element: &Element,
+        ctx: &Ctx<'_>,
+        scope: &Scope<'_>,
+    ) -> Result<Vec<Element>, ComposeError> {
+        let each = required(element, "each").map_err(|m| self.error(element, None, None, m))?;
+        let name = required(element, "as").map_err(|m| self.error(element, None, None, m))?;
+        if !crate::template::expr::is_variable_name(&name.value) {
+            return Err(self.error(
+                element,
+                Some(&name),
+                Some(&name.value),
+                format!(
+                    "`as` names the loop's variable: {:?} is not a name (letters, \
+                     digits and _, not starting with a digit, not a keyword)",
+                    name.value
+                ),
+            ));
+        }
+        let value = self.eval(&each.value, element, Some(&each), scope)?;
+        let items = match (value.to_list(), value.as_str()) {
+            (Some(items), _) => items,
+            (_, Some(s)) => s.chars().map(|c| c.to_string().into_value()).collect(),
+            _ => {
+                return Err(self.error(
+                    element,
+                    Some(&each),
+                    Some(&each.value),
+                    format!("cannot loop over {value}"),
+                ));
+            }
+        };
+        let mut out = Vec::new();
+        for item in items {
+            let inner = Scope {
+                parent: Some(scope),
+                vars: vec![(name.value.clone(), item)],
+            };
+            out.extend(self.expand(element.children.clone(), ctx, &inner)?);
+        }
+        Ok(out)
+    }
+
+    /// An MJCF element: its attributes interpolated, its children expanded, within the limits.
+    fn expand_mjcf(
+        &mut self,
+        mut element: Element,
+        ctx: &Ctx<'_>,
+        scope: &Scope<'_>,
+    ) -> Result<Element, ComposeError> {
+        if !super::elements::is_mjcf_element(&element.name) {
+            let message = self.unknown_tag(ctx.owner, &element.name);
+            return Err(self.error(&element, None, None, message));
+        }
+        self.produced += 1;
+        if self.produced > MAX_ELEMENTS {
+            let message = format!("the world expands to more than {MAX_ELEMENTS} elements");
+            return Err(self.error(&element, None, None, message));
+        }
+        if ctx.depth >= MAX_WORLD_DEPTH {
+            let message =
+                format!("the composed world nests elements deeper than {MAX_WORLD_DEPTH}");
+            return Err(self.error(&element, None, None, message));
+        }
+        self.interpolate(&mut element, scope)?;
+        let children = std::mem::take(&mut element.children);
+        let inner = Ctx {
+            depth: ctx.depth + 1,
+            ..*ctx
+        };
+        element.children = crate::stack::deep(|| self.expand(children, &inner, scope))?;
+        Ok(element)
     }
 
     /// Why `tag` cannot be used in `owner`'s template, with the nearest tag that can.
@@ -458,33 +505,7 @@ impl<'o> Composer<'o> {
         ctx: &Ctx<'_>,
         scope: &Scope<'_>,
     ) -> Result<Vec<Element>, ComposeError> {
-        let name_attribute = tag
-            .take_attribute("name")
-            .ok_or_else(|| self.error(&tag, None, None, "a component tag needs a `name`".into()))?;
-        let name = self
-            .attribute_value(&name_attribute, &tag, scope)?
-            .to_string();
-        if name.is_empty() || name.contains('/') || name.contains(char::is_whitespace) {
-            return Err(self.error(
-                &tag,
-                Some(&name_attribute),
-                None,
-                format!("{name:?} is not a valid component name"),
-            ));
-        }
-        let path = if ctx.base_path == "/" {
-            format!("/{name}")
-        } else {
-            format!("{}/{name}", ctx.base_path)
-        };
-        if self.instances.iter().any(|i| i.path == path) {
-            return Err(self.error(
-                &tag,
-                Some(&name_attribute),
-                None,
-                format!("a component named {path} already exists"),
-            ));
-        }
+        let (name_attribute, path) = self.instance_path(&mut tag, ctx, scope)?;
         self.check_nesting(component, &tag, &name_attribute, &path)?;
         let loaded = self.loader.load(component, &path)?;
         let mut assigned = Vec::new();
@@ -515,6 +536,44 @@ impl<'o> Composer<'o> {
             }
         }
         Ok(body)
+    }
+
+    /// The path of the component `tag` names: its `name` (taken from it), checked, under the
+    /// context's path, and not taken yet.
+    fn instance_path(
+        &mut self,
+        tag: &mut Element,
+        ctx: &Ctx<'_>,
+        scope: &Scope<'_>,
+    ) -> Result<(Attribute, String), ComposeError> {
+        let name_attribute = tag
+            .take_attribute("name")
+            .ok_or_else(|| self.error(tag, None, None, "a component tag needs a `name`".into()))?;
+        let name = self
+            .attribute_value(&name_attribute, tag, scope)?
+            .to_string();
+        if name.is_empty() || name.contains('/') || name.contains(char::is_whitespace) {
+            return Err(self.error(
+                tag,
+                Some(&name_attribute),
+                None,
+                format!("{name:?} is not a valid component name"),
+            ));
+        }
+        let path = if ctx.base_path == "/" {
+            format!("/{name}")
+        } else {
+            format!("{}/{name}", ctx.base_path)
+        };
+        if self.instances.iter().any(|i| i.path == path) {
+            return Err(self.error(
+                tag,
+                Some(&name_attribute),
+                None,
+                format!("a component named {path} already exists"),
+            ));
+        }
+        Ok((name_attribute, path))
     }
 
     /// Refuses a component inside itself (directly or through others) and nesting too deep.
