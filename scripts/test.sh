@@ -33,6 +33,15 @@ else
   cargo test -p yarok-hw --features camera --locked --no-fail-fast --test camera_decode \
     --test video_device
 fi
+echo "== without default features: no rendering (EGL), for the crates that have it"
+cargo clippy -p yarok-mjc -p yarok-components -p yarok --no-default-features --all-targets --locked -- -D warnings
+if cargo nextest --version >/dev/null 2>&1; then
+  cargo nextest run -p yarok-mjc -p yarok-components --no-default-features --locked --no-fail-fast --retries 0
+  cargo nextest run -p yarok --no-default-features --locked --no-fail-fast --retries 0 --test render_feature
+else
+  cargo test -p yarok-mjc -p yarok-components --no-default-features --locked --no-fail-fast
+  cargo test -p yarok --no-default-features --locked --no-fail-fast --test render_feature
+fi
 echo "== the Zenoh example: a world driven from another process through the bridge"
 cargo run --locked --features yarok/camera,yarok/viewer,yarok/zenoh,yarok/dataset --example zenoh_remote
 echo "== tests of process-wide state, as threads of one process (as cargo test runs them)"

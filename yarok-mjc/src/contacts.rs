@@ -37,6 +37,7 @@ impl Model {
 
     /// Whether geoms `a` and `b` (indices below `ngeom`) have matching `contype` and
     /// `conaffinity`: the part of MuJoCo's filter that is the geoms' own.
+    #[cfg(feature = "render")]
     pub(crate) fn types_match(&self, a: usize, b: usize) -> bool {
         let m = self.raw();
         let ngeom = self.count(ObjectKind::Geom);

@@ -606,6 +606,7 @@ impl Data {
         self.raw()
     }
 
+    #[cfg(feature = "render")]
     pub(crate) fn raw_mut_ptr(&mut self) -> *mut sys::mjData {
         self.raw.as_ptr()
     }

@@ -56,6 +56,7 @@ mod compile_notice;
 mod composition;
 mod contacts;
 mod data;
+mod depth;
 mod error;
 mod guard;
 mod handles;
@@ -84,6 +85,7 @@ pub mod sys;
 pub use backend::{Sim, SimBackend};
 pub use contacts::ContactPoint;
 pub use data::{Data, SavedState};
+pub use depth::{DepthImage, depth_to_millimetres};
 pub use error::{LibraryError, ModelError};
 #[cfg(feature = "render")]
 pub use handles::Camera;
@@ -92,7 +94,6 @@ pub use library::mujoco_version;
 pub use pose::Pose;
 /// The MuJoCo version yarok is written against.
 pub const MUJOCO_VERSION: &str = locate::MUJOCO_VERSION;
-#[cfg(feature = "render")]
 pub use image;
 pub use model::{
     ActuatorId, BodyId, CameraId, GeomId, JointId, KeyframeId, Model, ObjectKind, SensorId,
@@ -104,7 +105,4 @@ pub use render::{
     Button, Corner, Gallery, Key, Overlay, Picture, View, Visual, Window, WindowEvent,
 };
 #[cfg(feature = "render")]
-pub use render::{
-    DepthImage, MAX_GEOMS, RenderError, RenderPreset, Renderer, RendererBuilder,
-    depth_to_millimetres,
-};
+pub use render::{MAX_GEOMS, RenderError, RenderPreset, Renderer, RendererBuilder};

@@ -7,7 +7,9 @@ use image::RgbImage;
 
 use crate::probe_images;
 use yarok_core::component::{Bind, BindError, Component, Declaration, Interface, Interfaces, Mock};
-use yarok_mjc::{Camera, DepthImage, RenderError, RenderPreset, Sim, SimBind};
+#[cfg(feature = "render")]
+use yarok_mjc::{Camera, RenderError, RenderPreset, SimBind};
+use yarok_mjc::{DepthImage, Sim};
 
 /// A camera: `read()` gives a colour image, `read_depth()` distances in metres.
 ///
@@ -29,6 +31,7 @@ pub struct Cam {
 
 #[derive(Clone, Debug)]
 enum Source {
+    #[cfg(feature = "render")]
     Sim(Camera),
     #[cfg(feature = "camera")]
     Real(std::rc::Rc<real::RealFrames>),
@@ -43,6 +46,7 @@ enum Source {
 #[non_exhaustive]
 pub enum CamError {
     /// Rendering failed (`sim`).
+    #[cfg(feature = "render")]
     #[error(transparent)]
     Render(#[from] RenderError),
     /// The camera measures no depth (a real colour camera).
@@ -58,6 +62,7 @@ impl Cam {
     /// When rendering fails.
     pub fn read(&self) -> Result<RgbImage, CamError> {
         match &self.source {
+            #[cfg(feature = "render")]
             Source::Sim(camera) => Ok(camera.rgb()?),
             #[cfg(feature = "camera")]
             Source::Real(frames) => Ok(frames.latest()),
@@ -72,6 +77,7 @@ impl Cam {
     /// When rendering fails.
     pub fn read_depth(&self) -> Result<DepthImage, CamError> {
         match &self.source {
+            #[cfg(feature = "render")]
             Source::Sim(camera) => Ok(camera.depth()?),
             #[cfg(feature = "camera")]
             Source::Real(_) => Err(CamError::NoDepth),
@@ -87,6 +93,7 @@ impl Cam {
     /// When rendering fails.
     pub fn read_rgbd(&self) -> Result<(RgbImage, DepthImage), CamError> {
         match &self.source {
+            #[cfg(feature = "render")]
             Source::Sim(camera) => Ok(camera.rgbd()?),
             #[cfg(feature = "camera")]
             Source::Real(_) => Err(CamError::NoDepth),
@@ -125,7 +132,11 @@ impl Component for Cam {
     }
 
     fn interfaces(interfaces: &mut Interfaces<Self>) {
-        interfaces.add::<Sim>().add::<Mock>();
+        interfaces.add::<Mock>();
+        #[cfg(feature = "render")]
+        interfaces.add::<Sim>();
+        #[cfg(not(feature = "render"))]
+        interfaces.unavailable::<Sim>("the `render` feature");
         #[cfg(feature = "camera")]
         interfaces.add::<yarok_hw::Real>();
         #[cfg(not(feature = "camera"))]
@@ -144,6 +155,7 @@ fn size<E: yarok_core::component::Environment>(bind: &Bind<E>) -> Result<(u32, u
     Ok((side("width")?, side("height")?))
 }
 
+#[cfg(feature = "render")]
 impl Interface<Sim> for Cam {
     async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
         let (width, height) = size(bind)?;

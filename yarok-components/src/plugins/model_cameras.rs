@@ -1,15 +1,19 @@
 //! [`ModelCameras`]: the cameras of the model a recorder was asked for, found by name, and the
 //! renderer that renders them.
 
+use std::sync::Arc;
+
 use yarok_core::BoxError;
-use yarok_mjc::{CameraId, RenderPreset, Renderer, SimBackend};
+use yarok_mjc::{CameraId, Model, SimBackend};
+#[cfg(feature = "render")]
+use yarok_mjc::{RenderPreset, Renderer};
 
 /// Cameras of a `sim` model, by name, rendered at one size.
 #[derive(Debug, Default)]
 pub(super) struct ModelCameras {
     cameras: Vec<(String, CameraId)>,
     /// `None` when no camera was asked for: no renderer is made.
-    renderer: Option<Renderer>,
+    renderer: Option<CameraRenderer>,
 }
 
 impl ModelCameras {
@@ -39,11 +43,7 @@ impl ModelCameras {
                 Ok((name.clone(), camera))
             })
             .collect::<Result<_, BoxError>>()?;
-        let [width, height] = size;
-        let renderer = Renderer::builder()
-            .size(width, height)
-            .preset(preset(quality))
-            .build(model)?;
+        let renderer = make_renderer(model, size, quality)?;
         Ok(Self {
             cameras,
             renderer: Some(renderer),
@@ -66,22 +66,62 @@ impl ModelCameras {
         };
         let mut images = Vec::with_capacity(self.cameras.len());
         for (_, camera) in &self.cameras {
-            images.push(
-                renderer
-                    .render_rgb(&mut sim.data_mut(), *camera)?
-                    .into_raw(),
-            );
+            images.push(render_rgb(renderer, sim, *camera)?);
         }
         Ok(images)
     }
 }
 
-/// The render preset of a recorder's cameras: MuJoCo's defaults when `quality` is asked for,
-/// else the fast one (software GL renders it several times faster).
-fn preset(quality: bool) -> RenderPreset {
-    if quality {
+/// What renders a recorder's cameras: MuJoCo's offscreen renderer, or, built without the
+/// `render` feature, nothing (no value of it exists).
+#[cfg(feature = "render")]
+type CameraRenderer = Renderer;
+#[cfg(not(feature = "render"))]
+#[derive(Debug)]
+enum CameraRenderer {}
+
+/// A renderer of `model`'s cameras at `size`, with MuJoCo's shadows and reflections when
+/// `quality` (else the fast preset, which software GL renders several times faster).
+#[cfg(feature = "render")]
+fn make_renderer(
+    model: &Arc<Model>,
+    size: [u32; 2],
+    quality: bool,
+) -> Result<CameraRenderer, BoxError> {
+    let preset = if quality {
         RenderPreset::Quality
     } else {
         RenderPreset::Fast
-    }
+    };
+    let [width, height] = size;
+    Ok(Renderer::builder()
+        .size(width, height)
+        .preset(preset)
+        .build(model)?)
+}
+
+#[cfg(not(feature = "render"))]
+fn make_renderer(_: &Arc<Model>, _: [u32; 2], _: bool) -> Result<CameraRenderer, BoxError> {
+    Err(
+        "recording the model's cameras needs rendering: build yarok with its `render` feature"
+            .into(),
+    )
+}
+
+#[cfg(feature = "render")]
+fn render_rgb(
+    renderer: &mut CameraRenderer,
+    sim: &SimBackend,
+    camera: CameraId,
+) -> Result<Vec<u8>, BoxError> {
+    Ok(renderer.render_rgb(&mut sim.data_mut(), camera)?.into_raw())
+}
+
+#[cfg(not(feature = "render"))]
+fn render_rgb(
+    renderer: &mut CameraRenderer,
+    _: &SimBackend,
+    _: CameraId,
+) -> Result<Vec<u8>, BoxError> {
+    match *renderer {}
 }

@@ -8,7 +8,9 @@ use std::rc::Rc;
 use image::RgbImage;
 use yarok_core::component::{Bind, BindError, Declaration, Environment};
 use yarok_core::time::Clock;
-use yarok_mjc::{Body, Camera, DepthImage, Geom, RenderPreset, Sim, SimBind};
+use yarok_mjc::{Body, DepthImage, Geom};
+#[cfg(feature = "render")]
+use yarok_mjc::{Camera, RenderPreset, Sim, SimBind};
 
 use crate::probe_images;
 use crate::tactile::calibration::Calibration;
@@ -44,8 +46,11 @@ pub struct GelContact {
     pub normal_force: f64,
 }
 
-/// What the sensor senses with in `sim`: its internal camera, its gel and its body.
+/// What the sensor senses with in `sim`: its internal camera, its gel and its body. (Built
+/// without the `render` feature, a sensor has no `sim` interface, so none is made.)
+#[cfg_attr(not(feature = "render"), allow(dead_code))]
 pub(super) struct Sensing {
+    #[cfg(feature = "render")]
     camera: Camera,
     gel: Geom,
     body: Body,
@@ -80,6 +85,7 @@ pub(super) trait Optics {
 pub(super) trait SensorKind {
     fn declaration(&self) -> Declaration;
     /// The template's name for the gel's geom: what presses on it is what the sensor feels.
+    #[cfg_attr(not(feature = "render"), allow(dead_code))]
     fn gel(&self) -> &'static str;
     /// How deep the gel sinks under a normal force.
     fn elastomer(&self) -> Elastomer;
@@ -96,6 +102,7 @@ pub(super) trait SensorKind {
     }
     /// The farthest any point of the untouched gel lies from the camera (metres): nothing
     /// beyond it can show in the image.
+    #[cfg_attr(not(feature = "render"), allow(dead_code))]
     fn reach(&self) -> f64;
     /// The config keys the optical model fixes (the gel's and the camera's geometry), with
     /// their values.
@@ -308,6 +315,7 @@ impl TactileSensor {
         }
     }
 
+    #[cfg(feature = "render")]
     /// Binds a sensor of `kind` in `sim`: its internal camera renders depth with the depth
     /// preset, only of geoms that can touch the gel and can reach it.
     pub(super) fn bind_sim(kind: &dyn SensorKind, bind: &mut Bind<Sim>) -> Result<Self, BindError> {
@@ -518,6 +526,7 @@ impl Inner {
         }
         state.due = now + self.period;
         state.time = now;
+        #[cfg(feature = "render")]
         if let Some(sensing) = &self.sensing
             && let Err(error) = sensing.camera.depth_into(&mut state.depth)
         {
@@ -622,7 +631,11 @@ macro_rules! tactile_sensor_component {
             }
 
             fn interfaces(interfaces: &mut yarok_core::component::Interfaces<Self>) {
-                interfaces.add::<yarok_mjc::Sim>().add::<yarok_core::component::Mock>();
+                interfaces.add::<yarok_core::component::Mock>();
+                #[cfg(feature = "render")]
+                interfaces.add::<yarok_mjc::Sim>();
+                #[cfg(not(feature = "render"))]
+                interfaces.unavailable::<yarok_mjc::Sim>("the `render` feature");
                 #[cfg(feature = "camera")]
                 interfaces.add::<yarok_hw::Real>();
                 #[cfg(not(feature = "camera"))]
@@ -645,6 +658,7 @@ macro_rules! tactile_sensor_component {
             }
         }
 
+        #[cfg(feature = "render")]
         impl yarok_core::component::Interface<yarok_mjc::Sim> for $name {
             async fn bind(
                 bind: &mut yarok_core::component::Bind<yarok_mjc::Sim>,
