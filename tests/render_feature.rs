@@ -4,7 +4,6 @@
 
 use yarok::components::worlds::{DigitWorld, PrinterWorld, TowerWorld};
 use yarok::core::runtime::RuntimeError;
-use yarok_test::assert_says;
 
 #[test]
 fn a_world_without_cameras_runs_in_sim() {
@@ -35,7 +34,7 @@ fn run_a_tick<W: yarok::Component>() -> Result<(), RuntimeError> {
 fn cameras_and_tactile_sensors_in_sim_are_refused_naming_the_render_feature() {
     let error = run_a_tick::<PrinterWorld>().unwrap_err();
     assert!(matches!(error, RuntimeError::Unsupported { .. }), "{error}");
-    assert_says(
+    yarok_test::assert_says(
         &error,
         &[
             "/printer/cam (Cam) supports mock",
@@ -43,7 +42,7 @@ fn cameras_and_tactile_sensors_in_sim_are_refused_naming_the_render_feature() {
         ],
     );
     let error = run_a_tick::<DigitWorld>().unwrap_err();
-    assert_says(
+    yarok_test::assert_says(
         &error,
         &[
             "/arm/gripper/left_digit (Digit) supports mock",
