@@ -132,11 +132,11 @@ impl Component for Cam {
     }
 
     fn interfaces(interfaces: &mut Interfaces<Self>) {
-        interfaces.add::<Mock>();
         #[cfg(feature = "render")]
         interfaces.add::<Sim>();
         #[cfg(not(feature = "render"))]
         interfaces.unavailable::<Sim>("the `render` feature");
+        interfaces.add::<Mock>();
         #[cfg(feature = "camera")]
         interfaces.add::<yarok_hw::Real>();
         #[cfg(not(feature = "camera"))]

@@ -631,11 +631,11 @@ macro_rules! tactile_sensor_component {
             }
 
             fn interfaces(interfaces: &mut yarok_core::component::Interfaces<Self>) {
-                interfaces.add::<yarok_core::component::Mock>();
                 #[cfg(feature = "render")]
                 interfaces.add::<yarok_mjc::Sim>();
                 #[cfg(not(feature = "render"))]
                 interfaces.unavailable::<yarok_mjc::Sim>("the `render` feature");
+                interfaces.add::<yarok_core::component::Mock>();
                 #[cfg(feature = "camera")]
                 interfaces.add::<yarok_hw::Real>();
                 #[cfg(not(feature = "camera"))]
