@@ -1,4 +1,4 @@
-//! Template expressions: a Python subset, parsed into an [`Ast`](parser::Ast) and evaluated from
+//! Template expressions: a Python subset, parsed into a syntax tree and evaluated from
 //! it.
 //!
 //! The original's templates use Python expressions (`0.5 + 0.082*x if z % 2 == 0 else 0.58`,
