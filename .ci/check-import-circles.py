@@ -10,7 +10,7 @@ import pathlib
 import re
 import sys
 
-CRATES = ["yarok-core", "yarok-mjc", "yarok-hw", "yarok-components", "."]
+CRATES = ["yarok-core", "yarok-mjc", "yarok-hw", "yarok-components", "yarok-test", "."]
 SKIP = {"sys"}  # generated bindings
 
 

@@ -182,11 +182,7 @@ fn the_model_cache_setting_takes_true_false_or_a_folder() {
         );
     }
     let output = run("\"~/models\"");
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    yarok_test::assert_succeeded(&output);
     let cached = std::fs::read_dir(home.path().join("models"))
         .unwrap()
         .count();

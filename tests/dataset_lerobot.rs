@@ -11,7 +11,7 @@ use yarok_test::peers;
 
 use std::path::Path;
 use std::process::{Command, Output};
-use yarok_test::assert_says;
+use yarok_test::{assert_says, assert_succeeded};
 
 fn yarok(folder: &Path, args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_yarok"))
@@ -19,14 +19,6 @@ fn yarok(folder: &Path, args: &[&str]) -> Output {
         .args(args)
         .output()
         .unwrap()
-}
-
-fn succeeded(output: &Output) {
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
 }
 
 /// `lerobot_read.py`'s `matched` line for `key`: the lowest PSNR of a frame against its
@@ -77,7 +69,7 @@ fn a_digit_world_run_is_a_lerobot_dataset_whose_videos_are_the_recorded_images()
             "plugins/dataset/size=[320, 240]",
         ],
     );
-    succeeded(&run);
+    assert_succeeded(&run);
     let dataset = folder.path().join("dataset");
     let mcap = folder.path().join("run.mcap");
     let read = peers::run(
@@ -175,7 +167,7 @@ fn each_shard_of_a_run_of_episodes_is_a_dataset_of_its_episodes() {
                 "plugins/mcap/image_hz=100.0",
             ],
         );
-        succeeded(&run);
+        assert_succeeded(&run);
     }
     // 2 × 2 points at 3 depths: presses 0, 2, … are shard 0's, 1, 3, … shard 1's; each an
     // episode of its shard's dataset, matched with the episode's own recording.
@@ -226,12 +218,12 @@ fn a_dataset_is_replaced_by_the_next_run_into_its_folder() {
         "--set",
         "behaviour/out=\"samples\"",
     ];
-    succeeded(&yarok(folder.path(), &args));
+    assert_succeeded(&yarok(folder.path(), &args));
     let stale = folder
         .path()
         .join("presses/videos/observation.images.sensor.image/chunk-000/file-999.mp4");
     std::fs::write(&stale, "from an older run").unwrap();
-    succeeded(&yarok(folder.path(), &args));
+    assert_succeeded(&yarok(folder.path(), &args));
     assert!(!stale.exists(), "the older dataset's files are gone");
     let read = peers::run(
         "lerobot_read.py",

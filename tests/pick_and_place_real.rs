@@ -40,11 +40,7 @@ fn pick_and_place_runs_on_the_fake_controller() {
         .output()
         .unwrap();
     let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(
-        output.status.success(),
-        "{stdout}\n{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    yarok_test::assert_succeeded(&output);
     assert_eq!(stdout.matches("stacked").count(), 3 + 1, "{stdout}");
     assert_says(&stdout, &["every motion and grasp completed"]);
     let scripts = fake.scripts();

@@ -41,11 +41,7 @@ fn the_square_on_the_virtual_printer() {
     let printer = VirtualPrinter::start(r#"{"sendWait": false}"#);
     let output = real(&printer, 1).output().unwrap();
     let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(
-        output.status.success(),
-        "{stdout}\n{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    yarok_test::assert_succeeded(&output);
     let corners: Vec<[f64; 3]> = stdout.lines().filter_map(head_at).collect();
     let expected = [
         [100.0, 100.0],

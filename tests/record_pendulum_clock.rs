@@ -42,11 +42,7 @@ fn the_joint_recorder_writes_one_row_per_tick_with_the_angles_the_behaviour_saw(
         ])
         .output()
         .unwrap();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    yarok_test::assert_succeeded(&output);
     let stdout = String::from_utf8(output.stdout).unwrap();
     let printed: Vec<(String, f64, f64)> = stdout.lines().filter_map(reached).collect();
     assert_eq!(printed.len(), 6, "{stdout}");

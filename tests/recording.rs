@@ -39,11 +39,7 @@ fn a_pick_and_place_recording_reads_back_in_others_tools() {
         )
         .output()
         .unwrap();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    yarok_test::assert_succeeded(&output);
     let summary = peers::run("mcap_summary.py", &[mcap.to_str().unwrap()]);
     let count = |topic: &str| -> usize {
         let line = summary

@@ -3,6 +3,10 @@
 //! `scripts/test.sh` runs this file built with the default features and without them.
 
 use yarok::components::worlds::{DigitWorld, PrinterWorld, TowerWorld};
+#[cfg(not(feature = "render"))]
+use yarok::components::{
+    plugins::McapRecorder, plugins::McapRecorderSettings, worlds::PickAndPlaceWorld,
+};
 use yarok::core::runtime::RuntimeError;
 
 #[test]
@@ -49,6 +53,39 @@ fn cameras_and_tactile_sensors_in_sim_are_refused_naming_the_render_feature() {
             "the `render` feature",
         ],
     );
+}
+
+/// The model's own cameras are only rendered for recordings: asking for one is refused before
+/// the run starts, naming the feature; with no camera asked for, the same world records.
+#[cfg(not(feature = "render"))]
+#[test]
+fn recording_the_models_cameras_is_refused_naming_the_render_feature() {
+    let folder = tempfile::tempdir().unwrap();
+    let record = |cameras: Vec<String>| {
+        let settings = McapRecorderSettings {
+            path: folder.path().join("run.mcap"),
+            cameras,
+            ..McapRecorderSettings::default()
+        };
+        yarok::platform()
+            .world::<PickAndPlaceWorld>()
+            .plugin(McapRecorder::new(settings).unwrap())
+            .behaviour(|pl| async move {
+                pl.tick().await?;
+                Ok(())
+            })
+            .run()
+    };
+    let error = record(vec!["overview".to_owned()]).unwrap_err();
+    yarok_test::assert_says(
+        &error,
+        &[
+            "plugin mcap",
+            "the model's cameras needs rendering",
+            "`render` feature",
+        ],
+    );
+    record(Vec::new()).unwrap();
 }
 
 #[cfg(feature = "render")]

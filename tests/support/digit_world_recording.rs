@@ -24,10 +24,6 @@ pub(crate) fn record_digit_world(folder: &Path, options: &[&str]) -> (PathBuf, J
         .args(["--set", "plugins/joints_csv/every=10"])
         .output()
         .unwrap();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    yarok_test::assert_succeeded(&output);
     (mcap, JointsCsv::read(&csv))
 }

@@ -17,11 +17,7 @@ fn ffmpeg(args: &[&str]) -> Vec<u8> {
         .args(args)
         .output()
         .expect("ffmpeg runs (scripts/setup-test-peers.sh installs it)");
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    yarok_test::assert_succeeded(&output);
     output.stdout
 }
 

@@ -7,7 +7,8 @@
 //! - [`virtual_printer`]: OctoPrint's VirtualPrinter, a third-party Marlin, on a pseudo-terminal;
 //! - [`peers`]: the third-party programs `scripts/setup-test-peers.sh` installs;
 //! - [`generator`]: a deterministic generator of inputs for the parsers' tests;
-//! - [`assert_says`]: an error's text checked for what it must name.
+//! - [`assert_says`]: an error's text checked for what it must name;
+//! - [`assert_succeeded`]: a program's run checked for success, showing what it wrote if not.
 
 pub mod generator;
 pub mod peers;
@@ -34,4 +35,17 @@ pub fn assert_says(error: impl std::fmt::Display, parts: &[&str]) -> String {
         .collect();
     assert!(missing.is_empty(), "{text}\n  does not say: {missing:?}");
     text
+}
+
+/// Asserts that the program whose run is `output` exited successfully, printing its standard
+/// output and error when it did not.
+#[track_caller]
+pub fn assert_succeeded(output: &std::process::Output) {
+    assert!(
+        output.status.success(),
+        "{}\n{}\n{}",
+        output.status,
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr)
+    );
 }

@@ -123,20 +123,14 @@ fn optical(camera: Pose) -> Pose {
 mod tests {
     use super::*;
 
-    /// `v` turned by unit quaternion `q` (w, x, y, z).
+    /// `v` turned by unit quaternion `q` (w, x, y, z): into the local frame of the inverse turn.
     fn rotate(q: [f64; 4], v: [f64; 3]) -> [f64; 3] {
         let [w, x, y, z] = q;
-        let u = [x, y, z];
-        let cross = |a: [f64; 3], b: [f64; 3]| {
-            [
-                a[1] * b[2] - a[2] * b[1],
-                a[2] * b[0] - a[0] * b[2],
-                a[0] * b[1] - a[1] * b[0],
-            ]
-        };
-        let t = cross(u, v).map(|c| 2.0 * c);
-        let ut = cross(u, t);
-        [0, 1, 2].map(|i| v[i] + w * t[i] + ut[i])
+        Pose {
+            pos: [0.0; 3],
+            quat: [w, -x, -y, -z],
+        }
+        .to_local(v)
     }
 
     #[test]
