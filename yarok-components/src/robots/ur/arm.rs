@@ -5,13 +5,16 @@ use std::rc::Rc;
 
 use nalgebra::Isometry3;
 use yarok_core::component::{Bind, BindError, Environment, Mock};
-use yarok_mjc::{Actuator, Joint, Sim, SimBind};
+use yarok_mjc::Sim;
 
 use super::config::ArmConfig;
-use super::controller::{ARRIVED_RAD, Controller, Drive, Goal, Servos, within};
+use super::controller::{ARRIVED_RAD, Controller, Goal, within};
+use super::drive::ArmDrive;
 use super::kinematics::{Joints, Kinematics, pose_from_vector};
+use super::mock::FollowingJoints;
 use super::motion::Move;
 use super::payload::Payload;
+use super::sim::Servos;
 
 /// How close (metres) counts as arrived for a pose ([`Arm::is_at_pose`]); its rotation within
 /// [`ARRIVED_RAD`].
@@ -43,40 +46,14 @@ impl Arm {
     ///
     /// [`BindError`] when the model lacks a joint or actuator of `config.names`.
     pub fn bind_sim(bind: &mut Bind<Sim>, config: ArmConfig) -> Result<Self, BindError> {
-        let names = config.names;
-        let mut joints = Vec::with_capacity(6);
-        let mut servos = Vec::with_capacity(6);
-        for (joint, servo) in names.joints.iter().zip(names.actuators) {
-            joints.push(bind.joint(joint)?);
-            servos.push(bind.actuator(servo)?);
-        }
-        let joints: [Joint; 6] = joints.try_into().map_err(|_| bind.error("six joints"))?;
-        let servos: [Actuator; 6] = servos.try_into().map_err(|_| bind.error("six servos"))?;
-        let mut gains = Vec::with_capacity(6);
-        for (servo, name) in servos.iter().zip(names.actuators) {
-            gains.push(servo.servo_gains().ok_or_else(|| {
-                bind.error(format!(
-                    "actuator {name:?} is not a position servo on its joint (a fixed gain and an \
-                     affine bias, as <position> or <general biastype=\"affine\">): the arm \
-                     drives position servos"
-                ))
-            })?);
-        }
-        let gains = gains.try_into().map_err(|_| bind.error("six servos"))?;
-        if let Some(start) = config.start {
-            for (joint, angle) in joints.iter().zip(start) {
-                joint.set_position(angle);
-            }
-        }
-        let start = joints.each_ref().map(Joint::position);
-        let drive = Drive::Sim(Box::new(Servos {
-            joints,
-            servos,
-            gains,
-            flange: bind.site(names.flange)?,
-            gravity: bind.backend().model().ffi().opt.gravity,
-        }));
-        Ok(Self::with_drive(bind, config.kinematics, drive, start))
+        let servos = Servos::bind(bind, &config.names)?;
+        let start = servos.start_at(config.start);
+        Ok(Self::with_drive(
+            bind,
+            config.kinematics,
+            Rc::new(servos),
+            start,
+        ))
     }
 
     /// Binds a real arm through its controller (interface settings `host`, `rtde_hz`,
@@ -93,24 +70,27 @@ impl Arm {
         kinematics: Kinematics,
     ) -> Result<Self, BindError> {
         let (link, start) = super::real::connect(bind, &kinematics).await?;
-        Ok(Self::with_drive(bind, kinematics, Drive::Real(link), start))
+        Ok(Self::with_drive(bind, kinematics, link, start))
     }
 
     /// Binds an arm in `mock`: it follows its motions exactly, from `start`.
     pub fn bind_mock(bind: &mut Bind<Mock>, kinematics: Kinematics, start: Joints) -> Self {
-        Self::with_drive(bind, kinematics, Drive::Mock, start)
+        Self::with_drive(bind, kinematics, Rc::new(FollowingJoints), start)
     }
 
-    fn with_drive<E: Environment>(
+    /// An arm over `drive` (a user's own environment: a replay, another simulator), its
+    /// motions planned with `kinematics` from `start`: the controller commands the drive after
+    /// every step, and from `start` again when an episode begins if the drive
+    /// [is put back](ArmDrive::is_put_back_at_restart).
+    pub fn with_drive<E: Environment>(
         bind: &mut Bind<E>,
         kinematics: Kinematics,
-        drive: Drive,
+        drive: Rc<dyn ArmDrive>,
         start: Joints,
     ) -> Self {
-        let simulated = matches!(drive, Drive::Sim(_));
         let controller = Rc::new(Controller::new(bind.clock(), kinematics, drive, start));
         controller.command();
-        if simulated {
+        if controller.is_put_back_at_restart() {
             let restarting = Rc::clone(&controller);
             bind.on_restart(move || restarting.restart(start));
         }

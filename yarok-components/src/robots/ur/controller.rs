@@ -5,18 +5,15 @@
 use std::cell::RefCell;
 use std::rc::Rc;
 
-use nalgebra::{Isometry3, Point3};
+use nalgebra::Isometry3;
 use yarok_core::time::Clock;
-use yarok_mjc::{Actuator, Joint, ServoGains, Site};
 
+use super::drive::{ArmDrive, Order, Setpoint};
 use super::error::MotionError;
-use super::kinematics::{IkError, Joints, Kinematics, pose_to_vector};
-use super::measured::isometry_of;
+use super::kinematics::{IkError, Joints, Kinematics};
 use super::path::Path;
 use super::payload::Payload;
-use super::real::RealLink;
 use crate::robots::profile::Profile;
-use yarok_hw::ur::script;
 
 /// How close (radians, every joint) counts as arrived.
 pub const ARRIVED_RAD: f64 = 1e-3;
@@ -24,9 +21,6 @@ pub const ARRIVED_RAD: f64 = 1e-3;
 /// Seconds after its profile ends that a motion may take to settle within [`ARRIVED_RAD`]
 /// before it counts as failed (something blocks the arm).
 pub const SETTLE_SECONDS: f64 = 0.5;
-
-/// Seconds a real arm's stream may take to show an unlocked protective stop cleared.
-const UNLOCKED_SECONDS: f64 = 2.0;
 
 /// Where a motion goes, and how.
 #[derive(Debug, Clone, Copy)]
@@ -42,48 +36,15 @@ pub(super) enum Goal {
 pub(super) struct Controller {
     kinematics: Kinematics,
     clock: Clock,
-    drive: Drive,
+    drive: Rc<dyn ArmDrive>,
     state: RefCell<State>,
 }
 
-/// What the motions move.
-pub(super) enum Drive {
-    Sim(Box<Servos>),
-    /// Follows the reference exactly.
-    Mock,
-    /// A real arm: each motion goes to its controller as URScript, which moves the arm; the
-    /// motion's profile here tells when it should have arrived.
-    Real(Rc<RealLink>),
-}
-
-/// The joints and position servos of an arm in `sim`, with the servos' gains as the model
-/// states them, its flange site and the world's gravity (for the payload).
-pub(super) struct Servos {
-    pub(super) joints: [Joint; 6],
-    pub(super) servos: [Actuator; 6],
-    pub(super) gains: [ServoGains; 6],
-    pub(super) flange: Site,
-    pub(super) gravity: [f64; 3],
-}
-
-impl Servos {
-    /// What each joint must give to hold `payload` against gravity.
-    fn holding(&self, payload: &Payload) -> Vec<f64> {
-        let centre = isometry_of(&self.flange.pose()) * Point3::from(payload.centre);
-        let weight = self.gravity.map(|g| -g * payload.mass);
-        self.flange
-            .forces_on(&self.joints, centre.coords.into(), weight)
-    }
-}
-
 struct State {
-    /// The joints and speeds commanded for the next step.
-    reference: Joints,
-    speed: Joints,
-    acceleration: Joints,
+    /// What is commanded for the next step, with the payload set by
+    /// [`Controller::set_payload`].
+    setpoint: Setpoint,
     motion: Option<Motion>,
-    /// What the arm carries, as set with [`Controller::set_payload`].
-    payload: Option<Payload>,
     next_id: u64,
     /// How the last motion that ended, ended.
     ended: Option<(u64, Result<(), MotionError>)>,
@@ -119,17 +80,24 @@ impl Motion {
 
 impl Controller {
     /// A controller of `drive`, holding `start` until a motion comes.
-    pub(super) fn new(clock: Clock, kinematics: Kinematics, drive: Drive, start: Joints) -> Self {
+    pub(super) fn new(
+        clock: Clock,
+        kinematics: Kinematics,
+        drive: Rc<dyn ArmDrive>,
+        start: Joints,
+    ) -> Self {
         Self {
             kinematics,
             clock,
             drive,
             state: RefCell::new(State {
-                reference: start,
-                speed: [0.0; 6],
-                acceleration: [0.0; 6],
+                setpoint: Setpoint {
+                    q: start,
+                    speed: [0.0; 6],
+                    acceleration: [0.0; 6],
+                    payload: None,
+                },
                 motion: None,
-                payload: None,
                 next_id: 0,
                 ended: None,
             }),
@@ -146,30 +114,22 @@ impl Controller {
 
     /// Joint angles (radians).
     pub(super) fn q(&self) -> Joints {
-        self.measured(&self.state.borrow())
+        self.drive.q(&self.state.borrow().setpoint)
     }
 
     /// Joint speeds (rad/s).
     pub(super) fn qd(&self) -> Joints {
-        match &self.drive {
-            Drive::Sim(sim) => sim.joints.each_ref().map(Joint::velocity),
-            Drive::Mock => self.state.borrow().speed,
-            Drive::Real(link) => link.qd(),
-        }
+        self.drive.qd(&self.state.borrow().setpoint)
     }
 
-    /// Unlocks a real arm's protective stop; nothing to do otherwise.
+    /// Unlocks a protective stop, where the drive has one.
     pub(super) async fn unlock_protective_stop(&self) -> Result<(), String> {
-        let Drive::Real(link) = &self.drive else {
-            return Ok(());
-        };
-        link.unlock_protective_stop().await?;
-        // Motions may start once the arm's own stream says so.
-        self.clock
-            .wait(|| link.safety_stop().is_none())
-            .timeout(UNLOCKED_SECONDS)
-            .await
-            .map_err(|e| format!("the safety stop did not clear: {e}"))
+        self.drive.unlock_protective_stop().await
+    }
+
+    /// Whether the world puts the joints back at their start when an episode begins.
+    pub(super) fn is_put_back_at_restart(&self) -> bool {
+        self.drive.is_put_back_at_restart()
     }
 
     /// Whether a motion is under way.
@@ -191,24 +151,21 @@ impl Controller {
         };
         let dt = self.clock.timestep();
         let t = now + dt - motion.started;
-        let halt = match &self.drive {
-            Drive::Real(link) => link.halt(),
-            _ => None,
-        };
-        let reference = match halt {
+        let reference = match self.drive.halt() {
             Some(error) => Err(error),
             None => motion
-                .reference(t, dt, &self.kinematics, &state.reference)
+                .reference(t, dt, &self.kinematics, &state.setpoint.q)
                 .map_err(MotionError::from),
         };
         let outcome = match reference {
             Err(error) => Some(Err(error)),
             Ok((q, speed)) => {
-                let before = state.reference;
-                state.acceleration =
+                let setpoint = &mut state.setpoint;
+                let before = setpoint.q;
+                setpoint.acceleration =
                     std::array::from_fn(|i| (speed[i] - (q[i] - before[i]) / dt) / dt);
-                state.reference = q;
-                state.speed = speed;
+                setpoint.q = q;
+                setpoint.speed = speed;
                 if t >= motion.profile.duration() {
                     self.settled(&motion, now, &state)
                 } else {
@@ -218,8 +175,8 @@ impl Controller {
         };
         match outcome {
             Some(outcome) => {
-                state.speed = [0.0; 6];
-                state.acceleration = [0.0; 6];
+                state.setpoint.speed = [0.0; 6];
+                state.setpoint.acceleration = [0.0; 6];
                 state.ended = Some((motion.id, outcome));
             }
             None => state.motion = Some(motion),
@@ -228,9 +185,9 @@ impl Controller {
 
     /// How a motion whose profile is over ends: `None` while the arm settles.
     fn settled(&self, motion: &Motion, now: f64, state: &State) -> Option<Result<(), MotionError>> {
-        let at = self.measured(state);
-        if matches!(&self.drive, Drive::Real(link) if link.is_stale()) {
-            // RTDE is being reconnected: where the arm is will be known again, or the run ends.
+        let at = self.drive.q(&state.setpoint);
+        if !self.drive.is_current() {
+            // Where the arm is will be known again, or the run ends.
             None
         } else if motion.stopping {
             Some(Err(MotionError::Stopped))
@@ -247,14 +204,6 @@ impl Controller {
         }
     }
 
-    fn measured(&self, state: &State) -> Joints {
-        match &self.drive {
-            Drive::Sim(sim) => sim.joints.each_ref().map(Joint::position),
-            Drive::Mock => state.reference,
-            Drive::Real(link) => link.q(),
-        }
-    }
-
     /// The world went back to its start (an episode began): the arm holds `start` again, and a
     /// motion under way ends as stopped.
     pub(super) fn restart(&self, start: Joints) {
@@ -263,47 +212,25 @@ impl Controller {
             if let Some(motion) = state.motion.take() {
                 state.ended = Some((motion.id, Err(MotionError::Stopped)));
             }
-            state.reference = start;
-            state.speed = [0.0; 6];
-            state.acceleration = [0.0; 6];
+            let setpoint = &mut state.setpoint;
+            setpoint.q = start;
+            setpoint.speed = [0.0; 6];
+            setpoint.acceleration = [0.0; 6];
         }
         self.command();
     }
 
-    /// Sets the servos to the reference, with what the arm's controller adds as a real one
-    /// does: the force that the reference's speed and acceleration take and that gravity,
-    /// Coriolis and centrifugal forces ask of each joint (those the model does not compensate
-    /// itself), and the payload's weight, so that the joints track without lag or sag.
+    /// Commands the setpoint to the drive.
     pub(super) fn command(&self) {
-        if let Drive::Sim(sim) = &self.drive {
-            let state = self.state.borrow();
-            let payload = match &state.payload {
-                Some(payload) if payload.mass > 0.0 => sim.holding(payload),
-                _ => vec![0.0; 6],
-            };
-            for (i, gains) in sim.gains.iter().enumerate() {
-                let joint = &sim.joints[i];
-                let torque =
-                    joint.inertia() * state.acceleration[i] + joint.bias_force() + payload[i];
-                // The servo's force is gain·ctrl − kp·gear·q − kv·gear·q̇; the joint feels gear
-                // times it.
-                let force = gains.gear
-                    * (gains.kp * state.reference[i] + gains.kv * state.speed[i])
-                    + torque / gains.gear;
-                sim.servos[i].set(force / gains.gain);
-            }
-        }
+        self.drive.command(&self.state.borrow().setpoint);
     }
 
-    /// Sets what the arm carries: fed forward in `sim`, sent as `set_payload` to a real arm.
+    /// Sets what the arm carries: fed forward in `sim`, ordered of a real arm.
     pub(super) fn set_payload(&self, payload: Payload) {
-        self.state.borrow_mut().payload = Some(payload);
-        if let Drive::Real(link) = &self.drive {
-            link.send_script(script::set_payload(payload.mass, payload.centre));
-        }
+        self.state.borrow_mut().setpoint.payload = Some(payload);
+        self.drive.order(Order::SetPayload(payload));
         self.command();
     }
-
     /// Starts a motion to `to`, after checking the whole path; its id.
     pub(super) fn start(
         &self,
@@ -318,7 +245,7 @@ impl Controller {
             });
         }
         let mut state = self.state.borrow_mut();
-        let from = state.reference;
+        let from = state.setpoint.q;
         let path = match goal {
             Goal::Joints(target) => self.joint_path(from, target)?,
             Goal::JointsFor(pose) => {
@@ -344,17 +271,19 @@ impl Controller {
             stopping: false,
         });
         drop(state);
-        if let Drive::Real(link) = &self.drive {
-            link.send_script(match path {
-                Path::Line { to, .. } => script::movel_with_tcp(
-                    &pose_to_vector(&to),
-                    &pose_to_vector(&self.kinematics.tcp),
-                    speed,
-                    acceleration,
-                ),
-                Path::Joints { .. } => script::movej(&target, speed, acceleration),
-            });
-        }
+        self.drive.order(match path {
+            Path::Line { to, .. } => Order::MoveL {
+                pose: to,
+                tcp: self.kinematics.tcp,
+                speed,
+                acceleration,
+            },
+            Path::Joints { .. } => Order::MoveJ {
+                target,
+                speed,
+                acceleration,
+            },
+        });
         self.advance(self.clock.time());
         self.command();
         Ok(id)
@@ -384,12 +313,10 @@ impl Controller {
         }
         let (along, speed) = motion.profile.at(now - motion.started);
         let deceleration = motion.profile.acceleration();
-        if let Drive::Real(link) = &self.drive {
-            link.send_script(match motion.path {
-                Path::Line { .. } => script::stopl(deceleration),
-                Path::Joints { .. } => script::stopj(deceleration),
-            });
-        }
+        self.drive.order(match motion.path {
+            Path::Line { .. } => Order::StopL { deceleration },
+            Path::Joints { .. } => Order::StopJ { deceleration },
+        });
         motion.profile = Profile::stopping(along, speed, deceleration);
         motion.started = now;
         motion.stopping = true;

@@ -4,14 +4,17 @@
 mod arm;
 mod config;
 mod controller;
+mod drive;
 mod error;
 mod kinematics;
 mod measured;
+mod mock;
 mod model;
 mod motion;
 mod path;
 mod payload;
 mod real;
+mod sim;
 
 use yarok_core::component::{Bind, BindError, Component, Declaration, Interface, Interfaces, Mock};
 use yarok_mjc::Sim;
@@ -19,6 +22,7 @@ use yarok_mjc::Sim;
 pub use arm::{ARRIVED_M, Arm, MOVE_J_DEFAULTS, MOVE_L_DEFAULTS};
 pub use config::{ArmConfig, ArmNames};
 pub use controller::{ARRIVED_RAD, SETTLE_SECONDS};
+pub use drive::{ArmDrive, Order, Setpoint};
 pub use error::MotionError;
 pub use kinematics::{
     DhParameters, IkError, JointLimits, Joints, Kinematics, Solutions, pose_from_vector,

@@ -4,6 +4,8 @@
 
 use std::cell::{Cell, RefCell};
 use std::collections::VecDeque;
+use std::future::Future;
+use std::pin::Pin;
 use std::rc::Rc;
 use std::time::Duration;
 
@@ -12,14 +14,16 @@ use tokio::net::TcpStream;
 use tokio::sync::{Notify, oneshot};
 use tokio::time::Instant;
 use yarok_core::component::{Bind, BindError};
+use yarok_core::time::Clock;
 use yarok_hw::ur::dashboard::{Dashboard, RobotMode, SafetyStatus};
 use yarok_hw::ur::rtde::{Rtde, RtdeError, RtdeSettings, Value};
 use yarok_hw::ur::script;
 use yarok_hw::ur::secondary::{KinematicsInfo, Secondary, send_script_and_close};
 use yarok_hw::{Real, connect_within, reopen};
 
+use super::drive::{ArmDrive, Order, Setpoint};
 use super::error::MotionError;
-use super::kinematics::{DhParameters, Joints, Kinematics};
+use super::kinematics::{DhParameters, Joints, Kinematics, pose_to_vector};
 use super::payload::Payload;
 
 const RTDE_PORT: u16 = 30004;
@@ -35,6 +39,9 @@ const OUTPUTS: [&str; 4] = ["actual_q", "actual_qd", "robot_mode", "safety_mode"
 /// How long after RTDE's last data package the joints are taken as stale: a stream at 125 Hz
 /// or more sends one every 8 ms.
 const STALE_AFTER: Duration = Duration::from_millis(100);
+
+/// Seconds the arm's stream may take to show an unlocked protective stop cleared.
+const UNLOCKED_SECONDS: f64 = 2.0;
 
 /// How far (metres) a DH length may differ from the configured one: calibration moves them by
 /// well under this, another model by centimetres.
@@ -134,32 +141,72 @@ enum Request {
     UnlockProtectiveStop(oneshot::Sender<Result<(), String>>),
 }
 
-/// The link between the controller's motions and the driver's task.
+/// The link between the controller's motions and the driver's task: the arm's drive in
+/// `real`.
 pub(super) struct RealLink {
     measured: Cell<Measured>,
     received_at: Cell<Instant>,
     requests: RefCell<VecDeque<Request>>,
     wake: Notify,
+    clock: Clock,
 }
 
 impl RealLink {
-    pub(super) fn q(&self) -> Joints {
-        self.measured.get().q
-    }
-
-    pub(super) fn qd(&self) -> Joints {
-        self.measured.get().qd
-    }
-
     /// The safety mode's name when it stops the arm (a protective stop, an emergency stop, …).
-    pub(super) fn safety_stop(&self) -> Option<&'static str> {
+    fn safety_stop(&self) -> Option<&'static str> {
         let mode = self.measured.get().safety_mode;
         (mode > 2).then(|| safety_mode_name(mode))
     }
 
+    fn update(&self, now: Measured) {
+        self.measured.set(now);
+        self.received_at.set(Instant::now());
+    }
+
+    fn request(&self, request: Request) {
+        self.requests.borrow_mut().push_back(request);
+        self.wake.notify_one();
+    }
+}
+
+impl ArmDrive for RealLink {
+    fn q(&self, _commanded: &Setpoint) -> Joints {
+        self.measured.get().q
+    }
+
+    fn qd(&self, _commanded: &Setpoint) -> Joints {
+        self.measured.get().qd
+    }
+
+    /// Sends the order's URScript to the controller, which runs it at once.
+    fn order(&self, order: Order) {
+        let script = match order {
+            Order::MoveJ {
+                target,
+                speed,
+                acceleration,
+            } => script::movej(&target, speed, acceleration),
+            Order::MoveL {
+                pose,
+                tcp,
+                speed,
+                acceleration,
+            } => script::movel_with_tcp(
+                &pose_to_vector(&pose),
+                &pose_to_vector(&tcp),
+                speed,
+                acceleration,
+            ),
+            Order::StopJ { deceleration } => script::stopj(deceleration),
+            Order::StopL { deceleration } => script::stopl(deceleration),
+            Order::SetPayload(payload) => script::set_payload(payload.mass, payload.centre),
+        };
+        self.request(Request::Script(script));
+    }
+
     /// Why the arm cannot move, if it cannot: its safety system stopped it, or it is not
     /// running (powered off, brakes locked, …).
-    pub(super) fn halt(&self) -> Option<MotionError> {
+    fn halt(&self) -> Option<MotionError> {
         let robot_mode = self.measured.get().robot_mode;
         match self.safety_stop() {
             Some(mode) => Some(MotionError::SafetyStop { mode }),
@@ -169,35 +216,27 @@ impl RealLink {
         }
     }
 
-    /// Whether RTDE has been silent for a while (a dropped stream being reconnected): the
-    /// joints are not where the arm is now.
-    pub(super) fn is_stale(&self) -> bool {
-        self.received_at.get().elapsed() > STALE_AFTER
+    /// Whether RTDE has been heard from lately (a dropped stream being reconnected is not):
+    /// else the joints are not where the arm is now.
+    fn is_current(&self) -> bool {
+        self.received_at.get().elapsed() <= STALE_AFTER
     }
 
-    fn update(&self, now: Measured) {
-        self.measured.set(now);
-        self.received_at.set(Instant::now());
-    }
-
-    /// Sends `script` to the controller, which runs it at once.
-    pub(super) fn send_script(&self, script: String) {
-        self.requests
-            .borrow_mut()
-            .push_back(Request::Script(script));
-        self.wake.notify_one();
-    }
-
-    /// Unlocks a protective stop through the dashboard.
-    pub(super) async fn unlock_protective_stop(&self) -> Result<(), String> {
-        let (reply, replied) = oneshot::channel();
-        self.requests
-            .borrow_mut()
-            .push_back(Request::UnlockProtectiveStop(reply));
-        self.wake.notify_one();
-        replied
-            .await
-            .unwrap_or_else(|_| Err("the arm's driver has stopped".into()))
+    /// Unlocks a protective stop through the dashboard, and waits until the arm's own stream
+    /// shows the stop cleared.
+    fn unlock_protective_stop(&self) -> Pin<Box<dyn Future<Output = Result<(), String>> + '_>> {
+        Box::pin(async move {
+            let (reply, replied) = oneshot::channel();
+            self.request(Request::UnlockProtectiveStop(reply));
+            replied
+                .await
+                .unwrap_or_else(|_| Err("the arm's driver has stopped".into()))?;
+            self.clock
+                .wait(|| self.safety_stop().is_none())
+                .timeout(UNLOCKED_SECONDS)
+                .await
+                .map_err(|e| format!("the safety stop did not clear: {e}"))
+        })
     }
 }
 
@@ -363,6 +402,7 @@ pub(super) async fn connect(
         received_at: Cell::new(Instant::now()),
         requests: RefCell::new(VecDeque::new()),
         wake: Notify::new(),
+        clock: bind.clock(),
     });
     bind.spawn(drive(Rc::clone(&link), settings, rtde, secondary));
     bind.on_stop(async move {
