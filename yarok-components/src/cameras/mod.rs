@@ -1,15 +1,26 @@
 //! Cameras.
 
+mod feed;
+mod mock;
 #[cfg(feature = "camera")]
 pub(crate) mod real;
+#[cfg(feature = "render")]
+mod sim;
+
+use std::rc::Rc;
 
 use image::RgbImage;
 
 use crate::probe_images;
-use yarok_core::component::{Bind, BindError, Component, Declaration, Interface, Interfaces, Mock};
+use yarok_core::component::{
+    Bind, BindError, Component, Declaration, Environment, Interfaces, Mock,
+};
 #[cfg(feature = "render")]
-use yarok_mjc::{Camera, RenderError, RenderPreset, SimBind};
+use yarok_mjc::RenderError;
 use yarok_mjc::{DepthImage, Sim};
+
+pub use feed::CameraFeed;
+pub use mock::BlackFrames;
 
 /// A camera: `read()` gives a colour image, `read_depth()` distances in metres.
 ///
@@ -24,21 +35,15 @@ use yarok_mjc::{DepthImage, Sim};
 /// `fps`, default 30), of the MJPEG stream of a program it runs (`command`, e.g. ffmpeg or
 /// GStreamer) or of a file or FIFO (`file`), and has no depth; `mock` returns black images of
 /// the configured size.
-#[derive(Clone, Debug)]
+#[derive(Clone)]
 pub struct Cam {
-    source: Source,
+    feed: Rc<dyn CameraFeed>,
 }
 
-#[derive(Clone, Debug)]
-enum Source {
-    #[cfg(feature = "render")]
-    Sim(Camera),
-    #[cfg(feature = "camera")]
-    Real(std::rc::Rc<real::RealFrames>),
-    Mock {
-        width: u32,
-        height: u32,
-    },
+impl std::fmt::Debug for Cam {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Cam").finish_non_exhaustive()
+    }
 }
 
 /// A camera could not give an image.
@@ -55,34 +60,30 @@ pub enum CamError {
 }
 
 impl Cam {
+    /// A camera over `feed` (a user's own environment: a replay, another renderer), with the
+    /// probes `rgb` and `depth`.
+    pub fn with_feed<E: Environment>(bind: &mut Bind<E>, feed: Rc<dyn CameraFeed>) -> Self {
+        let cam = Cam { feed };
+        cam.show_probes(bind);
+        cam
+    }
+
     /// The current colour image, top row first.
     ///
     /// # Errors
     ///
     /// When rendering fails.
     pub fn read(&self) -> Result<RgbImage, CamError> {
-        match &self.source {
-            #[cfg(feature = "render")]
-            Source::Sim(camera) => Ok(camera.rgb()?),
-            #[cfg(feature = "camera")]
-            Source::Real(frames) => Ok(frames.latest()),
-            Source::Mock { width, height } => Ok(RgbImage::new(*width, *height)),
-        }
+        self.feed.rgb()
     }
 
     /// The current depth image in metres (planar distance along the camera axis).
     ///
     /// # Errors
     ///
-    /// When rendering fails.
+    /// When rendering fails, or the camera measures no depth.
     pub fn read_depth(&self) -> Result<DepthImage, CamError> {
-        match &self.source {
-            #[cfg(feature = "render")]
-            Source::Sim(camera) => Ok(camera.depth()?),
-            #[cfg(feature = "camera")]
-            Source::Real(_) => Err(CamError::NoDepth),
-            Source::Mock { width, height } => Ok(DepthImage::new(*width, *height)),
-        }
+        self.feed.depth()
     }
 
     /// The current colour and depth images of the same instant, from one draw (cheaper than
@@ -90,24 +91,15 @@ impl Cam {
     ///
     /// # Errors
     ///
-    /// When rendering fails.
+    /// When rendering fails, or the camera measures no depth.
     pub fn read_rgbd(&self) -> Result<(RgbImage, DepthImage), CamError> {
-        match &self.source {
-            #[cfg(feature = "render")]
-            Source::Sim(camera) => Ok(camera.rgbd()?),
-            #[cfg(feature = "camera")]
-            Source::Real(_) => Err(CamError::NoDepth),
-            Source::Mock { width, height } => Ok((
-                RgbImage::new(*width, *height),
-                DepthImage::new(*width, *height),
-            )),
-        }
+        self.feed.rgbd()
     }
 }
 
 impl Cam {
     /// Registers the probes `rgb` and `depth`, each rendering when read.
-    fn show_probes<E: yarok_core::component::Environment>(&self, bind: &mut Bind<E>) {
+    fn show_probes<E: Environment>(&self, bind: &mut Bind<E>) {
         let shown = self.clone();
         bind.probe("rgb", move || Ok(probe_images::rgb(shown.read()?)));
         let shown = self.clone();
@@ -145,7 +137,7 @@ impl Component for Cam {
 }
 
 /// The configured image size, each side at least one pixel.
-fn size<E: yarok_core::component::Environment>(bind: &Bind<E>) -> Result<(u32, u32), BindError> {
+fn size<E: Environment>(bind: &Bind<E>) -> Result<(u32, u32), BindError> {
     let side = |key: &str| -> Result<u32, BindError> {
         match bind.config_value::<u32>(key)? {
             0 => Err(bind.error(format!("{key} must be at least one pixel"))),
@@ -153,36 +145,4 @@ fn size<E: yarok_core::component::Environment>(bind: &Bind<E>) -> Result<(u32, u
         }
     };
     Ok((side("width")?, side("height")?))
-}
-
-#[cfg(feature = "render")]
-impl Interface<Sim> for Cam {
-    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
-        let (width, height) = size(bind)?;
-        let preset = match bind.config_value::<String>("preset")?.as_str() {
-            "quality" => RenderPreset::Quality,
-            "fast" => RenderPreset::Fast,
-            other => {
-                return Err(bind.error(format!(
-                    "preset must be \"quality\" or \"fast\", not {other:?}"
-                )));
-            }
-        };
-        let cam = Cam {
-            source: Source::Sim(bind.camera_with("camera", width, height, preset)?),
-        };
-        cam.show_probes(bind);
-        Ok(cam)
-    }
-}
-
-impl Interface<Mock> for Cam {
-    async fn bind(bind: &mut Bind<Mock>) -> Result<Self, BindError> {
-        let (width, height) = size(bind)?;
-        let cam = Cam {
-            source: Source::Mock { width, height },
-        };
-        cam.show_probes(bind);
-        Ok(cam)
-    }
 }

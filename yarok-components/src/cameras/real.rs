@@ -13,7 +13,7 @@ use yarok_core::component::{Bind, BindError, Interface};
 use yarok_hw::Real;
 use yarok_hw::camera::{MjpegStream, StreamError, VideoDevice};
 
-use super::{Cam, Source, size};
+use super::{Cam, CamError, CameraFeed, size};
 
 /// The interface settings of a real camera (`[interfaces."/path/to/cam"]`): exactly one of
 /// `device`, `command` and `file`, and optionally `fps`, `size` and `first_frame_seconds`.
@@ -56,6 +56,12 @@ impl Default for Settings {
 pub(crate) struct RealFrames {
     latest: RefCell<RgbImage>,
     time: Cell<f64>,
+}
+
+impl CameraFeed for RealFrames {
+    fn rgb(&self) -> Result<RgbImage, CamError> {
+        Ok(self.latest())
+    }
 }
 
 impl RealFrames {
@@ -205,10 +211,6 @@ impl Interface<Real> for Cam {
     async fn bind(bind: &mut Bind<Real>) -> Result<Self, BindError> {
         let (width, height) = size(bind)?;
         let frames = bind_frames(bind, width, height, 30).await?;
-        let cam = Cam {
-            source: Source::Real(frames),
-        };
-        cam.show_probes(bind);
-        Ok(cam)
+        Ok(Cam::with_feed(bind, frames))
     }
 }

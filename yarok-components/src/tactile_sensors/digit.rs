@@ -1,7 +1,8 @@
 //! [`Digit`]: the DIGIT tactile sensor (Lambeta et al., 2020) in the world.
 
+use super::kind::SensorKind;
 use super::phong::Spec;
-use super::sensor::{SensorKind, TactileSensor, tactile_sensor_component};
+use super::sensor::{TactileSensor, tactile_sensor_component};
 use crate::tactile::calibration::Calibration;
 use crate::tactile::elastomer::Elastomer;
 use crate::tactile::phong::PhongParams;

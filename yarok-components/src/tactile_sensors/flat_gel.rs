@@ -1,7 +1,7 @@
 //! [`FlatGelOptics`]: a flat gel in front of the camera, seen through a [`FlatGelModel`] (the
 //! reference Phong model, or a calibrated one).
 
-use super::sensor::Optics;
+use super::kind::Optics;
 use crate::tactile::SizeError;
 use crate::tactile::phong::PhongModel;
 

@@ -1,7 +1,8 @@
 //! [`GelSight2014`]: the 2014 GelSight fingertip sensor (Li et al., IROS 2014) in the world.
 
+use super::kind::SensorKind;
 use super::phong::Spec;
-use super::sensor::{SensorKind, TactileSensor, tactile_sensor_component};
+use super::sensor::{TactileSensor, tactile_sensor_component};
 use crate::tactile::elastomer::Elastomer;
 use crate::tactile::phong::PhongParams;
 

@@ -3,7 +3,8 @@
 
 use yarok_core::component::Declaration;
 
-use super::sensor::{Optics, SensorKind, TactileSensor, tactile_sensor_component};
+use super::kind::{Optics, SensorKind};
+use super::sensor::{TactileSensor, tactile_sensor_component};
 use crate::tactile::SizeError;
 use crate::tactile::calibration::Calibration;
 use crate::tactile::elastomer::Elastomer;

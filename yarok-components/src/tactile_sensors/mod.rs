@@ -6,8 +6,15 @@ mod digit;
 mod flat_gel;
 mod gelsight;
 mod geltip;
+mod kind;
+mod mock;
+mod modelled;
 mod phong;
+#[cfg(feature = "camera")]
+mod real;
 mod sensor;
+#[cfg(feature = "render")]
+mod sim;
 
 pub use digit::Digit;
 pub use gelsight::GelSight2014;

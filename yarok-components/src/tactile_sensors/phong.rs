@@ -5,7 +5,7 @@ use yarok_core::component::Declaration;
 
 use super::calibrated::CalibratedModel;
 use super::flat_gel::FlatGelOptics;
-use super::sensor::{Optics, SensorKind};
+use super::kind::{Optics, SensorKind};
 use crate::tactile::calibration::Calibration;
 use crate::tactile::elastomer::Elastomer;
 use crate::tactile::phong::{PhongModel, PhongParams};

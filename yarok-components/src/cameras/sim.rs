@@ -1,0 +1,39 @@
+//! A [`Cam`] in `sim`: MuJoCo renders what its camera sees, offscreen.
+
+use image::RgbImage;
+use yarok_core::component::{Bind, BindError, Interface};
+use yarok_mjc::{Camera, DepthImage, RenderPreset, Sim, SimBind};
+
+use super::{Cam, CamError, CameraFeed, size};
+
+impl CameraFeed for Camera {
+    fn rgb(&self) -> Result<RgbImage, CamError> {
+        Ok(Camera::rgb(self)?)
+    }
+
+    fn depth(&self) -> Result<DepthImage, CamError> {
+        Ok(Camera::depth(self)?)
+    }
+
+    /// Both from one draw.
+    fn rgbd(&self) -> Result<(RgbImage, DepthImage), CamError> {
+        Ok(Camera::rgbd(self)?)
+    }
+}
+
+impl Interface<Sim> for Cam {
+    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
+        let (width, height) = size(bind)?;
+        let preset = match bind.config_value::<String>("preset")?.as_str() {
+            "quality" => RenderPreset::Quality,
+            "fast" => RenderPreset::Fast,
+            other => {
+                return Err(bind.error(format!(
+                    "preset must be \"quality\" or \"fast\", not {other:?}"
+                )));
+            }
+        };
+        let camera = bind.camera_with("camera", width, height, preset)?;
+        Ok(Cam::with_feed(bind, std::rc::Rc::new(camera)))
+    }
+}
