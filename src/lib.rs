@@ -42,9 +42,10 @@ pub use yarok_core::time::WaitError;
 pub mod prelude {
     pub use yarok_core::BoxError;
     pub use yarok_core::component::{
-        Bind, BindError, Component, Declaration, Interface, Interfaces, Mock,
+        Bind, BindError, Component, Declaration, Environment, Interface, Interfaces, Mock,
     };
     pub use yarok_core::runtime::{BehaviourResult, Pl, Plugin, World};
+    pub use yarok_core::time::{Clock, WaitError};
     pub use yarok_hw::Real;
     pub use yarok_mjc::{Actuator, Body, Joint, Sensor, Sim, SimBind, Site};
 }

@@ -190,8 +190,8 @@ impl Modelled {
         for touch in self.sensing.touches() {
             let pushing = touch.normal_force.max(0.0);
             force += pushing;
-            for axis in 0..3 {
-                sum[axis] += pushing * touch.push[axis];
+            for (sum, push) in sum.iter_mut().zip(touch.push) {
+                *sum += pushing * push;
             }
         }
         let norm = sum.iter().map(|s| s * s).sum::<f64>().sqrt();
