@@ -262,3 +262,27 @@ fn a_recording_on_a_full_disk_ends_the_run_naming_the_file() {
         ],
     );
 }
+
+#[test]
+fn a_recorder_of_the_simulation_is_refused_in_mock_before_anything_runs() {
+    let folder = tempfile::tempdir().unwrap();
+    let csv = folder.path().join("joints.csv");
+    let path = format!("plugins/joints_csv/path=\"{}\"", csv.display());
+    let refused = format!(
+        "plugin joints_csv ({}) cannot run in `mock`: it runs in sim",
+        csv.display()
+    );
+    yarok_fails(
+        &[
+            "run",
+            "pick_and_place_world",
+            "--env",
+            "mock",
+            "--set",
+            &path,
+        ],
+        2,
+        &[&refused],
+    );
+    assert!(!csv.exists(), "nothing was recorded");
+}

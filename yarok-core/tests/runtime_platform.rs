@@ -230,6 +230,60 @@ fn environments_that_components_do_not_support_fail_before_anything_binds() {
     assert_eq!(STEPS.with(|s| s.borrow().len()), 0, "nothing was bound");
 }
 
+/// A plugin that runs only in `sim`, as a recorder of the simulation's state does.
+struct SimOnly(Rc<Cell<bool>>);
+
+impl Plugin for SimOnly {
+    fn name(&self) -> String {
+        "sim_only".to_owned()
+    }
+
+    fn environments(&self) -> Vec<&'static str> {
+        vec![Sim::NAME]
+    }
+
+    fn start(&mut self, _: &World<'_>) -> Result<(), BoxError> {
+        self.0.set(true);
+        Ok(())
+    }
+
+    fn step(&mut self, _: &World<'_>) -> Result<(), BoxError> {
+        Ok(())
+    }
+}
+
+#[test]
+fn plugins_in_environments_they_do_not_run_in_fail_before_anything_binds() {
+    let started = Rc::new(Cell::new(false));
+    let error = platform()
+        .plugin(SimOnly(Rc::clone(&started)))
+        .behaviour(|_| async { Ok(()) })
+        .run()
+        .unwrap_err();
+    assert_eq!(
+        error.to_string(),
+        "plugin sim_only cannot run in `mock`: it runs in sim"
+    );
+    assert!(matches!(error, RuntimeError::PluginUnsupported { .. }));
+    assert_eq!(STEPS.with(|s| s.borrow().len()), 0, "nothing was bound");
+    assert!(!started.get());
+    let ran = Rc::new(Cell::new(false));
+    platform()
+        .backend::<Sim>(|_, _| Ok(MockBackend::new(0.01, false)))
+        .environment("sim")
+        .plugin(SimOnly(Rc::clone(&started)))
+        .behaviour({
+            let ran = Rc::clone(&ran);
+            move |_| async move {
+                ran.set(true);
+                Ok(())
+            }
+        })
+        .run()
+        .unwrap();
+    assert!(started.get() && ran.get(), "in `sim` it runs");
+}
+
 struct Recorder {
     name: &'static str,
     log: Rc<RefCell<Vec<String>>>,

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use yarok_core::BoxError;
 use yarok_core::runtime::{Plugin, World};
-use yarok_mjc::{Data, JointId, SimBackend};
+use yarok_mjc::{Data, JointId};
 
 /// Where and how often a [`JointRecorder`] writes (`[plugins.joints_csv]`).
 #[derive(Debug, Clone, PartialEq, serde::Deserialize)]
@@ -63,16 +63,6 @@ impl JointRecorder {
         })
     }
 
-    fn sim<'a>(world: &World<'a>) -> Result<&'a SimBackend, BoxError> {
-        world.backend::<SimBackend>().ok_or_else(|| {
-            format!(
-                "records joints of the `sim` environment, not of `{}`",
-                world.pl().environment()
-            )
-            .into()
-        })
-    }
-
     fn header(&self, data: &Data) -> String {
         let model = data.model();
         let mut header = String::from("time");
@@ -108,8 +98,12 @@ impl Plugin for JointRecorder {
         format!("joints_csv ({})", self.settings.path.display())
     }
 
+    fn environments(&self) -> Vec<&'static str> {
+        super::only_sim()
+    }
+
     fn start(&mut self, world: &World<'_>) -> Result<(), BoxError> {
-        let sim = Self::sim(world)?;
+        let sim = super::sim_backend(world)?;
         self.joints = sim.model().joints().collect();
         let path = &self.settings.path;
         let file =
@@ -128,7 +122,7 @@ impl Plugin for JointRecorder {
         if !tick.is_multiple_of(self.settings.every) {
             return Ok(());
         }
-        let data = Self::sim(world)?.data();
+        let data = super::sim_backend(world)?.data();
         self.row.clear();
         self.row.push_str(&data.time().to_string());
         for joint in &self.joints {

@@ -31,3 +31,23 @@ pub use video_recorder::{VideoRecorder, VideoRecorderSettings};
 pub use viewer::{Viewer, ViewerSettings};
 #[cfg(feature = "zenoh")]
 pub use zenoh_bridge::{ZenohBridge, ZenohBridgeSettings};
+
+/// The environments of a plugin that needs MuJoCo ([`Plugin::environments`](yarok_core::runtime::Plugin::environments)).
+pub(crate) fn only_sim() -> Vec<&'static str> {
+    use yarok_core::component::Environment;
+    vec![yarok_mjc::Sim::NAME]
+}
+
+/// The MuJoCo backend of a plugin that runs only in `sim` ([`only_sim`]: the platform checked
+/// the environment before the plugin started).
+pub(crate) fn sim_backend<'a>(
+    world: &yarok_core::runtime::World<'a>,
+) -> Result<&'a yarok_mjc::SimBackend, yarok_core::BoxError> {
+    world.backend().ok_or_else(|| {
+        format!(
+            "the backend of `{}` is not MuJoCo's",
+            world.pl().environment()
+        )
+        .into()
+    })
+}

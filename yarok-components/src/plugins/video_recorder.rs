@@ -112,13 +112,12 @@ impl Plugin for VideoRecorder {
         format!("video ({})", self.settings.path.display())
     }
 
+    fn environments(&self) -> Vec<&'static str> {
+        super::only_sim()
+    }
+
     fn start(&mut self, world: &World<'_>) -> Result<(), BoxError> {
-        let sim = world.backend::<SimBackend>().ok_or_else(|| {
-            format!(
-                "films the model's cameras in `sim`, not in `{}`",
-                world.pl().environment()
-            )
-        })?;
+        let sim = super::sim_backend(world)?;
         let settings = &self.settings;
         let camera = ModelCameras::find(
             sim,

@@ -122,16 +122,6 @@ impl Viewer {
         (self.drawing, self.frames)
     }
 
-    fn sim<'a>(world: &World<'a>) -> Result<&'a SimBackend, BoxError> {
-        world.backend::<SimBackend>().ok_or_else(|| {
-            format!(
-                "shows the `sim` environment, not `{}`",
-                world.pl().environment()
-            )
-            .into()
-        })
-    }
-
     /// Handles the window's events; whether the world went back to its start.
     fn handle_events(&mut self, world: &World<'_>) -> Result<bool, BoxError> {
         let Some(view) = &mut self.view else {
@@ -291,8 +281,12 @@ impl Plugin for Viewer {
         "viewer".into()
     }
 
+    fn environments(&self) -> Vec<&'static str> {
+        super::only_sim()
+    }
+
     fn start(&mut self, world: &World<'_>) -> Result<(), BoxError> {
-        let sim = Self::sim(world)?;
+        let sim = super::sim_backend(world)?;
         let [width, height] = self.settings.size;
         let preset = self.settings.quality.map(|quality| {
             if quality {
@@ -315,7 +309,7 @@ impl Plugin for Viewer {
     }
 
     fn step(&mut self, world: &World<'_>) -> Result<(), BoxError> {
-        let sim = Self::sim(world)?;
+        let sim = super::sim_backend(world)?;
         let time = sim.data().time();
         self.pace(world, sim, time)?;
         if self.closed {
@@ -328,7 +322,7 @@ impl Plugin for Viewer {
         if !self.settings.keep_open || self.view.is_none() {
             return Ok(());
         }
-        let sim = Self::sim(world)?;
+        let sim = super::sim_backend(world)?;
         let time = sim.data().time();
         self.ended = true;
         while !self.closed && !world.pl().stop_requested() {

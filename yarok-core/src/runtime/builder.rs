@@ -301,6 +301,7 @@ impl PlatformBuilder {
             plugins.push(factory(&settings, name)?);
         }
         one_writer_per_file(&plugins)?;
+        check_plugin_support(&plugins, environment)?;
         let backend = factory(&composition, &settings).map_err(|source| RuntimeError::Backend {
             environment: environment.to_owned(),
             source,
@@ -352,6 +353,24 @@ fn check_support(composition: &Composition, environment: &str) -> Result<(), Run
             components,
         })
     }
+}
+
+/// Every plugin that names its environments must name `environment`.
+fn check_plugin_support(
+    plugins: &[Box<dyn Plugin>],
+    environment: &str,
+) -> Result<(), RuntimeError> {
+    for plugin in plugins {
+        let supports = plugin.environments();
+        if !supports.is_empty() && !supports.contains(&environment) {
+            return Err(RuntimeError::PluginUnsupported {
+                plugin: plugin.name(),
+                environment: environment.to_owned(),
+                supports,
+            });
+        }
+    }
+    Ok(())
 }
 
 fn config_error(message: String) -> RuntimeError {

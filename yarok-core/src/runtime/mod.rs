@@ -93,6 +93,16 @@ pub enum RuntimeError {
         /// supports.
         components: Vec<Unsupported>,
     },
+    /// A plugin does not run in the selected environment; nothing was started.
+    #[error("plugin {plugin} cannot run in `{environment}`: it runs in {}", .supports.join(", "))]
+    PluginUnsupported {
+        /// The plugin's name.
+        plugin: String,
+        /// The selected environment.
+        environment: String,
+        /// The environments it runs in.
+        supports: Vec<&'static str>,
+    },
     /// The selected environment's backend could not be made.
     #[error("the `{environment}` backend could not start: {source}")]
     Backend {

@@ -117,6 +117,14 @@ pub trait Plugin: 'static {
         Vec::new()
     }
 
+    /// The environments the plugin runs in, by their
+    /// [`NAME`](crate::component::Environment::NAME); empty (the default) for any. The platform
+    /// refuses the plugin in another before anything binds, naming the plugin and the
+    /// environments it runs in, as it refuses components.
+    fn environments(&self) -> Vec<&'static str> {
+        Vec::new()
+    }
+
     /// Called once before the first tick.
     ///
     /// # Errors

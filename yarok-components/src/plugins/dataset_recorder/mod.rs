@@ -404,13 +404,12 @@ impl Plugin for DatasetRecorder {
         format!("dataset ({})", self.settings.path.display())
     }
 
+    fn environments(&self) -> Vec<&'static str> {
+        crate::plugins::only_sim()
+    }
+
     fn start(&mut self, world: &World<'_>) -> Result<(), BoxError> {
-        let sim = world.backend::<SimBackend>().ok_or_else(|| {
-            format!(
-                "records datasets in `sim`, not in `{}`",
-                world.pl().environment()
-            )
-        })?;
+        let sim = crate::plugins::sim_backend(world)?;
         let shard = world.pl().shard();
         if !shard.is_whole() {
             let mut name = self

@@ -329,17 +329,18 @@ impl Plugin for McapRecorder {
         format!("mcap ({})", self.settings.path.display())
     }
 
+    /// Any, unless it records the model's cameras, which only `sim` has.
+    fn environments(&self) -> Vec<&'static str> {
+        if self.settings.cameras.is_empty() {
+            Vec::new()
+        } else {
+            crate::plugins::only_sim()
+        }
+    }
+
     fn start(&mut self, world: &World<'_>) -> Result<(), BoxError> {
-        match world.backend::<SimBackend>() {
-            Some(sim) => self.start_sim(sim)?,
-            None if self.settings.cameras.is_empty() => {}
-            None => {
-                return Err(format!(
-                    "records the model's cameras in `sim`, not in `{}`",
-                    world.pl().environment()
-                )
-                .into());
-            }
+        if let Some(sim) = world.backend::<SimBackend>() {
+            self.start_sim(sim)?;
         }
         self.layout.images = self.image_channels(world);
         let shard = world.pl().shard();
