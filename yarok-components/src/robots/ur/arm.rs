@@ -88,9 +88,10 @@ impl Arm {
         drive: Rc<dyn ArmDrive>,
         start: Joints,
     ) -> Self {
+        let put_back = drive.is_put_back_at_restart();
         let controller = Rc::new(Controller::new(bind.clock(), kinematics, drive, start));
         controller.command();
-        if controller.is_put_back_at_restart() {
+        if put_back {
             let restarting = Rc::clone(&controller);
             bind.on_restart(move || restarting.restart(start));
         }

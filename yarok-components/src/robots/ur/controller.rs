@@ -127,11 +127,6 @@ impl Controller {
         self.drive.unlock_protective_stop().await
     }
 
-    /// Whether the world puts the joints back at their start when an episode begins.
-    pub(super) fn is_put_back_at_restart(&self) -> bool {
-        self.drive.is_put_back_at_restart()
-    }
-
     /// Whether a motion is under way.
     pub(super) fn is_moving(&self) -> bool {
         self.state.borrow().motion.is_some()
@@ -231,6 +226,7 @@ impl Controller {
         self.drive.order(Order::SetPayload(payload));
         self.command();
     }
+
     /// Starts a motion to `to`, after checking the whole path; its id.
     pub(super) fn start(
         &self,
