@@ -38,10 +38,16 @@ struct Motor {
     ticks: Rc<Cell<u64>>,
 }
 
+/// The motor's config.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct MotorConfig {
+    speed: f64,
+}
+
 impl Component for Motor {
     fn declaration() -> Declaration {
         Declaration::new("motor")
-            .default("speed", 1.0)
+            .config(MotorConfig { speed: 1.0 })
             .template(r#"<mujoco><worldbody><body name="rotor"><joint name="axle"/></body></worldbody></mujoco>"#)
     }
 
@@ -52,7 +58,7 @@ impl Component for Motor {
 
 impl Motor {
     fn bind<E: Environment>(bind: &mut Bind<E>) -> Result<Self, BindError> {
-        let speed = bind.config_value("speed")?;
+        let MotorConfig { speed } = bind.config()?;
         let ticks = Rc::new(Cell::new(0));
         let counter = Rc::clone(&ticks);
         let path = bind.path().to_owned();

@@ -109,9 +109,33 @@ impl Cam {
     }
 }
 
+/// The camera's config.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct CamConfig {
+    width: u32,
+    height: u32,
+    fovy: f64,
+    preset: Preset,
+}
+
+/// How a simulated camera renders.
+#[derive(Clone, Copy, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum Preset {
+    Quality,
+    Fast,
+}
+
 impl Component for Cam {
     fn declaration() -> Declaration {
-        Declaration::new("cam").default("width", 640).default("height", 480).default("fovy", 45.0).default("preset", "quality").template(
+        Declaration::new("cam")
+            .config(CamConfig {
+                width: 640,
+                height: 480,
+                fovy: 45.0,
+                preset: Preset::Quality,
+            })
+            .template(
             r#"<mujoco>
                  <worldbody>
                    <body name="body">
@@ -138,11 +162,11 @@ impl Component for Cam {
 
 /// The configured image size, each side at least one pixel.
 fn size<E: Environment>(bind: &Bind<E>) -> Result<(u32, u32), BindError> {
-    let side = |key: &str| -> Result<u32, BindError> {
-        match bind.config_value::<u32>(key)? {
-            0 => Err(bind.error(format!("{key} must be at least one pixel"))),
-            pixels => Ok(pixels),
+    let CamConfig { width, height, .. } = bind.config()?;
+    for (key, pixels) in [("width", width), ("height", height)] {
+        if pixels == 0 {
+            return Err(bind.error(format!("{key} must be at least one pixel")));
         }
-    };
-    Ok((side("width")?, side("height")?))
+    }
+    Ok((width, height))
 }

@@ -4,7 +4,7 @@ use image::RgbImage;
 use yarok_core::component::{Bind, BindError, Interface};
 use yarok_mjc::{Camera, DepthImage, RenderPreset, Sim, SimBind};
 
-use super::{Cam, CamError, CameraFeed, size};
+use super::{Cam, CamConfig, CamError, CameraFeed, Preset, size};
 
 impl CameraFeed for Camera {
     fn rgb(&self) -> Result<RgbImage, CamError> {
@@ -24,14 +24,10 @@ impl CameraFeed for Camera {
 impl Interface<Sim> for Cam {
     async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
         let (width, height) = size(bind)?;
-        let preset = match bind.config_value::<String>("preset")?.as_str() {
-            "quality" => RenderPreset::Quality,
-            "fast" => RenderPreset::Fast,
-            other => {
-                return Err(bind.error(format!(
-                    "preset must be \"quality\" or \"fast\", not {other:?}"
-                )));
-            }
+        let CamConfig { preset, .. } = bind.config()?;
+        let preset = match preset {
+            Preset::Quality => RenderPreset::Quality,
+            Preset::Fast => RenderPreset::Fast,
         };
         let camera = bind.camera_with("camera", width, height, preset)?;
         Ok(Cam::with_feed(bind, std::rc::Rc::new(camera)))

@@ -3,8 +3,8 @@
 
 use yarok_core::component::Declaration;
 
-use super::kind::{Optics, SensorKind};
-use super::sensor::{TactileSensor, tactile_sensor_component};
+use super::component::{Tactile, TactileKind};
+use super::kind::{Optics, SensorConfig, SensorKind};
 use crate::tactile::SizeError;
 use crate::tactile::calibration::Calibration;
 use crate::tactile::elastomer::Elastomer;
@@ -67,6 +67,28 @@ impl Kind {
     }
 }
 
+/// The membrane's and the camera's geometry the GelTip model is made for: template values that
+/// cannot be set.
+#[derive(Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct GelTipGeometry {
+    /// The tube's radius, and where along the axis the membrane starts and ends (metres).
+    radius: f64,
+    start: f64,
+    tip: f64,
+    /// The base camera's vertical field of view (degrees).
+    fovy: f64,
+}
+
+/// The geometry the GelTip model is made for.
+pub(super) fn geometry() -> GelTipGeometry {
+    GelTipGeometry {
+        radius: RADIUS,
+        start: START,
+        tip: TIP,
+        fovy: FOVY,
+    }
+}
+
 impl SensorKind for Kind {
     fn gel(&self) -> &'static str {
         "membrane"
@@ -82,30 +104,13 @@ impl SensorKind for Kind {
 
     fn declaration(&self) -> Declaration {
         Declaration::new("geltip")
-            .default("pos", [0.0; 3])
-            .default("quat", [1.0, 0.0, 0.0, 0.0])
-            .default("fps", 30.0)
-            .default("parallel", cfg!(feature = "parallel"))
-            .default("noise", false)
-            .default("radius", RADIUS)
-            .default("start", START)
-            .default("tip", TIP)
-            .default("fovy", FOVY)
-            .default("calibration", "none")
+            .config(SensorConfig::new(30.0, false, "none"))
+            .config(geometry())
             .template(include_str!("geltip.xml"))
     }
 
     fn size(&self) -> (u32, u32) {
         (WIDTH, HEIGHT)
-    }
-
-    fn geometry(&self) -> Vec<(&'static str, Vec<f64>)> {
-        vec![
-            ("radius", vec![RADIUS]),
-            ("start", vec![START]),
-            ("tip", vec![TIP]),
-            ("fovy", vec![FOVY]),
-        ]
     }
 
     fn reach(&self) -> f64 {
@@ -187,21 +192,36 @@ impl Optics for GelTipOptics {
     }
 }
 
-tactile_sensor_component! {
-    /// A GelTip finger-shaped tactile sensor (a [`TactileSensor`]: `read()`, `read_depth()`,
-    /// `contact()`): a 30 mm tube with a domed tip, 45 mm long, sensing all over; 320 × 240
-    /// frames at 30 fps from the GelTip model (light fields computed from this geometry, the
-    /// "plane" method, diffuse light clamped) over the depth its base camera (70°) renders.
-    ///
-    /// Tag `geltip`; config `pos` and `quat` (placement; its axis is +z), `fps`, `parallel` (its
-    /// model across threads), `calibration` (only `"none"`: calibrations model flat gels). The
-    /// model has no texture noise, so `noise` changes nothing; the
-    /// membrane's and camera's geometry (`radius`, `start`, `tip`, `fovy`) is the model's and
-    /// cannot be set.
-    ///
-    /// Environments: `sim`; `mock` (always the untouched membrane); `real` (feature `camera`): the
-    /// sensor's camera (interface settings as [`Cam`](crate::cameras::Cam)'s: `device`, e.g.
-    /// `/dev/video0`, `command` or `file`), its frames as they come; no depth or contact
-    /// measures.
-    GelTip, GELTIP
+/// A GelTip finger-shaped tactile sensor (a [`TactileSensor`](super::TactileSensor): `read()`, `read_depth()`,
+/// `contact()`): a 30 mm tube with a domed tip, 45 mm long, sensing all over; 320 × 240
+/// frames at 30 fps from the GelTip model (light fields computed from this geometry, the
+/// "plane" method, diffuse light clamped) over the depth its base camera (70°) renders.
+///
+/// Tag `geltip`; config `pos` and `quat` (placement; its axis is +z), `fps`, `parallel` (its
+/// model across threads), `calibration` (only `"none"`: calibrations model flat gels). The
+/// model has no texture noise, so `noise` changes nothing; the
+/// membrane's and camera's geometry (`radius`, `start`, `tip`, `fovy`) is the model's and
+/// cannot be set.
+///
+/// Environments: `sim`; `mock` (always the untouched membrane); `real` (feature `camera`): the
+/// sensor's camera (interface settings as [`Cam`](crate::cameras::Cam)'s: `device`, e.g.
+/// `/dev/video0`, `command` or `file`), its frames as they come; no depth or contact
+/// measures.
+pub type GelTip = Tactile<GelTipKind>;
+
+/// The GelTip, as a [`TactileKind`].
+#[derive(Debug, Clone, Copy)]
+pub struct GelTipKind;
+
+impl TactileKind for GelTipKind {
+    const NAME: &'static str = "GelTip";
+    type Geometry = GelTipGeometry;
+
+    fn kind() -> &'static dyn SensorKind {
+        &GELTIP
+    }
+
+    fn geometry() -> GelTipGeometry {
+        geometry()
+    }
 }

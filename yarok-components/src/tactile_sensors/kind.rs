@@ -1,7 +1,10 @@
 //! [`SensorKind`]: what one kind of tactile sensor is — its declaration, image, gel and
 //! optics — and the config every kind shares (frame rate, calibration, fixed geometry).
 
+use serde::Serialize;
+use serde::de::DeserializeOwned;
 use yarok_core::component::{Bind, BindError, Declaration, Environment};
+use yarok_core::value::Config;
 
 use crate::tactile::SizeError;
 use crate::tactile::calibration::Calibration;
@@ -9,7 +12,7 @@ use crate::tactile::elastomer::Elastomer;
 
 /// The optical side of one kind of sensor: the untouched gel as its camera sees it, and the
 /// model that makes the image.
-pub(super) trait Optics {
+pub trait Optics {
     /// The untouched gel's depth (metres along the camera axis) pixel by pixel, row-major: what
     /// the camera sees when nothing presses, and how far it sees.
     fn surface(&self) -> &[f32];
@@ -32,8 +35,53 @@ pub(super) trait Optics {
     fn set_parallel(&mut self, parallel: bool);
 }
 
+/// The config every kind of sensor has.
+#[derive(Serialize, serde::Deserialize)]
+pub(super) struct SensorConfig {
+    /// Where it is and how it is turned in its parent's frame.
+    pos: [f64; 3],
+    quat: [f64; 4],
+    /// Frames per second.
+    fps: f64,
+    /// Whether its model splits each image across threads.
+    parallel: bool,
+    /// Whether the image has the gel's texture noise.
+    noise: bool,
+    /// The optical model: `"none"`, `"bundled"` or a calibration file.
+    calibration: String,
+}
+
+impl SensorConfig {
+    /// Placed at its parent's origin, as its parent's frame is turned.
+    pub(super) fn new(fps: f64, noise: bool, calibration: &str) -> Self {
+        Self {
+            pos: [0.0; 3],
+            quat: [1.0, 0.0, 0.0, 0.0],
+            fps,
+            parallel: cfg!(feature = "parallel"),
+            noise,
+            calibration: calibration.to_owned(),
+        }
+    }
+
+    /// The config as the component's tag and run configuration set it.
+    pub(super) fn of<E: Environment>(bind: &Bind<E>) -> Result<Self, BindError> {
+        bind.config()
+    }
+
+    /// Whether its model splits each image across threads.
+    pub(super) fn parallel(&self) -> bool {
+        self.parallel
+    }
+
+    /// Whether the image has the gel's texture noise.
+    pub(super) fn noise(&self) -> bool {
+        self.noise
+    }
+}
+
 /// One kind of sensor: its component's declaration, image size and optics.
-pub(super) trait SensorKind {
+pub trait SensorKind {
     fn declaration(&self) -> Declaration;
     /// The template's name for the gel's geom: what presses on it is what the sensor feels.
     #[cfg_attr(not(feature = "render"), allow(dead_code))]
@@ -55,9 +103,6 @@ pub(super) trait SensorKind {
     /// beyond it can show in the image.
     #[cfg_attr(not(feature = "render"), allow(dead_code))]
     fn reach(&self) -> f64;
-    /// The config keys the optical model fixes (the gel's and the camera's geometry), with
-    /// their values.
-    fn geometry(&self) -> Vec<(&'static str, Vec<f64>)>;
     /// The calibration its `calibration = "bundled"` names, if it has one.
     fn bundled_calibration(&self) -> Option<Calibration> {
         None
@@ -78,7 +123,7 @@ pub(super) trait SensorKind {
 
 /// The configured frame rate, a positive number.
 pub(super) fn frame_rate<E: Environment>(bind: &Bind<E>) -> Result<f64, BindError> {
-    let fps: f64 = bind.config_value("fps")?;
+    let fps = SensorConfig::of(bind)?.fps;
     if !(fps > 0.0 && fps.is_finite()) {
         return Err(bind.error(format!("fps must be a positive number, not {fps}")));
     }
@@ -91,8 +136,7 @@ pub(super) fn calibration<E: Environment>(
     kind: &dyn SensorKind,
     bind: &Bind<E>,
 ) -> Result<Option<Calibration>, BindError> {
-    let named: String = bind.config_value("calibration")?;
-    match named.as_str() {
+    match SensorConfig::of(bind)?.calibration.as_str() {
         "none" => Ok(None),
         "bundled" => kind.bundled_calibration().map(Some).ok_or_else(|| {
             bind.error("calibration = \"bundled\", but this sensor has no bundled calibration")
@@ -103,27 +147,26 @@ pub(super) fn calibration<E: Environment>(
     }
 }
 
-/// Refuses config that changes the geometry the optical model is made for.
-pub(super) fn check_geometry<E: Environment>(
-    kind: &dyn SensorKind,
-    bind: &Bind<E>,
-) -> Result<(), BindError> {
-    for (key, fixed) in kind.geometry() {
-        let set: Vec<f64> = match fixed.len() {
-            1 => vec![bind.config_value::<f64>(key)?],
-            _ => bind.config_value(key)?,
-        };
-        let same = set.len() == fixed.len()
-            && set
-                .iter()
-                .zip(&fixed)
-                .all(|(set, fixed)| (set - fixed).abs() <= 1e-12 * fixed.abs().max(1.0));
-        if !same {
-            return Err(bind.error(format!(
-                "{key} = {set:?}, but the optical model is made for {fixed:?}: the gel's and the \
-                 camera's geometry cannot be changed"
-            )));
-        }
+/// Refuses config that changes the geometry the optical model is made for: `fixed`, a struct
+/// of the gel's and the camera's dimensions.
+pub(super) fn check_geometry<G, E>(bind: &Bind<E>, fixed: &G) -> Result<(), BindError>
+where
+    G: Serialize + DeserializeOwned + PartialEq,
+    E: Environment,
+{
+    let set: G = bind.config()?;
+    if set == *fixed {
+        return Ok(());
     }
-    Ok(())
+    let values = |geometry: &G| Config::from_fields(geometry).map_err(|e| bind.error(e));
+    let (set, fixed) = (values(&set)?, values(fixed)?);
+    let changed = fixed
+        .iter()
+        .find(|(key, value)| set.get(key) != Some(value));
+    let (key, value) = changed.ok_or_else(|| bind.error("the gel's geometry differs"))?;
+    let given = set.get(key).map(ToString::to_string).unwrap_or_default();
+    Err(bind.error(format!(
+        "{key} = {given}, but the optical model is made for {value}: the gel's and the \
+         camera's geometry cannot be changed"
+    )))
 }

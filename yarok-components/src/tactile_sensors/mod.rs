@@ -2,6 +2,7 @@
 //! optical models over the depth their internal cameras render.
 
 mod calibrated;
+mod component;
 mod digit;
 mod flat_gel;
 mod gelsight;
@@ -16,7 +17,8 @@ mod sensor;
 #[cfg(feature = "render")]
 mod sim;
 
-pub use digit::Digit;
-pub use gelsight::GelSight2014;
-pub use geltip::GelTip;
+pub use component::{Tactile, TactileKind};
+pub use digit::{Digit, DigitKind};
+pub use gelsight::{GelSight2014, GelSight2014Kind};
+pub use geltip::{GelTip, GelTipKind};
 pub use sensor::{Contact, GelContact, TactileError, TactileSensor};

@@ -10,7 +10,7 @@ use yarok_core::component::{Bind, BindError, Environment};
 use yarok_core::time::Clock;
 use yarok_mjc::DepthImage;
 
-use super::kind::{Optics, SensorKind, calibration, check_geometry, frame_rate};
+use super::kind::{Optics, SensorConfig, SensorKind, calibration, frame_rate};
 use super::sensor::{Contact, GelContact, TactileError, TactileFeed, TactileSensor};
 use crate::tactile::default_background;
 use crate::tactile::elastomer::Elastomer;
@@ -127,9 +127,8 @@ impl Modelled {
         sensing: Box<dyn GelSensing>,
     ) -> Result<TactileSensor, BindError> {
         let fps = frame_rate(bind)?;
-        check_geometry(kind, bind)?;
-        let noise: bool = bind.config_value("noise")?;
-        let parallel: bool = bind.config_value("parallel")?;
+        let config = SensorConfig::of(bind)?;
+        let (noise, parallel) = (config.noise(), config.parallel());
         let calibration = calibration(kind, bind)?;
         #[cfg_attr(not(feature = "parallel"), expect(unused_mut))]
         let mut optics = kind

@@ -5,7 +5,7 @@ use yarok_core::component::Declaration;
 
 use super::calibrated::CalibratedModel;
 use super::flat_gel::FlatGelOptics;
-use super::kind::{Optics, SensorKind};
+use super::kind::{Optics, SensorConfig, SensorKind};
 use crate::tactile::calibration::Calibration;
 use crate::tactile::elastomer::Elastomer;
 use crate::tactile::phong::{PhongModel, PhongParams};
@@ -67,27 +67,42 @@ impl Spec {
     }
 }
 
+/// The gel's and the camera's geometry the optical model is made for: template values that
+/// cannot be set.
+#[derive(Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct FlatGelGeometry {
+    /// Distance from the camera to the gel's outer face, and the gel's thickness (metres).
+    gel_face: f64,
+    thickness: f64,
+    /// Half sizes (x, y) of the gel (metres).
+    gel: [f64; 2],
+    /// The camera's vertical field of view (degrees).
+    fovy: f64,
+}
+
+impl Spec {
+    /// The geometry its optical model is made for.
+    pub(super) fn geometry(&self) -> FlatGelGeometry {
+        FlatGelGeometry {
+            gel_face: self.gel_face,
+            thickness: self.thickness,
+            gel: self.gel,
+            fovy: self.field_of_view(),
+        }
+    }
+}
+
 impl SensorKind for Spec {
     fn declaration(&self) -> Declaration {
+        let calibration = if self.bundled.is_some() {
+            "bundled"
+        } else {
+            "none"
+        };
         Declaration::new(self.tag)
-            .default("pos", [0.0; 3])
-            .default("quat", [1.0, 0.0, 0.0, 0.0])
-            .default("fps", self.fps)
-            .default("parallel", cfg!(feature = "parallel"))
-            .default("noise", true)
-            .default("gel_face", self.gel_face)
-            .default("thickness", self.thickness)
+            .config(SensorConfig::new(self.fps, true, calibration))
+            .config(self.geometry())
             .default("housing", self.housing)
-            .default("gel", self.gel)
-            .default("fovy", self.field_of_view())
-            .default(
-                "calibration",
-                if self.bundled.is_some() {
-                    "bundled"
-                } else {
-                    "none"
-                },
-            )
             .template(include_str!("phong.xml"))
     }
 
@@ -110,15 +125,6 @@ impl SensorKind for Spec {
     #[cfg(feature = "camera")]
     fn turned(&self) -> bool {
         self.turned
-    }
-
-    fn geometry(&self) -> Vec<(&'static str, Vec<f64>)> {
-        vec![
-            ("gel_face", vec![self.gel_face]),
-            ("thickness", vec![self.thickness]),
-            ("gel", self.gel.to_vec()),
-            ("fovy", vec![self.field_of_view()]),
-        ]
     }
 
     fn reach(&self) -> f64 {

@@ -5,7 +5,7 @@ use std::rc::Rc;
 use image::RgbImage;
 use yarok_core::component::{Bind, BindError};
 
-use super::kind::{Optics, SensorKind, check_geometry, frame_rate};
+use super::kind::{Optics, SensorKind, frame_rate};
 use super::sensor::{TactileFeed, TactileSensor};
 use crate::cameras::real::{RealFrames, bind_frames};
 
@@ -45,7 +45,6 @@ impl TactileSensor {
         bind: &mut Bind<yarok_hw::Real>,
     ) -> Result<Self, BindError> {
         let fps = frame_rate(bind)?;
-        check_geometry(kind, bind)?;
         let (width, height) = kind.size();
         let turned = kind.turned();
         let (across, down) = if turned {

@@ -32,13 +32,24 @@ impl Block {
     }
 }
 
+/// The block's config.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct BlockConfig {
+    size: f64,
+    mass: f64,
+    pos: [f64; 3],
+    rgba: [f64; 4],
+}
+
 impl Component for Block {
     fn declaration() -> Declaration {
         Declaration::new("block")
-            .default("size", 0.04)
-            .default("mass", 0.1)
-            .default("pos", [0.0, 0.0, 0.02])
-            .default("rgba", [0.8, 0.3, 0.2, 1.0])
+            .config(BlockConfig {
+                size: 0.04,
+                mass: 0.1,
+                pos: [0.0, 0.0, 0.02],
+                rgba: [0.8, 0.3, 0.2, 1.0],
+            })
             .template(
                 r#"<mujoco>
                   <worldbody>
@@ -60,9 +71,8 @@ impl Component for Block {
 impl Interface<Sim> for Block {
     async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
         Ok(Block {
-            size: bind.config_value("size")?,
             body: Some(bind.body("block")?),
-            placed: bind.config_value("pos")?,
+            ..Block::placed(bind)?
         })
     }
 }
@@ -70,10 +80,11 @@ impl Interface<Sim> for Block {
 impl Block {
     /// A block where its config places it.
     fn placed<E: Environment>(bind: &Bind<E>) -> Result<Self, BindError> {
+        let BlockConfig { size, pos, .. } = bind.config()?;
         Ok(Block {
-            size: bind.config_value("size")?,
+            size,
             body: None,
-            placed: bind.config_value("pos")?,
+            placed: pos,
         })
     }
 }
@@ -109,11 +120,20 @@ impl Spot {
     }
 }
 
+/// The spot's config.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct SpotConfig {
+    radius: f64,
+    pos: [f64; 3],
+}
+
 impl Component for Spot {
     fn declaration() -> Declaration {
         Declaration::new("spot")
-            .default("radius", 0.05)
-            .default("pos", [0.0, 0.0, 0.0])
+            .config(SpotConfig {
+                radius: 0.05,
+                pos: [0.0; 3],
+            })
             .template(
                 r#"<mujoco>
                   <worldbody>
@@ -134,7 +154,7 @@ impl Interface<Sim> for Spot {
     async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
         Ok(Spot {
             site: Some(bind.site("spot")?),
-            placed: bind.config_value("pos")?,
+            ..Spot::placed(bind)?
         })
     }
 }
@@ -142,9 +162,10 @@ impl Interface<Sim> for Spot {
 impl Spot {
     /// A spot where its config places it.
     fn placed<E: Environment>(bind: &Bind<E>) -> Result<Self, BindError> {
+        let SpotConfig { pos, .. } = bind.config()?;
         Ok(Spot {
             site: None,
-            placed: bind.config_value("pos")?,
+            placed: pos,
         })
     }
 }

@@ -25,13 +25,24 @@ impl Rope {
     }
 }
 
+/// The rope's config.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct RopeConfig {
+    segments: i64,
+    length: f64,
+    radius: f64,
+    pos: [f64; 3],
+}
+
 impl Component for Rope {
     fn declaration() -> Declaration {
         Declaration::new("rope")
-            .default("segments", 20)
-            .default("length", 0.02)
-            .default("radius", 0.006)
-            .default("pos", [0.0, 0.0, 0.006])
+            .config(RopeConfig {
+                segments: 20,
+                length: 0.02,
+                radius: 0.006,
+                pos: [0.0, 0.0, 0.006],
+            })
             .template(
                 r#"<mujoco>
                   <default>
@@ -71,9 +82,12 @@ impl Component for Rope {
 fn placed<E: yarok_core::component::Environment>(
     bind: &Bind<E>,
 ) -> Result<[[f64; 3]; 2], BindError> {
-    let pos: [f64; 3] = bind.config_value("pos")?;
-    let segments: i64 = bind.config_value("segments")?;
-    let length: f64 = bind.config_value("length")?;
+    let RopeConfig {
+        segments,
+        length,
+        pos,
+        ..
+    } = bind.config()?;
     let last = [
         pos[0] + (segments - 1).max(0) as f64 * length,
         pos[1],
@@ -84,7 +98,7 @@ fn placed<E: yarok_core::component::Environment>(
 
 impl Interface<Sim> for Rope {
     async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
-        let segments: i64 = bind.config_value("segments")?;
+        let RopeConfig { segments, .. } = bind.config()?;
         if segments < 2 {
             return Err(bind.error(format!("a rope needs at least 2 segments, not {segments}")));
         }

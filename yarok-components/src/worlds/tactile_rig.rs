@@ -240,6 +240,25 @@ impl TactileRigWorld {
     }
 }
 
+/// The rig's config.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct RigConfig {
+    sensor: String,
+    sensor_pos: [f64; 3],
+    indenter: String,
+    indenter_size: Vec<f64>,
+    pressing: Pressing,
+    parallel: bool,
+}
+
+/// How the indenter presses: to where it is placed, or until the sensor feels a force.
+#[derive(Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum Pressing {
+    Placed,
+    Force,
+}
+
 impl Component for TactileRigWorld {
     fn declaration() -> Declaration {
         Declaration::new("tactile_rig_world")
@@ -248,12 +267,14 @@ impl Component for TactileRigWorld {
             .uses::<GelTip>()
             .uses::<Digit>()
             .uses::<GelSight2014>()
-            .default("sensor", "geltip")
-            .default("sensor_pos", [0.16, 0.16, 0.0])
-            .default("indenter", "sphere")
-            .default("indenter_size", [0.004])
-            .default("pressing", "placed")
-            .default("parallel", cfg!(feature = "parallel"))
+            .config(RigConfig {
+                sensor: "geltip".into(),
+                sensor_pos: [0.16, 0.16, 0.0],
+                indenter: "sphere".into(),
+                indenter_size: vec![0.004],
+                pressing: Pressing::Placed,
+                parallel: cfg!(feature = "parallel"),
+            })
             .template(include_str!("tactile_rig.xml"))
     }
 
@@ -264,8 +285,8 @@ impl Component for TactileRigWorld {
 
 impl Interface<Sim> for TactileRigWorld {
     async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
-        let kind: String = bind.config_value("sensor")?;
-        let sensor = match kind.as_str() {
+        let config: RigConfig = bind.config()?;
+        let sensor = match config.sensor.as_str() {
             "geltip" => (*bind.child::<GelTip>("sensor")?).clone(),
             "digit" => (*bind.child::<Digit>("sensor")?).clone(),
             "gelsight" => (*bind.child::<GelSight2014>("sensor")?).clone(),
@@ -275,22 +296,12 @@ impl Interface<Sim> for TactileRigWorld {
                 )));
             }
         };
-        let pressing: String = bind.config_value("pressing")?;
-        let pressing_by_force = match pressing.as_str() {
-            "placed" => false,
-            "force" => true,
-            other => {
-                return Err(bind.error(format!(
-                    "pressing must be \"placed\" or \"force\", not {other:?}"
-                )));
-            }
-        };
         Ok(Self {
-            pressing_by_force,
+            pressing_by_force: config.pressing == Pressing::Force,
             printer: bind.child("printer")?,
             sensor,
-            sensor_kind: kind,
-            sensor_pos: bind.config_value("sensor_pos")?,
+            sensor_kind: config.sensor,
+            sensor_pos: config.sensor_pos,
             clock: bind.clock(),
         })
     }

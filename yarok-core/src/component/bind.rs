@@ -174,24 +174,28 @@ impl<E: Environment> Bind<E> {
         &self.context.path
     }
 
-    /// The component's config: defaults, tag attributes and run settings applied.
-    pub fn config(&self) -> &Config {
-        &self.context.config
-    }
-
-    /// One value of the component's config, as `T`.
+    /// The component's config (see [`Declaration::config`](super::Declaration::config)) with
+    /// defaults, tag attributes and run settings applied, read into `C`: the fields `C` has;
+    /// other values (a base component's, values only the template uses) are left alone.
     ///
     /// # Errors
     ///
-    /// [`BindError::Settings`] when the key is missing or its value does not fit `T`.
-    pub fn config_value<T: DeserializeOwned>(&self, key: &str) -> Result<T, BindError> {
-        let value = self.context.config.get(key).ok_or_else(|| SettingsError {
-            key: Some(key.to_owned()),
-            message: format!("no config key `{key}`"),
-        });
-        value
-            .and_then(|value| value.deserialize().map_err(|e: SettingsError| e.at(key)))
-            .map_err(|source| self.settings_error("its config".into(), source))
+    /// [`BindError::Settings`] when a value does not fit its field (naming the key, and where
+    /// it was set when a run configuration set it), or a field without a serde default has no
+    /// value.
+    pub fn config<C: DeserializeOwned>(&self) -> Result<C, BindError> {
+        self.context
+            .config
+            .deserialize_fields()
+            .map_err(|source: SettingsError| {
+                let set_by_run = source.key.as_deref().and_then(|key| {
+                    self.context
+                        .origins
+                        .of("components", &self.context.path, key)
+                });
+                let origin = set_by_run.unwrap_or("its config").to_owned();
+                self.settings_error(origin, source)
+            })
     }
 
     /// The interface's settings (`[interfaces."/path"]` in the run configuration), read into

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use super::{Component, ComponentType};
-use crate::value::{Config, IntoValue};
+use crate::value::{Config, IntoValue, SettingsError};
 
 /// Where a template comes from.
 #[derive(Debug, Clone)]
@@ -19,6 +19,8 @@ pub struct Declaration {
     pub(crate) extends: Option<ComponentType>,
     pub(crate) components: Vec<ComponentType>,
     pub(crate) defaults: Config,
+    /// Why [`Declaration::config`]'s struct could not become config values.
+    pub(crate) config_error: Option<SettingsError>,
     pub(crate) source: Option<Source>,
     pub(crate) asset_dir: Option<PathBuf>,
     pub(crate) verbatim: bool,
@@ -32,6 +34,7 @@ impl Declaration {
             extends: None,
             components: Vec::new(),
             defaults: Config::default(),
+            config_error: None,
             source: None,
             asset_dir: None,
             verbatim: false,
@@ -56,7 +59,34 @@ impl Declaration {
         self
     }
 
-    /// A config default, visible in the template as a variable and overridable per instance.
+    /// The component's config: a serde struct whose fields, with the values given here as
+    /// their defaults, are the template's variables, set per instance by tag attributes and
+    /// run configurations (checked against these values' types), and read back whole by the
+    /// interface with [`Bind::config`](super::Bind::config). Fields hold numbers, booleans,
+    /// text, unit enum variants (as their names) and lists of them.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use yarok_core::component::Declaration;
+    ///
+    /// #[derive(serde::Serialize, serde::Deserialize)]
+    /// struct Lamp { brightness: f64, rgb: [u8; 3] }
+    ///
+    /// let lamp = Declaration::new("lamp")
+    ///     .config(Lamp { brightness: 0.5, rgb: [255, 200, 0] })
+    ///     .template(r#"<mujoco><worldbody><light diffuse="{rgb[0] / 255 * brightness} 0 0"/></worldbody></mujoco>"#);
+    /// ```
+    pub fn config(mut self, defaults: impl serde::Serialize) -> Self {
+        match Config::from_fields(&defaults) {
+            Ok(config) => self.defaults.merge(&config),
+            Err(error) => self.config_error = Some(error),
+        }
+        self
+    }
+
+    /// One template variable with its default, overridable per instance: for a value no
+    /// interface reads (an interface reads its config through [`Declaration::config`]).
     pub fn default(mut self, key: &str, value: impl IntoValue) -> Self {
         self.defaults.set(key, value.into_value());
         self

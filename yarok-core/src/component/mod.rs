@@ -23,12 +23,12 @@
 //!     type Backend = MockBackend;
 //! }
 //!
-//! #[derive(Clone)]
+//! #[derive(Clone, serde::Serialize, serde::Deserialize)]
 //! struct Counter { start: u32 }
 //!
 //! impl Component for Counter {
 //!     fn declaration() -> Declaration {
-//!         Declaration::new("counter").default("start", 3)
+//!         Declaration::new("counter").config(Counter { start: 3 })
 //!     }
 //!     fn interfaces(interfaces: &mut Interfaces<Self>) {
 //!         interfaces.add::<Mock>().add::<Replay>();
@@ -37,7 +37,7 @@
 //!
 //! impl Interface<Mock> for Counter {
 //!     async fn bind(bind: &mut Bind<Mock>) -> Result<Self, BindError> {
-//!         Ok(Counter { start: bind.config_value("start")? })
+//!         bind.config()
 //!     }
 //! }
 //!
@@ -123,6 +123,12 @@ pub trait Component: Sized + 'static {
     /// an [`Interface`] implementation. The default lists none: a world or a prop, which has
     /// nothing to bind and runs anywhere.
     fn interfaces(_interfaces: &mut Interfaces<Self>) {}
+
+    /// The name messages give the component's type: its Rust type's by default. A generic
+    /// component names itself as users know it (`Ur5e` rather than `UrArm<Ur5eModel>`).
+    fn type_name() -> &'static str {
+        std::any::type_name::<Self>()
+    }
 }
 
 /// A component type, as a value.
@@ -139,7 +145,7 @@ impl ComponentType {
     pub fn of<C: Component>() -> Self {
         Self {
             type_id: TypeId::of::<C>(),
-            type_name: std::any::type_name::<C>(),
+            type_name: C::type_name(),
             declaration: C::declaration,
             interfaces: || {
                 let mut interfaces = Interfaces::<C>::new();

@@ -64,6 +64,15 @@ impl Loader {
         let origin = self.origins.len();
         let (text, label, file_dir) = template_text(&declaration, component, path)?;
         let error = |position, message| template_error(path, &label, position, message);
+        if let Some(refused) = &declaration.config_error {
+            return Err(error(
+                None,
+                format!(
+                    "{} declares a config yarok cannot hold: {refused}",
+                    component.type_name()
+                ),
+            ));
+        }
         let mut tree = Element::parse(&text).map_err(|e| error(Some(e.position), e.message))?;
         if tree.name != "mujoco" {
             return Err(error(

@@ -44,18 +44,42 @@ impl SettingsError {
     }
 }
 
-pub(super) fn from_config<T: DeserializeOwned>(config: &Config) -> Result<T, SettingsError> {
-    T::deserialize(ConfigDeserializer(config))
+/// What reading a config into a struct does with a key the struct has no field for.
+#[derive(Clone, Copy)]
+pub(super) enum OtherKeys {
+    /// An error naming the key and the nearest field.
+    Refused,
+    /// Left alone.
+    Left,
 }
 
-struct ConfigDeserializer<'a>(&'a Config);
+pub(super) fn from_config<T: DeserializeOwned>(
+    config: &Config,
+    other_keys: OtherKeys,
+) -> Result<T, SettingsError> {
+    T::deserialize(ConfigDeserializer {
+        config,
+        other_keys,
+        fields: None,
+    })
+}
+
+struct ConfigDeserializer<'a> {
+    config: &'a Config,
+    other_keys: OtherKeys,
+    fields: Option<&'static [&'static str]>,
+}
 
 impl<'de> de::Deserializer<'de> for ConfigDeserializer<'_> {
     type Error = SettingsError;
 
     fn deserialize_any<V: Visitor<'de>>(self, visitor: V) -> Result<V::Value, SettingsError> {
+        let fields = self.fields;
         visitor.visit_map(Entries {
-            entries: self.0.iter(),
+            entries: self
+                .config
+                .iter()
+                .filter(move |(key, _)| fields.is_none_or(|fields| fields.contains(key))),
             value: None,
         })
     }
@@ -66,7 +90,14 @@ impl<'de> de::Deserializer<'de> for ConfigDeserializer<'_> {
         fields: &'static [&'static str],
         visitor: V,
     ) -> Result<V::Value, SettingsError> {
-        if let Some(key) = self.0.keys().find(|key| !fields.contains(key)) {
+        if let OtherKeys::Left = self.other_keys {
+            return Self {
+                fields: Some(fields),
+                ..self
+            }
+            .deserialize_any(visitor);
+        }
+        if let Some(key) = self.config.keys().find(|key| !fields.contains(key)) {
             let known = if fields.is_empty() {
                 "it takes none".to_owned()
             } else {

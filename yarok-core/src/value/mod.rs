@@ -6,6 +6,7 @@
 //! into any `serde` struct, so interfaces and plugins take typed settings.
 
 mod de;
+mod ser;
 mod typed;
 
 use std::collections::BTreeMap;
@@ -221,7 +222,43 @@ impl Config {
     /// # Ok::<(), yarok_core::value::SettingsError>(())
     /// ```
     pub fn deserialize<T: serde::de::DeserializeOwned>(&self) -> Result<T, SettingsError> {
-        de::from_config(self)
+        de::from_config(self, de::OtherKeys::Refused)
+    }
+
+    /// Reads the values the struct has fields for, leaving the others (a base component's
+    /// config, values only its template uses) alone; a value of the wrong type is an error
+    /// naming the key, as with [`Config::deserialize`].
+    ///
+    /// # Errors
+    ///
+    /// [`SettingsError`] naming the key.
+    pub fn deserialize_fields<T: serde::de::DeserializeOwned>(&self) -> Result<T, SettingsError> {
+        de::from_config(self, de::OtherKeys::Left)
+    }
+
+    /// The fields of a serde struct as config values, in the order it declares them: numbers,
+    /// booleans, text, unit enum variants (as their names) and lists of them.
+    ///
+    /// # Errors
+    ///
+    /// [`SettingsError`] when `fields` is not a struct or a field holds something else (a map,
+    /// a struct).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use yarok_core::value::Config;
+    ///
+    /// #[derive(serde::Serialize)]
+    /// struct Lamp { brightness: f64, rgb: [u8; 3], label: &'static str }
+    ///
+    /// let config = Config::from_fields(&Lamp { brightness: 0.5, rgb: [255, 200, 0], label: "desk" })?;
+    /// assert_eq!(config.keys().collect::<Vec<_>>(), ["brightness", "rgb", "label"]);
+    /// assert_eq!(config.get("rgb").unwrap().to_string(), "255 200 0");
+    /// # Ok::<(), yarok_core::value::SettingsError>(())
+    /// ```
+    pub fn from_fields<T: serde::Serialize>(fields: &T) -> Result<Config, SettingsError> {
+        ser::to_config(fields)
     }
 }
 

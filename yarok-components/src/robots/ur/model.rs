@@ -17,7 +17,9 @@ pub(crate) const GAINS: [(f64, f64); 2] = [(5000.0, 400.0), (1500.0, 60.0)];
 /// Where the arms start: upright, clear of a table they stand on.
 const UPRIGHT: [f64; 6] = [0.0, -FRAC_PI_2, 0.0, -FRAC_PI_2, 0.0, 0.0];
 
-pub(crate) struct ArmModel {
+/// What differs between the UR arms yarok models.
+#[derive(Debug)]
+pub struct ArmModel {
     pub(crate) tag: &'static str,
     pub(crate) dh: DhParameters,
     /// Link masses (kg), shoulder to wrist 3.
@@ -54,7 +56,7 @@ const UR5E_INERTIAS: [[f64; 3]; 6] = [
 const UR5E_MASSES: [f64; 6] = [3.761, 8.058, 2.846, 1.37, 1.3, 0.365];
 const UR5_MASSES: [f64; 6] = [3.7, 8.393, 2.33, 1.219, 1.219, 0.1879];
 
-pub(crate) const UR5E: ArmModel = ArmModel {
+pub(super) const UR5E: ArmModel = ArmModel {
     tag: "ur5e",
     dh: DhParameters::UR5E,
     masses: UR5E_MASSES,
@@ -64,7 +66,7 @@ pub(crate) const UR5E: ArmModel = ArmModel {
 };
 
 /// UR publishes no inertias for the UR5 (CB3): the UR5e's, scaled by the links' mass ratios.
-pub(crate) const UR5: ArmModel = ArmModel {
+pub(super) const UR5: ArmModel = ArmModel {
     tag: "ur5",
     dh: DhParameters::UR5,
     masses: UR5_MASSES,
@@ -88,21 +90,45 @@ impl ArmModel {
         });
         Declaration::new(self.tag)
             .template(include_str!("ur.xml"))
-            .default("d1", dh.d1)
-            .default("a2", dh.a2)
-            .default("a3", dh.a3)
-            .default("d4", dh.d4)
-            .default("d5", dh.d5)
-            .default("d6", dh.d6)
-            .default("masses", self.masses)
-            .default("coms", coms)
-            .default("inertias", inertias)
-            .default("offsets", self.offsets)
-            .default("kp", GAINS.map(|(kp, _)| kp))
-            .default("kv", GAINS.map(|(_, kv)| kv))
-            .default("tcp", [0.0; 6])
-            .default("start", UPRIGHT)
-            .default("pos", [0.0; 3])
-            .default("quat", [1.0, 0.0, 0.0, 0.0])
+            .config(UrConfig {
+                d1: dh.d1,
+                a2: dh.a2,
+                a3: dh.a3,
+                d4: dh.d4,
+                d5: dh.d5,
+                d6: dh.d6,
+                masses: self.masses,
+                coms,
+                inertias,
+                offsets: self.offsets,
+                kp: GAINS.map(|(kp, _)| kp),
+                kv: GAINS.map(|(_, kv)| kv),
+                tcp: [0.0; 6],
+                start: UPRIGHT,
+                pos: [0.0; 3],
+                quat: [1.0, 0.0, 0.0, 0.0],
+            })
     }
+}
+
+/// An arm's config: the model's geometry and masses its template builds from, the servo
+/// gains, the TCP, where it starts and where its base is.
+#[derive(serde::Serialize, serde::Deserialize)]
+pub(super) struct UrConfig {
+    d1: f64,
+    a2: f64,
+    a3: f64,
+    d4: f64,
+    d5: f64,
+    d6: f64,
+    masses: [f64; 6],
+    coms: [[f64; 3]; 6],
+    inertias: [[f64; 3]; 6],
+    offsets: [f64; 2],
+    pub(super) kp: [f64; 2],
+    pub(super) kv: [f64; 2],
+    pub(super) tcp: [f64; 6],
+    pub(super) start: [f64; 6],
+    pos: [f64; 3],
+    quat: [f64; 4],
 }
