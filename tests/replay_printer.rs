@@ -82,7 +82,7 @@ impl Interface<Replay> for Printer {
             commanded: RefCell::new(Vec::new()),
         });
         Ok(Printer {
-            head: AnetA30::with_drive(Rc::clone(&axes) as Rc<dyn AxesDrive>),
+            head: AnetA30::with_drive(bind, Rc::clone(&axes) as Rc<dyn AxesDrive>),
             replayed: Some(axes),
         })
     }

@@ -10,6 +10,8 @@ Prints, a line each:
   the difference between its brightest and darkest pixel values; FRAME its frame_id);
   `transforms COUNT FRAME...` for the frames in the last /tf message;
   `log TIME TEXT` for every /log message;
+  `state TOPIC TIME JSON` for every yarok.State message (a component's named state, JSON
+  without its timestamp, keys sorted);
   `summary CHANNELS MESSAGES` from the file's summary section (`summary none` without one: a
   file cut short);
   `metadata NAME KEY=VALUE...` for every metadata record;
@@ -54,6 +56,9 @@ def main():
                 print("image", topic, repr(seconds(body["timestamp"])), image.width, image.height, image.mode, high - low, body["frame_id"])
             elif topic == "/tf":
                 last_transforms = [transform["child_frame_id"] for transform in body["transforms"]]
+            elif schema is not None and schema.name == "yarok.State":
+                fields = {key: value for key, value in body.items() if key != "timestamp"}
+                print("state", topic, repr(seconds(body["timestamp"])), json.dumps(fields, sort_keys=True))
             elif topic == "/log":
                 print("log", repr(seconds(body["timestamp"])), body["message"])
         summary = reader.get_summary()

@@ -13,10 +13,7 @@ use zenoh::Wait;
 
 use super::recording_profile::{Foxglove, JointValues, RecordingProfile};
 use super::sim_state::SimState;
-use crate::grippers::Robotiq2f85;
 use crate::probe_images;
-use crate::robots::AnetA30;
-use crate::robots::ur::{Arm, Ur5, Ur5e, pose_to_vector};
 
 /// How a [`ZenohBridge`] connects and what it publishes (`[plugins.zenoh]`).
 #[derive(Debug, Clone, PartialEq, serde::Deserialize)]
@@ -49,14 +46,6 @@ impl Default for ZenohBridgeSettings {
     }
 }
 
-/// A component the bridge can command.
-#[derive(Debug, Clone)]
-enum Device {
-    Arm(Arm),
-    Gripper(Robotiq2f85),
-    Printer(AnetA30),
-}
-
 /// A message for the bridge's thread to put.
 struct Put {
     key: String,
@@ -64,9 +53,11 @@ struct Put {
     png: bool,
 }
 
-/// A command received: the component path it is for, and its JSON.
+/// A command received: the component path it is for (no leading `/`; empty for the world's),
+/// its name, and its JSON.
 struct Command {
     path: String,
+    name: String,
     body: Result<Value, String>,
 }
 
@@ -76,17 +67,20 @@ struct Command {
 /// - `…/joint_states` and `…/tf` (`sim`): every joint coordinate's position and velocity, every
 ///   named body's pose — JSON shaped as the MCAP recorder's (`yarok.JointState`,
 ///   `foxglove.FrameTransforms`), `hz` times a second of platform time;
-/// - `…{path}/state`: each arm (`{"time", "q", "qd", "tcp"}`, TCP as a UR pose vector),
-///   gripper (`{"time", "position", "moving", "object_detected"}`) and printer (`{"time",
-///   "at"}`), from their handles;
+/// - `…{path}/{name}`: every component's [named states](yarok_core::component::NamedState),
+///   JSON, with the platform `time` added to an object, `hz` times a second — an arm's `state`
+///   (`{"time", "q", "qd", "tcp"}`), a gripper's (`{"time", "position", "moving",
+///   "object_detected"}`), a printer's (`{"time", "at"}`), and any component's of your own;
 /// - `…{path}/{probe}`: each probe's image, PNG (`/arm/gripper/left_digit/image`), `image_hz`
 ///   times a second;
-/// - commands to `…{path}/command`, JSON: an arm `{"move_j": [q…], "speed": …,
-///   "acceleration": …}`, `{"move_l": [x, y, z, rx, ry, rz], …}`, `{"stop": true}`; a gripper
-///   `{"move_to": 0–255, "speed": …, "force": …}`, `{"open": true}`, `{"close": true}`; a printer
-///   `{"move_to": [x, y, z]}` (mm); the world (`yarok/{world}/command`) `{"stop": true}` ends the
-///   run, `{"ping": n}` is answered at once. Each is answered on `…{path}/reply`:
-///   `{"ok": true}` or `{"ok": false, "error": …}` (`{"pong": n}` for a ping).
+/// - commands to `…{path}/{name}`, JSON: every component's
+///   [named commands](yarok_core::component::NamedCommand) — an arm's `command`
+///   (`{"move_j": [q…], "speed": …, "acceleration": …}`, `{"move_l": [x, y, z, rx, ry, rz],
+///   …}`, `{"stop": true}`), a gripper's (`{"move_to": 0–255, "speed": …, "force": …}`,
+///   `{"open": true}`, `{"close": true}`), a printer's (`{"move_to": [x, y, z]}`, mm); the world
+///   (`yarok/{world}/command`) `{"stop": true}` ends the run, `{"ping": n}` is answered at once.
+///   Each is answered on `…{path}/reply`: `{"ok": true}` or `{"ok": false, "error": …}`
+///   (`{"pong": n}` for a ping).
 ///
 /// Zenoh runs on a thread of its own (its API needs a multi-threaded tokio runtime; the
 /// platform's is single-threaded). Registered by `yarok::platform()` (feature `zenoh`) as
@@ -97,7 +91,6 @@ pub struct ZenohBridge {
     puts: Option<Sender<Put>>,
     commands: Option<Receiver<Command>>,
     thread: Option<JoinHandle<()>>,
-    devices: Vec<(String, Device)>,
     sim: Option<SimState>,
     next_state: f64,
     next_image: f64,
@@ -120,7 +113,6 @@ impl ZenohBridge {
             puts: None,
             commands: None,
             thread: None,
-            devices: Vec::new(),
             sim: None,
             next_state: 0.0,
             next_image: 0.0,
@@ -162,19 +154,12 @@ impl ZenohBridge {
             let poses = Foxglove.transforms(time, state.frame_names(), &state.poses(sim));
             self.put(self.key("", "tf"), poses, false)?;
         }
-        for (path, device) in &self.devices {
-            let state = match device {
-                Device::Arm(arm) => json!({
-                    "time": time, "q": arm.q(), "qd": arm.qd(),
-                    "tcp": pose_to_vector(&arm.tcp_pose()),
-                }),
-                Device::Gripper(gripper) => json!({
-                    "time": time, "position": gripper.position(), "moving": gripper.is_moving(),
-                    "object_detected": gripper.object_detected(),
-                }),
-                Device::Printer(printer) => json!({ "time": time, "at": printer.at() }),
-            };
-            self.put_json(self.key(path, "state"), &state)?;
+        for state in world.states() {
+            let mut value = state.read()?;
+            if let Value::Object(fields) = &mut value {
+                fields.insert("time".into(), json!(time));
+            }
+            self.put_json(self.key(state.component(), state.name()), &value)?;
         }
         Ok(())
     }
@@ -197,8 +182,8 @@ impl ZenohBridge {
             return Ok(());
         };
         let received: Vec<Command> = commands.try_iter().collect();
-        for Command { path, body } in received {
-            let reply = match body.and_then(|body| self.run(world, &path, &body)) {
+        for Command { path, name, body } in received {
+            let reply = match body.and_then(|body| self.run(world, &path, &name, body)) {
                 Ok(reply) => reply,
                 Err(error) => json!({ "ok": false, "error": error }),
             };
@@ -207,11 +192,7 @@ impl ZenohBridge {
         Ok(())
     }
 
-    fn run(&self, world: &World<'_>, path: &str, body: &Value) -> Result<Value, String> {
-        let number = |key: &str| body.get(key).and_then(Value::as_f64);
-        let six = |value: &Value| -> Result<[f64; 6], String> {
-            serde_json::from_value(value.clone()).map_err(|_| "expected six numbers".to_owned())
-        };
+    fn run(&self, world: &World<'_>, path: &str, name: &str, body: Value) -> Result<Value, String> {
         if path.is_empty() {
             if let Some(n) = body.get("ping") {
                 return Ok(json!({ "pong": n }));
@@ -222,96 +203,32 @@ impl ZenohBridge {
             }
             return Err("the world takes {\"stop\": true} or {\"ping\": n}".into());
         }
-        let device = self
-            .devices
-            .iter()
-            .find(|(p, _)| p.trim_matches('/') == path)
-            .map(|(_, d)| d)
-            .ok_or_else(|| format!("no component /{path} takes commands"))?;
-        match device {
-            Device::Arm(arm) => {
-                let motion = if let Some(q) = body.get("move_j") {
-                    arm.move_j(six(q)?)
-                } else if let Some(pose) = body.get("move_l") {
-                    arm.move_l_vector(six(pose)?)
-                } else if body.get("stop").is_some() {
-                    arm.stop();
-                    return Ok(json!({ "ok": true }));
-                } else {
-                    return Err("an arm takes move_j, move_l or stop".into());
-                };
-                let motion = match number("speed") {
-                    Some(speed) => motion.speed(speed),
-                    None => motion,
-                };
-                let motion = match number("acceleration") {
-                    Some(acceleration) => motion.acceleration(acceleration),
-                    None => motion,
-                };
-                motion.start().map_err(|e| e.to_string())?;
-            }
-            Device::Gripper(gripper) => {
-                let byte = |key: &str| number(key).map(|v| v.clamp(0.0, 255.0) as u8);
-                let grip = if let Some(position) = byte("move_to") {
-                    gripper.move_to(position)
-                } else if body.get("open").is_some() {
-                    gripper.open()
-                } else if body.get("close").is_some() {
-                    gripper.close()
-                } else {
-                    return Err("a gripper takes move_to, open or close".into());
-                };
-                let grip = match byte("speed") {
-                    Some(speed) => grip.speed(speed),
-                    None => grip,
-                };
-                match byte("force") {
-                    Some(force) => grip.force(force),
-                    None => grip,
-                }
-                .start();
-            }
-            Device::Printer(printer) => {
-                let target: [f64; 3] = body
-                    .get("move_to")
-                    .and_then(|v| serde_json::from_value(v.clone()).ok())
-                    .ok_or("a printer takes {\"move_to\": [x, y, z]} (mm)")?;
-                printer.move_to(target);
-            }
-        }
+        let command = world
+            .command(&format!("/{path}"), name)
+            .ok_or_else(|| format!("no component /{path} takes `{name}` commands"))?;
+        command.run(body).map_err(|e| e.to_string())?;
         Ok(json!({ "ok": true }))
     }
 }
 
-/// The components of `world` that take commands.
-fn devices(world: &World<'_>) -> Vec<(String, Device)> {
-    let pl = world.pl();
-    world
-        .composition()
-        .instances
-        .iter()
-        .filter_map(|instance| {
-            let path = instance.path.clone();
-            let device = if let Ok(arm) = pl.get::<Ur5e>(&path) {
-                Device::Arm((*arm).clone())
-            } else if let Ok(arm) = pl.get::<Ur5>(&path) {
-                Device::Arm((*arm).clone())
-            } else if let Ok(gripper) = pl.get::<Robotiq2f85>(&path) {
-                Device::Gripper(gripper)
-            } else if let Ok(printer) = pl.get::<AnetA30>(&path) {
-                Device::Printer(printer)
-            } else {
-                return None;
-            };
-            Some((path, device))
-        })
-        .collect()
+/// The keys commands come on: `command` under any path (the world's and its components'),
+/// and every other name a component takes commands by.
+fn command_keys(world: &World<'_>, prefix: &str) -> Vec<String> {
+    // `**` matches no chunk too: the world's own `…/command` is among these.
+    let mut keys = vec![format!("{prefix}**/command")];
+    for command in world.commands() {
+        let key = format!("{prefix}**/{}", command.name());
+        if !keys.contains(&key) {
+            keys.push(key);
+        }
+    }
+    keys
 }
 
 /// The Zenoh session on a thread of its own: puts what the plugin sends, hands commands back.
 fn serve(
     config: zenoh::Config,
-    commands_key: String,
+    command_keys: Vec<String>,
     prefix: String,
     puts: Receiver<Put>,
     commands: Sender<Command>,
@@ -324,24 +241,34 @@ fn serve(
             return;
         }
     };
-    let subscriber = session
-        .declare_subscriber(commands_key)
-        .callback(move |sample| {
-            let key = sample.key_expr().as_str();
-            let path = key
-                .strip_prefix(&prefix)
-                .and_then(|rest| rest.strip_suffix("command"))
-                .unwrap_or_default()
-                .trim_matches('/')
-                .to_owned();
-            let body = serde_json::from_slice(&sample.payload().to_bytes())
-                .map_err(|e| format!("not JSON: {e}"));
-            let _ = commands.send(Command { path, body });
-        })
-        .wait();
-    if let Err(error) = &subscriber {
-        let _ = opened.send(Err(error.to_string()));
-        return;
+    let mut subscribers = Vec::new();
+    for key in command_keys {
+        let (prefix, commands) = (prefix.clone(), commands.clone());
+        let subscriber = session
+            .declare_subscriber(key)
+            .callback(move |sample| {
+                let key = sample.key_expr().as_str();
+                let (path, name) = key
+                    .strip_prefix(&prefix)
+                    .unwrap_or_default()
+                    .rsplit_once('/')
+                    .unwrap_or(("", "command"));
+                let body = serde_json::from_slice(&sample.payload().to_bytes())
+                    .map_err(|e| format!("not JSON: {e}"));
+                let _ = commands.send(Command {
+                    path: path.to_owned(),
+                    name: name.to_owned(),
+                    body,
+                });
+            })
+            .wait();
+        match subscriber {
+            Ok(subscriber) => subscribers.push(subscriber),
+            Err(error) => {
+                let _ = opened.send(Err(error.to_string()));
+                return;
+            }
+        }
     }
     let _ = opened.send(Ok(()));
     let mut publishers = HashMap::new();
@@ -367,7 +294,7 @@ fn serve(
             tracing::warn!(%key, %error, "cannot publish");
         }
     }
-    drop(subscriber);
+    drop(subscribers);
     drop(publishers);
     let _ = session.close().wait();
 }
@@ -404,10 +331,10 @@ impl Plugin for ZenohBridge {
         let (received, commands) = mpsc::channel();
         let (opened, open) = mpsc::channel();
         let prefix = format!("yarok/{}/", self.settings.world);
-        let commands_key = format!("yarok/{}/**/command", self.settings.world);
+        let command_keys = command_keys(world, &prefix);
         let thread = std::thread::Builder::new()
             .name("yarok-zenoh".into())
-            .spawn(move || serve(config, commands_key, prefix, to_put, received, opened))?;
+            .spawn(move || serve(config, command_keys, prefix, to_put, received, opened))?;
         match open.recv_timeout(Duration::from_secs(10)) {
             Ok(Ok(())) => {}
             Ok(Err(error)) => return Err(format!("Zenoh session: {error}").into()),
@@ -416,7 +343,6 @@ impl Plugin for ZenohBridge {
         self.puts = Some(puts);
         self.commands = Some(commands);
         self.thread = Some(thread);
-        self.devices = devices(world);
         self.sim = world.backend::<SimBackend>().map(SimState::of);
         Ok(())
     }

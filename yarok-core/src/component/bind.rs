@@ -4,11 +4,12 @@ use std::cell::RefCell;
 use std::future::Future;
 use std::rc::Rc;
 
+use serde::Serialize;
 use serde::de::DeserializeOwned;
 
 use super::{
-    Backend, Environment, HandleError, Handles, Lifecycle, NameKind, NameMap, Probe, ProbeImage,
-    StopAction,
+    Backend, Environment, HandleError, Handles, Lifecycle, NameKind, NameMap, NamedCommand,
+    NamedState, Probe, ProbeImage, StopAction,
 };
 use crate::BoxError;
 use crate::config::ConfigOrigins;
@@ -320,6 +321,72 @@ impl<E: Environment> Bind<E> {
             name.to_owned(),
             Box::new(read),
         ));
+    }
+
+    /// Publishes a state named `name` within the component: `read` gives its value (any
+    /// serializable value, usually a struct) when a bridge, a recorder or an inspector asks
+    /// (see [`World::states`](crate::runtime::World::states)). The Zenoh bridge publishes it
+    /// at `…{path}/{name}`; the MCAP recorder records it on the topic `{path}/{name}`.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use std::cell::Cell;
+    /// use std::rc::Rc;
+    /// use yarok_core::component::{Bind, BindError, Mock};
+    ///
+    /// #[derive(Clone)]
+    /// struct Fan { speed: Rc<Cell<f64>> }
+    ///
+    /// #[derive(serde::Serialize)]
+    /// struct FanState { speed: f64 }
+    ///
+    /// #[derive(serde::Deserialize)]
+    /// struct SetSpeed { speed: f64 }
+    ///
+    /// fn bind(bind: &mut Bind<Mock>) -> Result<Fan, BindError> {
+    ///     let fan = Fan { speed: Rc::new(Cell::new(0.0)) };
+    ///     let speed = Rc::clone(&fan.speed);
+    ///     bind.state("state", move || FanState { speed: speed.get() });
+    ///     let speed = Rc::clone(&fan.speed);
+    ///     bind.command("set_speed", move |SetSpeed { speed: to }| {
+    ///         speed.set(to);
+    ///         Ok(())
+    ///     });
+    ///     Ok(fan)
+    /// }
+    /// ```
+    pub fn state<T: Serialize>(&mut self, name: &str, read: impl Fn() -> T + 'static) {
+        self.context
+            .lifecycle
+            .borrow_mut()
+            .states
+            .push(NamedState::new(
+                self.context.path.clone(),
+                name.to_owned(),
+                Box::new(move || Ok(serde_json::to_value(read())?)),
+            ));
+    }
+
+    /// Accepts a command named `name` within the component: `run` gets its body, read from
+    /// JSON into `T`, when a bridge or an inspector sends one (see
+    /// [`World::commands`](crate::runtime::World::commands)); it starts what the command asks
+    /// and returns at once. The Zenoh bridge takes it at `…{path}/{name}`. See
+    /// [`Bind::state`] for an example.
+    pub fn command<T: DeserializeOwned>(
+        &mut self,
+        name: &str,
+        run: impl Fn(T) -> Result<(), BoxError> + 'static,
+    ) {
+        self.context
+            .lifecycle
+            .borrow_mut()
+            .commands
+            .push(NamedCommand::new(
+                self.context.path.clone(),
+                name.to_owned(),
+                Box::new(move |body| run(serde_json::from_value(body)?)),
+            ));
     }
 
     /// Registers what puts the component's own state back (a target, a schedule, a count) when

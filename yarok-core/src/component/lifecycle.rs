@@ -1,10 +1,10 @@
 //! What interfaces register while they bind: per-tick steps, tasks, restart and stop actions,
-//! and probes.
+//! probes, named states and commands.
 
 use std::future::Future;
 use std::pin::Pin;
 
-use super::Probe;
+use super::{NamedCommand, NamedState, Probe};
 use crate::BoxError;
 
 /// A per-tick step an interface registered.
@@ -31,4 +31,6 @@ pub(crate) struct Lifecycle {
     pub(crate) restarts: Vec<RestartAction>,
     pub(crate) stops: Vec<StopAction>,
     pub(crate) probes: Vec<Probe>,
+    pub(crate) states: Vec<NamedState>,
+    pub(crate) commands: Vec<NamedCommand>,
 }

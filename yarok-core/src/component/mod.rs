@@ -53,6 +53,7 @@
 
 mod backend;
 mod bind;
+mod command;
 mod declaration;
 mod environment;
 mod handles;
@@ -60,6 +61,7 @@ mod interface;
 mod lifecycle;
 mod names;
 mod probe;
+mod state;
 
 use std::any::TypeId;
 use std::fmt;
@@ -67,6 +69,7 @@ use std::fmt;
 pub use backend::{Backend, MockBackend};
 pub(crate) use bind::BindContext;
 pub use bind::{Bind, BindError, DEFAULT_STOP_SECONDS};
+pub use command::NamedCommand;
 pub use declaration::Declaration;
 pub(crate) use declaration::Source;
 pub use environment::{Environment, Mock};
@@ -77,6 +80,7 @@ pub use interface::{Interface, Interfaces};
 pub(crate) use lifecycle::{Lifecycle, LocalFuture, StopAction, TickStep};
 pub use names::{NameKind, NameMap};
 pub use probe::{Probe, ProbeImage};
+pub use state::NamedState;
 
 /// A component: a Rust type with an MJCF template and an interface per environment it runs in.
 ///

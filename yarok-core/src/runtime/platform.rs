@@ -15,7 +15,8 @@ use super::interrupt::Interrupt;
 use super::pl::PlParts;
 use super::{BehaviourResult, Pl, PlatformBuilder, Plugin, RuntimeError, World};
 use crate::component::{
-    Backend, BindContext, Binder, Handles, Lifecycle, Probe, StopAction, TickStep,
+    Backend, BindContext, Binder, Handles, Lifecycle, NamedCommand, NamedState, Probe, StopAction,
+    TickStep,
 };
 use crate::compose::{Composition, Instance};
 use crate::config::{ConfigOrigins, PlatformSettings, Settings};
@@ -74,6 +75,8 @@ pub struct Platform {
     lifecycle: Rc<RefCell<Lifecycle>>,
     ticks: Vec<(String, tracing::Span, TickStep)>,
     probes: Vec<Probe>,
+    states: Vec<NamedState>,
+    commands: Vec<NamedCommand>,
     executor: Executor,
     phase: Phase,
     ctrl_c: bool,
@@ -143,6 +146,8 @@ impl Platform {
             lifecycle,
             ticks: Vec::new(),
             probes: Vec::new(),
+            states: Vec::new(),
+            commands: Vec::new(),
             executor,
             phase: Phase::Built,
             ctrl_c: prepared.ctrl_c,
@@ -332,16 +337,14 @@ impl Platform {
             let handle = (binder.bind)(self.bind_context(instance, &origins)).await?;
             self.handles.borrow_mut().insert(&instance.path, handle);
         }
-        let (ticks, tasks, probes) = {
+        let tasks = {
             let mut lifecycle = self.lifecycle.borrow_mut();
-            (
-                std::mem::take(&mut lifecycle.ticks),
-                std::mem::take(&mut lifecycle.tasks),
-                std::mem::take(&mut lifecycle.probes),
-            )
+            self.ticks = std::mem::take(&mut lifecycle.ticks);
+            self.probes = std::mem::take(&mut lifecycle.probes);
+            self.states = std::mem::take(&mut lifecycle.states);
+            self.commands = std::mem::take(&mut lifecycle.commands);
+            std::mem::take(&mut lifecycle.tasks)
         };
-        self.ticks = ticks;
-        self.probes = probes;
         self.backend.remember_start();
         for (component, task) in tasks {
             self.executor.spawn(Owner::Component(component), task);
@@ -481,6 +484,8 @@ impl Platform {
             composition: &self.composition,
             settings: &self.settings,
             probes: &self.probes,
+            states: &self.states,
+            commands: &self.commands,
         };
         (&mut self.plugins, world)
     }

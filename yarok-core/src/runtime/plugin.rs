@@ -3,7 +3,7 @@
 
 use super::Pl;
 use crate::BoxError;
-use crate::component::{Backend, Probe};
+use crate::component::{Backend, NamedCommand, NamedState, Probe};
 use crate::compose::Composition;
 use crate::config::Settings;
 
@@ -17,6 +17,8 @@ pub struct World<'a> {
     pub(crate) composition: &'a Composition,
     pub(crate) settings: &'a Settings,
     pub(crate) probes: &'a [Probe],
+    pub(crate) states: &'a [NamedState],
+    pub(crate) commands: &'a [NamedCommand],
 }
 
 impl std::fmt::Debug for World<'_> {
@@ -68,6 +70,23 @@ impl<'a> World<'a> {
     /// Every component's probes (images of what it senses), in binding order.
     pub fn probes(&self) -> &'a [Probe] {
         self.probes
+    }
+
+    /// Every component's named states, in binding order.
+    pub fn states(&self) -> &'a [NamedState] {
+        self.states
+    }
+
+    /// Every component's named commands, in binding order.
+    pub fn commands(&self) -> &'a [NamedCommand] {
+        self.commands
+    }
+
+    /// The command `name` of the component at `path`, if it accepts one.
+    pub fn command(&self, path: &str, name: &str) -> Option<&'a NamedCommand> {
+        self.commands
+            .iter()
+            .find(|command| command.component() == path && command.name() == name)
     }
 }
 

@@ -11,6 +11,7 @@ use yarok_core::time::{Clock, WaitError};
 use yarok_mjc::{Body, Sim, Site};
 
 mod drive;
+mod exposed;
 mod mock;
 mod names;
 mod ramp;
@@ -84,7 +85,9 @@ impl std::fmt::Debug for ParallelGripper {
 
 impl ParallelGripper {
     /// A gripper over `drive`, its opening given by `stroke`: the drive ticks after each step
-    /// of the platform and restarts with the run.
+    /// of the platform and restarts with the run. It publishes its `state` (`position`,
+    /// `moving`, `object_detected`) and takes `command`s (`{"move_to": 0–255, "speed": …,
+    /// "force": …}`, `{"open": true}`, `{"close": true}`) for any plugin.
     pub fn with_drive<E: Environment>(
         bind: &mut Bind<E>,
         drive: Rc<dyn FingerDrive>,
@@ -99,11 +102,13 @@ impl ParallelGripper {
             ticking.tick(ticks.timestep());
             Ok(())
         });
-        Self {
+        let gripper = Self {
             drive,
             stroke,
             clock,
-        }
+        };
+        exposed::expose(bind, &gripper);
+        gripper
     }
 
     /// A gripper with no physics behind it ([`MockFingers`]), moving over `stroke`.

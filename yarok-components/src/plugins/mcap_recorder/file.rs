@@ -20,6 +20,8 @@ pub(super) struct Layout {
     pub(super) sim: Option<SimNames>,
     /// One channel per probe, then per camera recorded.
     pub(super) images: Vec<ImageChannel>,
+    /// One channel per component's named state, by its path (`/arm/state`).
+    pub(super) states: Vec<String>,
 }
 
 /// The names a `sim` world's state is recorded under.
@@ -55,6 +57,7 @@ struct Channels {
     clock: Option<u16>,
     log: u16,
     images: Vec<u16>,
+    states: Vec<u16>,
 }
 
 /// See the [module](self).
@@ -116,6 +119,10 @@ impl McapFile {
             let channel = file.channel(image.kind, &image.topic, &image.metadata)?;
             file.channels.images.push(channel);
         }
+        for topic in &layout.states {
+            let channel = file.channel(MessageKind::State, topic, &BTreeMap::new())?;
+            file.channels.states.push(channel);
+        }
         if layout.sim.is_some() {
             let none = BTreeMap::new();
             file.channels.sim = Some((
@@ -166,9 +173,24 @@ impl McapFile {
         self.write(self.channels.log, time, &message)
     }
 
-    /// Writes the clock (if the profile records it) and, in `sim`, the joints and frames.
-    pub(super) fn state(&mut self, time: f64, sim: Option<&SimSample>) -> Result<(), BoxError> {
+    /// Writes the clock (if the profile records it), the components' named states (one a
+    /// channel, in the layout's order) and, in `sim`, the joints and frames.
+    pub(super) fn state(
+        &mut self,
+        time: f64,
+        states: &[serde_json::Value],
+        sim: Option<&SimSample>,
+    ) -> Result<(), BoxError> {
         if let (Some(channel), Some(message)) = (self.channels.clock, self.profile.clock(time)) {
+            self.write(channel, time, &message)?;
+        }
+        for (index, value) in states.iter().enumerate() {
+            let channel = *self
+                .channels
+                .states
+                .get(index)
+                .ok_or_else(|| format!("no channel for state {index}"))?;
+            let message = self.profile.state(time, value);
             self.write(channel, time, &message)?;
         }
         let (Some(sample), Some(names), Some((joint_states, transforms))) =

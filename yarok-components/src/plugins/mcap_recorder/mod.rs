@@ -1,5 +1,5 @@
-//! [`McapRecorder`]: a run as an MCAP file — joint states, transform frames, images and log
-//! lines on the platform's time — that Foxglove, Rerun, ROS 2 tools and the `mcap` libraries
+//! [`McapRecorder`]: a run as an MCAP file — joint states, transform frames, components' named
+//! states, images and log lines on the platform's time — that Foxglove, Rerun, ROS 2 tools and the `mcap` libraries
 //! open.
 
 mod file;
@@ -27,7 +27,8 @@ use crate::probe_images;
 pub struct McapRecorderSettings {
     /// The MCAP file (created, with its folder, or truncated at start).
     pub path: PathBuf,
-    /// Joint states and body poses every this many ticks (`sim` only).
+    /// Joint states and body poses (`sim` only) and components' named states every this many
+    /// ticks.
     pub every: u64,
     /// Images a second of platform time, of every probe and camera.
     pub image_hz: f64,
@@ -122,10 +123,13 @@ fn run_metadata(
 /// 16-bit counts of the unit its channel's metadata and the PNG's text state under
 /// `depth_unit_m` — a tactile sensor's 1 µm, a camera's 1 mm; see
 /// [`probe_images::png`](crate::probe_images::png)) and per camera asked for
-/// (`/cameras/overview`), and `/log` (the behaviours' [`Pl::log`](yarok_core::runtime::Pl::log)
+/// (`/cameras/overview`), one topic per component's
+/// [named state](yarok_core::component::NamedState) (`/arm/state`, `yarok.State`: its fields
+/// and a `timestamp`, every `every` ticks in any environment), and `/log` (the behaviours' [`Pl::log`](yarok_core::runtime::Pl::log)
 /// lines, `foxglove.Log`). Times are platform time; every file starts with a `yarok` metadata
 /// record (world, environment, seed, timestep, yarok's version, shard or episode); chunks are
-/// zstd-compressed. The `ros2` profile writes the same as ROS 2 messages, with `/clock`.
+/// zstd-compressed. The `ros2` profile writes the same as ROS 2 messages (a state as its JSON
+/// in a `std_msgs/msg/String`), with `/clock`.
 ///
 /// What the platform's thread does is take the state and images; a thread of the recorder's
 /// own encodes and writes them, its queue bounded (a writer that takes nothing for 10 s ends
@@ -343,6 +347,7 @@ impl Plugin for McapRecorder {
             self.start_sim(sim)?;
         }
         self.layout.images = self.image_channels(world);
+        self.layout.states = world.states().iter().map(|state| state.path()).collect();
         let shard = world.pl().shard();
         let path = if shard.is_whole() {
             self.settings.path.clone()
@@ -381,7 +386,12 @@ impl Plugin for McapRecorder {
                 }
                 _ => None,
             };
-            self.writer()?.send(Job::State { time, sim })?;
+            let states = world
+                .states()
+                .iter()
+                .map(|state| state.read())
+                .collect::<Result<_, _>>()?;
+            self.writer()?.send(Job::State { time, states, sim })?;
         }
         if record_images {
             let images = self.images(world)?;

@@ -40,6 +40,7 @@ pub(super) enum Job {
     },
     State {
         time: f64,
+        states: Vec<serde_json::Value>,
         sim: Option<SimSample>,
     },
     Images {
@@ -184,11 +185,11 @@ fn write(mut run: McapFile, queue: &Receiver<Vec<Job>>) -> Result<(), BoxError> 
                 finished?;
             }
             Job::Log { time, text } => episode.as_mut().unwrap_or(&mut run).log(time, &text)?,
-            Job::State { time, sim } => {
+            Job::State { time, states, sim } => {
                 episode
                     .as_mut()
                     .unwrap_or(&mut run)
-                    .state(time, sim.as_ref())?;
+                    .state(time, &states, sim.as_ref())?;
             }
             Job::Images { time, images } => {
                 episode.as_mut().unwrap_or(&mut run).images(time, &images)?;

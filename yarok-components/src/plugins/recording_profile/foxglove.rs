@@ -132,6 +132,9 @@ impl RecordingProfile for Foxglove {
                 include_str!("foxglove_schemas/compressed_image.json"),
             ),
             MessageKind::Log => schema("foxglove.Log", include_str!("foxglove_schemas/log.json")),
+            MessageKind::State => {
+                schema("yarok.State", include_str!("foxglove_schemas/state.json"))
+            }
             MessageKind::Clock => return None,
         })
     }
@@ -197,6 +200,17 @@ impl RecordingProfile for Foxglove {
             file: "",
             line: 0,
         })
+    }
+
+    /// The state's fields with its `timestamp`; a state that is not an object is its `value`.
+    fn state(&self, time: f64, value: &serde_json::Value) -> Vec<u8> {
+        let mut message = match value {
+            serde_json::Value::Object(fields) => fields.clone(),
+            other => serde_json::Map::from_iter([("value".to_owned(), other.clone())]),
+        };
+        let timestamp = serde_json::to_value(Time::at(time)).unwrap_or_default();
+        message.insert("timestamp".to_owned(), timestamp);
+        bytes(&message)
     }
 
     fn clock(&self, _time: f64) -> Option<Vec<u8>> {

@@ -24,6 +24,8 @@ pub(crate) enum MessageKind {
     Log,
     /// The platform's clock.
     Clock,
+    /// A component's named state, as JSON.
+    State,
 }
 
 /// A schema as an MCAP file states it.
@@ -68,6 +70,9 @@ pub(crate) trait RecordingProfile: Send + Sync {
 
     /// A behaviour's log line.
     fn log(&self, time: f64, text: &str) -> Vec<u8>;
+
+    /// A component's named state ([`yarok_core::component::NamedState`]).
+    fn state(&self, time: f64, value: &serde_json::Value) -> Vec<u8>;
 
     /// The platform's clock, if this profile records it (then [`MessageKind::Clock`] has a
     /// schema).

@@ -118,6 +118,7 @@ impl RecordingProfile for Ros2 {
             MessageKind::Depth => ("sensor_msgs/msg/Image", IMAGE),
             MessageKind::Log => ("rcl_interfaces/msg/Log", LOG),
             MessageKind::Clock => ("rosgraph_msgs/msg/Clock", CLOCK),
+            MessageKind::State => ("std_msgs/msg/String", "string data\n"),
         };
         Some(Schema {
             name,
@@ -190,6 +191,13 @@ impl RecordingProfile for Ros2 {
             .string("")
             .string("")
             .u32(0);
+        cdr.finish()
+    }
+
+    /// The state as JSON text in a `std_msgs/msg/String`.
+    fn state(&self, _time: f64, value: &serde_json::Value) -> Vec<u8> {
+        let mut cdr = Cdr::new();
+        cdr.string(&value.to_string());
         cdr.finish()
     }
 

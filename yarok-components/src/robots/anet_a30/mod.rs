@@ -1,13 +1,16 @@
 //! [`AnetA30`]: a 3-D printer used as a cartesian robot.
 
 mod drive;
+mod exposed;
 mod mock;
 mod real;
 mod sim;
 
 use std::rc::Rc;
 
-use yarok_core::component::{Bind, BindError, Component, Declaration, Interface, Interfaces, Mock};
+use yarok_core::component::{
+    Bind, BindError, Component, Declaration, Environment, Interface, Interfaces, Mock,
+};
 use yarok_mjc::Sim;
 
 pub use drive::AxesDrive;
@@ -44,9 +47,12 @@ impl std::fmt::Debug for AnetA30 {
 }
 
 impl AnetA30 {
-    /// A printer whose head `axes` move: for an environment of your own.
-    pub fn with_drive(axes: Rc<dyn AxesDrive>) -> Self {
-        Self { axes }
+    /// A printer whose head `axes` move: for an environment of your own. It publishes its
+    /// `state` (`at`) and takes `command`s (`{"move_to": [x, y, z]}`, mm) for any plugin.
+    pub fn with_drive<E: Environment>(bind: &mut Bind<E>, axes: Rc<dyn AxesDrive>) -> Self {
+        let printer = Self { axes };
+        exposed::expose(bind, &printer);
+        printer
     }
 
     /// Starts moving the head to `target` (millimetres), clamped to the work volume; returns the
@@ -121,12 +127,13 @@ impl Component for AnetA30 {
 
 impl Interface<Sim> for AnetA30 {
     async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
-        Ok(Self::with_drive(Rc::new(SimAxes::bind(bind)?)))
+        let axes = Rc::new(SimAxes::bind(bind)?);
+        Ok(Self::with_drive(bind, axes))
     }
 }
 
 impl Interface<Mock> for AnetA30 {
-    async fn bind(_: &mut Bind<Mock>) -> Result<Self, BindError> {
-        Ok(Self::with_drive(Rc::new(MockAxes::default())))
+    async fn bind(bind: &mut Bind<Mock>) -> Result<Self, BindError> {
+        Ok(Self::with_drive(bind, Rc::new(MockAxes::default())))
     }
 }

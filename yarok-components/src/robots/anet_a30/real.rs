@@ -113,7 +113,7 @@ impl Interface<Real> for AnetA30 {
             }
             Ok(())
         });
-        Ok(AnetA30::with_drive(axes))
+        Ok(AnetA30::with_drive(bind, axes))
     }
 }
 

@@ -10,6 +10,7 @@ use yarok_mjc::Sim;
 use super::config::ArmConfig;
 use super::controller::{ARRIVED_RAD, Controller, Goal, within};
 use super::drive::ArmDrive;
+use super::exposed;
 use super::kinematics::{Joints, Kinematics, pose_from_vector};
 use super::mock::FollowingJoints;
 use super::motion::Move;
@@ -81,7 +82,9 @@ impl Arm {
     /// An arm over `drive` (a user's own environment: a replay, another simulator), its
     /// motions planned with `kinematics` from `start`: the controller commands the drive after
     /// every step, and from `start` again when an episode begins if the drive
-    /// [is put back](ArmDrive::is_put_back_at_restart).
+    /// [is put back](ArmDrive::is_put_back_at_restart). It publishes its `state` (`q`, `qd`,
+    /// `tcp`) and takes `command`s (`{"move_j": [q…], "speed": …, "acceleration": …}`,
+    /// `{"move_l": [x, y, z, rx, ry, rz], …}`, `{"stop": true}`) for any plugin.
     pub fn with_drive<E: Environment>(
         bind: &mut Bind<E>,
         kinematics: Kinematics,
@@ -100,7 +103,9 @@ impl Arm {
             ticking.tick();
             Ok(())
         });
-        Self { controller }
+        let arm = Self { controller };
+        exposed::expose(bind, &arm);
+        arm
     }
 
     /// The kinematics the motions use (DH parameters, joint limits, TCP).

@@ -7,6 +7,7 @@ mod config;
 mod controller;
 mod drive;
 mod error;
+mod exposed;
 mod kinematics;
 mod measured;
 mod mock;

@@ -1,0 +1,68 @@
+//! What a [`ParallelGripper`] shows any plugin: its state (`state`) and the grips it takes
+//! (`command`).
+
+use yarok_core::BoxError;
+use yarok_core::component::{Bind, Environment};
+
+use super::ParallelGripper;
+
+/// The gripper's state, as the 2F-85 reports it.
+#[derive(serde::Serialize)]
+struct GripperState {
+    position: u8,
+    moving: bool,
+    object_detected: bool,
+}
+
+/// A grip: `move_to` a position (0 open to 255 closed), `open` or `close`; with a speed and a
+/// force (0–255) when given.
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct GripperCommand {
+    move_to: Option<f64>,
+    open: Option<bool>,
+    close: Option<bool>,
+    speed: Option<f64>,
+    force: Option<f64>,
+}
+
+/// A 0–255 register value.
+fn byte(value: f64) -> u8 {
+    value.clamp(0.0, 255.0) as u8
+}
+
+/// Publishes the gripper's `state` and takes its `command`s.
+pub(super) fn expose<E: Environment>(bind: &mut Bind<E>, gripper: &ParallelGripper) {
+    let shown = gripper.clone();
+    bind.state("state", move || GripperState {
+        position: shown.position(),
+        moving: shown.is_moving(),
+        object_detected: shown.object_detected(),
+    });
+    let commanded = gripper.clone();
+    bind.command("command", move |command: GripperCommand| {
+        run(&commanded, command)
+    });
+}
+
+fn run(gripper: &ParallelGripper, command: GripperCommand) -> Result<(), BoxError> {
+    let grip = match command {
+        GripperCommand {
+            move_to: Some(position),
+            ..
+        } => gripper.move_to(byte(position)),
+        GripperCommand { open: Some(_), .. } => gripper.open(),
+        GripperCommand { close: Some(_), .. } => gripper.close(),
+        _ => return Err("a gripper takes move_to, open or close".into()),
+    };
+    let grip = match command.speed {
+        Some(speed) => grip.speed(byte(speed)),
+        None => grip,
+    };
+    match command.force {
+        Some(force) => grip.force(byte(force)),
+        None => grip,
+    }
+    .start();
+    Ok(())
+}

@@ -1,0 +1,66 @@
+//! What an [`Arm`] shows any plugin: its state (`state`) and the motions it takes (`command`).
+
+use yarok_core::BoxError;
+use yarok_core::component::{Bind, Environment};
+
+use super::{Arm, Joints, pose_to_vector};
+
+/// The arm's state: joint angles and speeds, and the TCP as a UR pose vector.
+#[derive(serde::Serialize)]
+struct ArmState {
+    q: Joints,
+    qd: Joints,
+    tcp: [f64; 6],
+}
+
+/// A motion: `move_j` to joints, `move_l` to a TCP pose vector, or `stop`; with the speed and
+/// acceleration of `movej`/`movel` when given.
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ArmCommand {
+    move_j: Option<Joints>,
+    move_l: Option<[f64; 6]>,
+    stop: Option<bool>,
+    speed: Option<f64>,
+    acceleration: Option<f64>,
+}
+
+/// Publishes the arm's `state` and takes its `command`s.
+pub(super) fn expose<E: Environment>(bind: &mut Bind<E>, arm: &Arm) {
+    let shown = arm.clone();
+    bind.state("state", move || ArmState {
+        q: shown.q(),
+        qd: shown.qd(),
+        tcp: pose_to_vector(&shown.tcp_pose()),
+    });
+    let commanded = arm.clone();
+    bind.command("command", move |command: ArmCommand| {
+        run(&commanded, command)
+    });
+}
+
+fn run(arm: &Arm, command: ArmCommand) -> Result<(), BoxError> {
+    let motion = match command {
+        ArmCommand {
+            move_j: Some(q), ..
+        } => arm.move_j(q),
+        ArmCommand {
+            move_l: Some(pose), ..
+        } => arm.move_l_vector(pose),
+        ArmCommand { stop: Some(_), .. } => {
+            arm.stop();
+            return Ok(());
+        }
+        _ => return Err("an arm takes move_j, move_l or stop".into()),
+    };
+    let motion = match command.speed {
+        Some(speed) => motion.speed(speed),
+        None => motion,
+    };
+    let motion = match command.acceleration {
+        Some(acceleration) => motion.acceleration(acceleration),
+        None => motion,
+    };
+    motion.start()?;
+    Ok(())
+}
