@@ -197,7 +197,7 @@ fn a_config_field_templates_cannot_hold_is_refused_at_compose() {
         .unwrap_err()
         .to_string();
     assert!(
-        error.contains("declares a config yarok cannot hold: `inner` is a table or a date"),
+        error.contains("declares a config yarok cannot hold: `inner` is a table, which config values cannot hold"),
         "{error}"
     );
 }

@@ -79,6 +79,7 @@ impl Declaration {
     /// ```
     pub fn config(mut self, defaults: impl serde::Serialize) -> Self {
         match Config::from_fields(&defaults) {
+            Ok(config) if self.defaults.is_empty() => self.defaults = config,
             Ok(config) => self.defaults.merge(&config),
             Err(error) => self.config_error = Some(error),
         }
