@@ -64,9 +64,31 @@ impl SensorConfig {
         }
     }
 
-    /// The config as the component's tag and run configuration set it.
-    pub(super) fn of<E: Environment>(bind: &Bind<E>) -> Result<Self, BindError> {
-        bind.config()
+    /// The configured frame rate, a positive number.
+    pub(super) fn frame_rate<E: Environment>(&self, bind: &Bind<E>) -> Result<f64, BindError> {
+        let fps = self.fps;
+        if !(fps > 0.0 && fps.is_finite()) {
+            return Err(bind.error(format!("fps must be a positive number, not {fps}")));
+        }
+        Ok(fps)
+    }
+
+    /// The calibration `calibration` names: `"none"` (the reference model), `"bundled"` (the
+    /// kind's own) or a calibration file.
+    pub(super) fn calibration<E: Environment>(
+        &self,
+        kind: &dyn SensorKind,
+        bind: &Bind<E>,
+    ) -> Result<Option<Calibration>, BindError> {
+        match self.calibration.as_str() {
+            "none" => Ok(None),
+            "bundled" => kind.bundled_calibration().map(Some).ok_or_else(|| {
+                bind.error("calibration = \"bundled\", but this sensor has no bundled calibration")
+            }),
+            path => Calibration::load(path)
+                .map(Some)
+                .map_err(|e| bind.error(format!("calibration = {path:?}: {e}"))),
+        }
     }
 
     /// Whether its model splits each image across threads.
@@ -119,32 +141,6 @@ pub trait SensorKind {
         noise: bool,
         calibration: Option<Calibration>,
     ) -> Result<Box<dyn Optics>, String>;
-}
-
-/// The configured frame rate, a positive number.
-pub(super) fn frame_rate<E: Environment>(bind: &Bind<E>) -> Result<f64, BindError> {
-    let fps = SensorConfig::of(bind)?.fps;
-    if !(fps > 0.0 && fps.is_finite()) {
-        return Err(bind.error(format!("fps must be a positive number, not {fps}")));
-    }
-    Ok(fps)
-}
-
-/// The calibration the config's `calibration` names: `"none"` (the reference model),
-/// `"bundled"` (the kind's own) or a calibration file.
-pub(super) fn calibration<E: Environment>(
-    kind: &dyn SensorKind,
-    bind: &Bind<E>,
-) -> Result<Option<Calibration>, BindError> {
-    match SensorConfig::of(bind)?.calibration.as_str() {
-        "none" => Ok(None),
-        "bundled" => kind.bundled_calibration().map(Some).ok_or_else(|| {
-            bind.error("calibration = \"bundled\", but this sensor has no bundled calibration")
-        }),
-        path => Calibration::load(path)
-            .map(Some)
-            .map_err(|e| bind.error(format!("calibration = {path:?}: {e}"))),
-    }
 }
 
 /// Refuses config that changes the geometry the optical model is made for: `fixed`, a struct

@@ -10,7 +10,7 @@ use yarok_core::component::{Bind, BindError, Environment};
 use yarok_core::time::Clock;
 use yarok_mjc::DepthImage;
 
-use super::kind::{Optics, SensorConfig, SensorKind, calibration, frame_rate};
+use super::kind::{Optics, SensorConfig, SensorKind};
 use super::sensor::{Contact, GelContact, TactileError, TactileFeed, TactileSensor};
 use crate::tactile::default_background;
 use crate::tactile::elastomer::Elastomer;
@@ -126,10 +126,10 @@ impl Modelled {
         bind: &mut Bind<E>,
         sensing: Box<dyn GelSensing>,
     ) -> Result<TactileSensor, BindError> {
-        let fps = frame_rate(bind)?;
-        let config = SensorConfig::of(bind)?;
+        let config: SensorConfig = bind.config()?;
+        let fps = config.frame_rate(bind)?;
         let (noise, parallel) = (config.noise(), config.parallel());
-        let calibration = calibration(kind, bind)?;
+        let calibration = config.calibration(kind, bind)?;
         #[cfg_attr(not(feature = "parallel"), expect(unused_mut))]
         let mut optics = kind
             .optics(bind.seed(), noise, calibration)

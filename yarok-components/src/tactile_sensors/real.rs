@@ -5,7 +5,7 @@ use std::rc::Rc;
 use image::RgbImage;
 use yarok_core::component::{Bind, BindError};
 
-use super::kind::{Optics, SensorKind, frame_rate};
+use super::kind::{Optics, SensorConfig, SensorKind};
 use super::sensor::{TactileFeed, TactileSensor};
 use crate::cameras::real::{RealFrames, bind_frames};
 
@@ -44,7 +44,7 @@ impl TactileSensor {
         kind: &dyn SensorKind,
         bind: &mut Bind<yarok_hw::Real>,
     ) -> Result<Self, BindError> {
-        let fps = frame_rate(bind)?;
+        let fps = bind.config::<SensorConfig>()?.frame_rate(bind)?;
         let (width, height) = kind.size();
         let turned = kind.turned();
         let (across, down) = if turned {

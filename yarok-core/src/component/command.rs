@@ -45,7 +45,7 @@ impl NamedCommand {
 
     /// The command's path: its component's path, then its name (`/arm/command`).
     pub fn path(&self) -> String {
-        format!("{}/{}", self.component.trim_end_matches('/'), self.name)
+        super::probe::path_within(&self.component, &self.name)
     }
 
     /// Runs the command with `body` (JSON): it starts what it asks for and returns; waiting

@@ -42,6 +42,12 @@ impl ProbeImage {
     }
 }
 
+/// The path of what a component registers under `name` (a probe, a state, a command): the
+/// component's path, then the name (`/arm/state`; `/state` for the world's own).
+pub(super) fn path_within(component: &str, name: &str) -> String {
+    format!("{}/{name}", component.trim_end_matches('/'))
+}
+
 /// What reads a probe's image.
 type ReadProbe = Box<dyn Fn() -> Result<ProbeImage, BoxError>>;
 
@@ -84,7 +90,7 @@ impl Probe {
 
     /// The probe's path: its component's path, then its name (`/arm/gripper/left/image`).
     pub fn path(&self) -> String {
-        format!("{}/{}", self.component, self.name)
+        path_within(&self.component, &self.name)
     }
 
     /// The image now (a camera renders it).

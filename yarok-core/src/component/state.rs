@@ -45,7 +45,7 @@ impl NamedState {
 
     /// The state's path: its component's path, then its name (`/arm/state`).
     pub fn path(&self) -> String {
-        format!("{}/{}", self.component.trim_end_matches('/'), self.name)
+        super::probe::path_within(&self.component, &self.name)
     }
 
     /// The value now, as JSON.
