@@ -26,6 +26,8 @@ pub(super) struct Loader {
     /// Where each template came from, by the elements' `origin`.
     pub(super) origins: Vec<Origin>,
     loaded: HashMap<std::any::TypeId, Loaded>,
+    /// Declarations read for their tag before their template is loaded, kept for the load.
+    declared: HashMap<std::any::TypeId, Declaration>,
     /// The declaration of a world declared at run time, used for the first component loaded.
     runtime_world: Option<Declaration>,
     /// The component types whose templates are being loaded (`extends` chains), outermost first.
@@ -37,16 +39,22 @@ impl Loader {
         Self {
             origins: Vec::new(),
             loaded: HashMap::new(),
+            declared: HashMap::new(),
             runtime_world,
             loading: Vec::new(),
         }
     }
 
     /// A component type's tag, from its loaded template when there is one.
-    pub(super) fn tag_of(&self, component: ComponentType) -> String {
-        self.loaded
-            .get(&component.type_id())
-            .map_or_else(|| component.declaration().tag, |l| l.tag.clone())
+    pub(super) fn tag_of(&mut self, component: ComponentType) -> String {
+        if let Some(loaded) = self.loaded.get(&component.type_id()) {
+            return loaded.tag.clone();
+        }
+        let declared = self.declared.entry(component.type_id());
+        declared
+            .or_insert_with(|| component.declaration())
+            .tag
+            .clone()
     }
 
     pub(super) fn load(
@@ -60,6 +68,7 @@ impl Loader {
         let declaration = self
             .runtime_world
             .take()
+            .or_else(|| self.declared.remove(&component.type_id()))
             .unwrap_or_else(|| component.declaration());
         let origin = self.origins.len();
         let (text, label, file_dir) = template_text(&declaration, component, path)?;

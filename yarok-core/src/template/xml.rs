@@ -1,6 +1,7 @@
 //! A small XML element tree that remembers where each element and attribute came from, so that
 //! errors can name the template's line and column.
 
+use std::cell::Cell;
 use std::fmt;
 
 use quick_xml::Reader;
@@ -348,6 +349,10 @@ fn skip_value(raw: &str, cursor: usize) -> usize {
 struct LineIndex<'a> {
     source: &'a str,
     starts: Vec<usize>,
+    /// The last offset asked for, its line and its column (characters from the line's start):
+    /// a parse asks in increasing order, so a long line's columns are counted once, not once
+    /// per attribute.
+    last: Cell<(usize, usize, usize)>,
 }
 
 impl<'a> LineIndex<'a> {
@@ -355,21 +360,32 @@ impl<'a> LineIndex<'a> {
         let starts = std::iter::once(0)
             .chain(source.match_indices('\n').map(|(i, _)| i + 1))
             .collect();
-        Self { source, starts }
+        Self {
+            source,
+            starts,
+            last: Cell::new((0, 1, 0)),
+        }
     }
 
     fn position(&self, offset: usize) -> Position {
         let offset = offset.min(self.source.len());
         let line = self.starts.partition_point(|&start| start <= offset);
         let start = self.starts[line - 1];
-        let column = self
-            .source
-            .get(start..offset)
-            .map_or(offset - start, |s| s.chars().count())
-            + 1;
+        let (last_offset, last_line, last_column) = self.last.get();
+        let (from, counted) = if last_line == line && (start..=offset).contains(&last_offset) {
+            (last_offset, last_column)
+        } else {
+            (start, 0)
+        };
+        let column = counted
+            + self
+                .source
+                .get(from..offset)
+                .map_or(offset - from, |s| s.chars().count());
+        self.last.set((offset, line, column));
         Position {
             line: line as u32,
-            column: column as u32,
+            column: column as u32 + 1,
         }
     }
 }

@@ -494,7 +494,7 @@ impl<'o> Composer<'o> {
     }
 
     /// A component type's tag, from its loaded template when there is one.
-    fn tag_of(&self, component: ComponentType) -> String {
+    fn tag_of(&mut self, component: ComponentType) -> String {
         self.loader.tag_of(component)
     }
 
