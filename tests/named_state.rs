@@ -2,7 +2,8 @@
 //! named command, and the plugins see it with no code naming its type: the MCAP recorder
 //! records the state, read back by PyPI's `mcap` (a third-party reader, a separate process);
 //! the Zenoh bridge (feature `zenoh`) publishes it and takes the command from the Zenoh
-//! project's own Python client.
+//! project's own Python client, answering bodies it refuses with an error naming the command
+//! and the field, and changing nothing for them.
 
 use std::cell::Cell;
 use std::rc::Rc;
@@ -178,7 +179,31 @@ fn a_third_party_zenoh_client_reads_a_users_state_and_commands_it() {
             r#"{"brightness": 0.8}"#,
             "brightness",
             "0.8",
+            r#"{"brightness": "bright"}"#,
+            r#"{"brightness": 2}"#,
+            "not json",
         ],
+    );
+    let refused: Vec<serde_json::Value> = printed
+        .lines()
+        .filter_map(|line| line.strip_prefix("refused "))
+        .map(|reply| serde_json::from_str(reply).unwrap())
+        .collect();
+    let errors: Vec<&str> = refused
+        .iter()
+        .map(|reply| {
+            assert_eq!(reply["ok"], false, "{printed}");
+            reply["error"].as_str().unwrap()
+        })
+        .collect();
+    assert_eq!(
+        errors,
+        [
+            "command /dimmer/set: brightness: invalid type: string \"bright\", expected f64",
+            "command /dimmer/set: brightness 2 is not within 0–1",
+            "yarok/room/dimmer/set: the body is not JSON: expected ident at line 1 column 2",
+        ],
+        "{printed}"
     );
     let brightness = world.join().unwrap().unwrap();
     assert_eq!(brightness, 0.8);
@@ -189,5 +214,6 @@ fn a_third_party_zenoh_client_reads_a_users_state_and_commands_it() {
     assert_eq!(peers::field(&printed, "reply"), r#"{"ok": true}"#);
     let changed: serde_json::Value =
         serde_json::from_str(peers::field(&printed, "changed")).unwrap();
+    // The refused bodies changed nothing: the one change is the accepted command's.
     assert_eq!(changed["changes"], 1, "{printed}");
 }

@@ -2,9 +2,11 @@
 eclipse-zenoh (the Zenoh project's Python client, a third-party peer run as a separate process):
 reads the state, sends the command, and waits for the reply and for the state to show it.
 
-Usage: zenoh_named.py ENDPOINT WORLD PATH STATE COMMAND BODY_JSON FIELD VALUE_JSON
-Prints, a line each: `state JSON` (the first state read), `reply JSON`, `changed JSON` (the
-first state whose FIELD is VALUE after the reply), or exits non-zero saying what did not come.
+Usage: zenoh_named.py ENDPOINT WORLD PATH STATE COMMAND BODY_JSON FIELD VALUE_JSON [REFUSED_JSON…]
+Each REFUSED_JSON body is sent first, one at a time, each answered before the next.
+Prints, a line each: `state JSON` (the first state read), `refused JSON` (each refused body's
+reply), `reply JSON`, `changed JSON` (the first state whose FIELD is VALUE after the reply), or
+exits non-zero saying what did not come.
 """
 
 import json
@@ -17,6 +19,7 @@ import zenoh
 
 def main():
     endpoint, world, path, state, command, body, field, value = sys.argv[1:9]
+    refused_bodies = sys.argv[9:]
     body, value = json.loads(body), json.loads(value)
     prefix = f"yarok/{world}/{path}"
     config = zenoh.Config()
@@ -44,6 +47,16 @@ def main():
             if key == f"{prefix}/{state}":
                 first = json.loads(payload)
         print("state", json.dumps(first, sort_keys=True), flush=True)
+        for refused in refused_bodies:
+            session.put(f"{prefix}/{command}", refused)
+            deadline = time.monotonic() + 20
+            while True:
+                key, payload = next_sample(deadline)
+                if key is None:
+                    sys.exit(f"no reply came to {refused}")
+                if key == f"{prefix}/reply":
+                    print("refused", json.dumps(json.loads(payload), sort_keys=True), flush=True)
+                    break
         session.put(f"{prefix}/{command}", json.dumps(body))
         reply, changed, deadline = None, None, time.monotonic() + 20
         while changed is None:

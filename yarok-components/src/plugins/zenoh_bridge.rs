@@ -254,7 +254,7 @@ fn serve(
                     .rsplit_once('/')
                     .unwrap_or(("", "command"));
                 let body = serde_json::from_slice(&sample.payload().to_bytes())
-                    .map_err(|e| format!("not JSON: {e}"));
+                    .map_err(|e| format!("{key}: the body is not JSON: {e}"));
                 let _ = commands.send(Command {
                     path: path.to_owned(),
                     name: name.to_owned(),

@@ -385,7 +385,8 @@ impl<E: Environment> Bind<E> {
             .push(NamedCommand::new(
                 self.context.path.clone(),
                 name.to_owned(),
-                Box::new(move |body| run(serde_json::from_value(body)?)),
+                // The path names the field a body got wrong (`brightness: invalid type: …`).
+                Box::new(move |body| run(serde_path_to_error::deserialize(body)?)),
             ));
     }
 
