@@ -38,38 +38,28 @@ def main():
                     continue
             return None, None
 
-        deadline = time.monotonic() + 20
-        first = None
-        while first is None:
-            key, payload = next_sample(deadline)
-            if key is None:
-                sys.exit(f"no {prefix}/{state} came")
-            if key == f"{prefix}/{state}":
-                first = json.loads(payload)
-        print("state", json.dumps(first, sort_keys=True), flush=True)
-        for refused in refused_bodies:
-            session.put(f"{prefix}/{command}", refused)
-            deadline = time.monotonic() + 20
+        def next_on(leaf, deadline, what):
+            """The JSON of the next sample at PREFIX/leaf before `deadline`; exits if none came."""
             while True:
                 key, payload = next_sample(deadline)
                 if key is None:
-                    sys.exit(f"no reply came to {refused}")
-                if key == f"{prefix}/reply":
-                    print("refused", json.dumps(json.loads(payload), sort_keys=True), flush=True)
-                    break
+                    sys.exit(f"no {what} came")
+                if key == f"{prefix}/{leaf}":
+                    return json.loads(payload)
+
+        first = next_on(state, time.monotonic() + 20, f"{prefix}/{state}")
+        print("state", json.dumps(first, sort_keys=True), flush=True)
+        for refused in refused_bodies:
+            session.put(f"{prefix}/{command}", refused)
+            reply = next_on("reply", time.monotonic() + 20, f"reply to {refused}")
+            print("refused", json.dumps(reply, sort_keys=True), flush=True)
         session.put(f"{prefix}/{command}", json.dumps(body))
-        reply, changed, deadline = None, None, time.monotonic() + 20
-        while changed is None:
-            key, payload = next_sample(deadline)
-            if key is None:
-                sys.exit(f"no change came (reply {reply})")
-            if key == f"{prefix}/reply":
-                reply = json.loads(payload)
-                print("reply", json.dumps(reply, sort_keys=True), flush=True)
-            elif key == f"{prefix}/{state}" and reply is not None:
-                seen = json.loads(payload)
-                if seen.get(field) == value:
-                    changed = seen
+        deadline = time.monotonic() + 20
+        reply = next_on("reply", deadline, "reply")
+        print("reply", json.dumps(reply, sort_keys=True), flush=True)
+        changed = next_on(state, deadline, f"change (reply {reply})")
+        while changed.get(field) != value:
+            changed = next_on(state, deadline, f"change (reply {reply})")
         print("changed", json.dumps(changed, sort_keys=True), flush=True)
 
 

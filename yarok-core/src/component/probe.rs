@@ -1,6 +1,7 @@
 //! [`Probe`]: an image a component shows of what it senses — a camera's colour and depth, a
 //! tactile sensor's image — read on demand by inspectors and recorders.
 
+use super::Named;
 use crate::BoxError;
 
 /// An image a probe shows, top row first.
@@ -42,57 +43,11 @@ impl ProbeImage {
     }
 }
 
-/// The path of what a component registers under `name` (a probe, a state, a command): the
-/// component's path, then the name (`/arm/state`; `/state` for the world's own).
-pub(super) fn path_within(component: &str, name: &str) -> String {
-    format!("{}/{name}", component.trim_end_matches('/'))
-}
-
-/// What reads a probe's image.
-type ReadProbe = Box<dyn Fn() -> Result<ProbeImage, BoxError>>;
-
-/// A named image of one component, registered with
-/// [`Bind::probe`](super::Bind::probe) and listed to plugins by
-/// [`World::probes`](crate::runtime::World::probes).
-pub struct Probe {
-    component: String,
-    name: String,
-    read: ReadProbe,
-}
-
-impl std::fmt::Debug for Probe {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Probe")
-            .field("component", &self.component)
-            .field("name", &self.name)
-            .finish()
-    }
-}
+/// A named image of one component, registered with [`Bind::probe`](super::Bind::probe) and
+/// listed to plugins by [`World::probes`](crate::runtime::World::probes).
+pub type Probe = Named<dyn Fn() -> Result<ProbeImage, BoxError>>;
 
 impl Probe {
-    pub(crate) fn new(component: String, name: String, read: ReadProbe) -> Self {
-        Self {
-            component,
-            name,
-            read,
-        }
-    }
-
-    /// The component's path.
-    pub fn component(&self) -> &str {
-        &self.component
-    }
-
-    /// The probe's name within its component (`"rgb"`, `"depth"`, `"image"`).
-    pub fn name(&self) -> &str {
-        &self.name
-    }
-
-    /// The probe's path: its component's path, then its name (`/arm/gripper/left/image`).
-    pub fn path(&self) -> String {
-        path_within(&self.component, &self.name)
-    }
-
     /// The image now (a camera renders it).
     ///
     /// # Errors
@@ -100,6 +55,6 @@ impl Probe {
     /// The component's, when it cannot make the image, naming the probe
     /// (`probe /arm/gripper/left/image: …`).
     pub fn read(&self) -> Result<ProbeImage, BoxError> {
-        (self.read)().map_err(|e| format!("probe {}: {e}", self.path()).into())
+        (self.function())().map_err(|e| format!("probe {}: {e}", self.path()).into())
     }
 }
