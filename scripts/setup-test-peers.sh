@@ -3,7 +3,8 @@
 #  - ffmpeg (Debian's), which encodes the camera frames the decoders are checked against and
 #    the video recorder's films, and libclang with the kernel's headers, which the `camera`
 #    feature's V4L2 bindings are built from; Xvfb and libX11, the X server and client library
-#    the viewer's tests open windows with;
+#    the viewer's tests open windows with; Tesseract OCR (Apache-2.0), which reads back the
+#    text the inspector draws;
 #  - in a Python virtual environment of their own (${YAROK_CACHE_DIR:-~/.cache/yarok}/peers):
 #    OctoPrint's VirtualPrinter, a Marlin emulator (AGPL: the tests only run it as a separate
 #    process, through scripts/peers/virtual_printer_bridge.py; nothing links or ships it), and
@@ -35,6 +36,7 @@ fi
 install_missing_packages "libclang and the kernel's headers, for the camera feature" \
   libclang-dev linux-libc-dev
 install_missing_packages "an X server and libX11, for the viewer's tests" xvfb libx11-6
+install_missing_packages "Tesseract OCR, for the inspector's test" tesseract-ocr tesseract-ocr-eng
 
 peers="${YAROK_CACHE_DIR:-$HOME/.cache/yarok}/peers"
 if [ ! -x "$peers/bin/python" ]; then

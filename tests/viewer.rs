@@ -5,7 +5,8 @@
 //! closing the window ends the run cleanly; Backspace puts the world back under a behaviour in
 //! motion, which ends saying its motion was stopped; kept open, the window shows the world as the
 //! behaviour left it until it is closed; the inspector's window
-//! shows the DIGITs' images; without an X server the viewer fails saying so, or runs on when
+//! shows the DIGITs' images and, under them, the arm's and gripper's named states as text that
+//! Tesseract OCR (a separate process) reads back; without an X server the viewer fails saying so, or runs on when
 //! asked to.
 #![cfg(feature = "viewer")]
 
@@ -163,7 +164,7 @@ fn the_viewer_shows_the_scene_pauses_on_a_key_and_ends_the_run_when_closed() {
 }
 
 #[test]
-fn the_inspector_shows_the_probes_images() {
+fn the_inspector_shows_the_probes_images_and_the_named_states() {
     let x = Xvfb::start();
     let folder = tempfile::tempdir().unwrap();
     let out = format!("behaviour/out={:?}", folder.path().display().to_string());
@@ -172,8 +173,16 @@ fn the_inspector_shows_the_probes_images() {
     std::thread::sleep(Duration::from_millis(500));
     let shot = folder.path().join("inspector.png");
     let size = x.window("yarok inspector", &["screenshot", shot.to_str().unwrap()]);
-    // Four images (each DIGIT's tactile image and depth, 240×320) side by side.
-    assert_eq!(size.trim(), "size 980 348");
+    // Four images (each DIGIT's tactile image and depth, 240×320, under their labels) side by
+    // side, 348 pixels high; the named states' rows under them.
+    let (width, height) = size
+        .trim()
+        .strip_prefix("size ")
+        .unwrap()
+        .split_once(' ')
+        .unwrap();
+    assert_eq!(width, "980");
+    assert!(height.parse::<u32>().unwrap() > 348 + 6 * 10, "{size}");
     let image = image::open(&shot).unwrap().to_rgb8();
     // The tactile images' gel, under their labels: the colours of the real DIGIT's untouched gel
     // that the bundled calibration draws.
@@ -193,9 +202,47 @@ fn the_inspector_shows_the_probes_images() {
             .count();
         assert!(gel > 240 * 320 / 4, "{gel} gel pixels in the {half} half");
     }
+    assert_shows_named_states(&peers::run("ocr.py", &[shot.to_str().unwrap(), "348"]));
     x.window("yarok inspector", &["close"]);
     let (status, stderr) = finished(run, Duration::from_secs(30));
     assert!(status.success(), "{status}: {stderr}");
+}
+
+/// `text`, read from the inspector's table, has the gripper's and the arm's states: each field
+/// under its component's path and the state's name, with a value of its kind.
+fn assert_shows_named_states(text: &str) {
+    let value = |name: &str| {
+        let line = text.lines().find(|line| line.contains(name));
+        let line = line.unwrap_or_else(|| panic!("no `{name}` in:\n{text}"));
+        line.split_once(name).unwrap().1.trim().to_owned()
+    };
+    for flag in ["gripper state moving", "gripper state object_detected"] {
+        assert!(["true", "false"].contains(&value(flag).as_str()), "{text}");
+    }
+    let position: f64 = value("gripper state position").parse().expect(text);
+    assert!((0.0..=255.0).contains(&position), "{text}");
+    // q, qd and the TCP: six numbers each, to three decimals, in brackets.
+    let vectors: Vec<&str> = text
+        .lines()
+        .filter(|line| line.contains("arm state"))
+        .collect();
+    assert_eq!(vectors.len(), 3, "{text}");
+    for line in vectors {
+        let numbers = line
+            .split_once('[')
+            .and_then(|(_, rest)| rest.strip_suffix(']'));
+        let numbers: Vec<&str> = numbers.expect(text).split_whitespace().collect();
+        assert_eq!(numbers.len(), 6, "{text}");
+        for number in numbers {
+            let decimals = number.split_once('.').map(|(_, decimals)| decimals.len());
+            assert!(
+                number.parse::<f64>().is_ok() && decimals == Some(3),
+                "{text}"
+            );
+        }
+    }
+    assert!(value("arm state q").starts_with('['), "{text}");
+    assert!(value("arm state qd").starts_with('['), "{text}");
 }
 
 #[test]

@@ -102,7 +102,7 @@ pub use model::{
 pub use model_cache::ModelSource;
 #[cfg(feature = "viewer")]
 pub use render::{
-    Button, Corner, Gallery, Key, Overlay, Picture, View, Visual, Window, WindowEvent,
+    Button, Corner, Gallery, Key, Overlay, Picture, TextRow, View, Visual, Window, WindowEvent,
 };
 #[cfg(feature = "render")]
 pub use render::{MAX_GEOMS, RenderError, RenderPreset, Renderer, RendererBuilder};

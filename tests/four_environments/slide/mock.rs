@@ -2,9 +2,7 @@
 
 use std::cell::Cell;
 
-use yarok::prelude::*;
-
-use super::{Slide, SlideDrive};
+use super::*;
 
 impl SlideDrive for Cell<f64> {
     fn move_to(&self, mm: f64) {

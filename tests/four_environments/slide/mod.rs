@@ -28,8 +28,10 @@ pub(crate) struct Slide {
 
 impl Slide {
     fn new<E: Environment>(bind: &Bind<E>, drive: impl SlideDrive + 'static) -> Self {
-        let (drive, clock) = (Rc::new(drive), bind.clock());
-        Self { drive, clock }
+        Self {
+            drive: Rc::new(drive),
+            clock: bind.clock(),
+        }
     }
 
     /// Where the carriage is (mm).

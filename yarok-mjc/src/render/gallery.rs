@@ -1,4 +1,5 @@
-//! [`Gallery`]: a window showing images side by side, each under its label.
+//! [`Gallery`]: a window showing images side by side, each under its label, and a table of
+//! text rows under them.
 
 use std::marker::PhantomData;
 use std::sync::Arc;
@@ -11,6 +12,9 @@ use crate::{Model, sys};
 /// Pixels between images, and above each for its label.
 const GAP: u32 = 4;
 const LABEL: u32 = 24;
+/// Pixels between a table row's name and its value, and between rows.
+const COLUMN_GAP: u32 = 16;
+const ROW_GAP: u32 = 3;
 
 /// An RGB image (`3 · width · height` bytes, top row first) and its label.
 #[derive(Debug, Clone, Copy)]
@@ -25,8 +29,17 @@ pub struct Picture<'a> {
     pub rgb: &'a [u8],
 }
 
-/// A window showing pictures side by side in rows, at their own size, each under its label;
-/// the window grows to fit them. Not `Send`.
+/// A row of the table under the pictures: a name and its value, one line each.
+#[derive(Debug, Clone, Copy)]
+pub struct TextRow<'a> {
+    /// What the value is (`/arm state q`).
+    pub name: &'a str,
+    /// The value (`0.000 -1.571 1.571`).
+    pub value: &'a str,
+}
+
+/// A window showing pictures side by side in rows, at their own size, each under its label,
+/// and a table of text rows under them; the window grows to fit them. Not `Send`.
 pub struct Gallery {
     window: Window,
     /// MuJoCo's rendering context, for its pixel and text drawing (made from an empty model).
@@ -84,16 +97,27 @@ impl Gallery {
         &self.window
     }
 
-    /// Shows `pictures`, in rows no wider than `max_width` pixels.
+    /// Shows `pictures`, in rows no wider than `max_width` pixels, and `table` under them.
     ///
     /// # Errors
     ///
     /// [`RenderError::Empty`] for a picture whose pixels do not fill its size;
     /// [`RenderError::Egl`].
-    pub fn show(&mut self, pictures: &[Picture<'_>], max_width: u32) -> Result<(), RenderError> {
+    pub fn show(
+        &mut self,
+        pictures: &[Picture<'_>],
+        table: &[TextRow<'_>],
+        max_width: u32,
+    ) -> Result<(), RenderError> {
         let places = layout(pictures, max_width);
-        let width = places.iter().map(|p| p.0 + p.2).max().unwrap_or(1) + GAP;
-        let height = places.iter().map(|p| p.1 + p.3).max().unwrap_or(1) + GAP;
+        let pictures_bottom = places.iter().map(|p| p.1 + p.3).max().unwrap_or(0) + GAP;
+        let line = u32::try_from(self.context.charHeight).unwrap_or(0) + ROW_GAP;
+        let names_width = table.iter().map(|row| self.text_width(row.name)).max();
+        let value_left = GAP + names_width.unwrap_or(0) + COLUMN_GAP;
+        let values_width = table.iter().map(|row| self.text_width(row.value)).max();
+        let width = (places.iter().map(|p| p.0 + p.2).max().unwrap_or(1) + GAP)
+            .max(values_width.map_or(1, |w| value_left + w + GAP));
+        let height = pictures_bottom + line * table.len() as u32;
         if self.window.size() != (width, height) {
             self.window.resize(width, height);
         }
@@ -141,7 +165,43 @@ impl Gallery {
                 );
             }
         }
+        let table_height = height - pictures_bottom;
+        // SAFETY: the context is current and the rectangle within the window; it also makes the
+        // table's rectangle the viewport its text is placed in.
+        unsafe { mj.mjr_rectangle(rect(0, 0, width, table_height), 0.13, 0.13, 0.15, 1.0) };
+        for (index, row) in table.iter().enumerate() {
+            let baseline = table_height - line * (index as u32 + 1) + line / 4;
+            for (left, text, shade) in [(GAP, row.name, 0.7), (value_left, row.value, 0.95)] {
+                let text = std::ffi::CString::new(text.replace('\0', " ")).unwrap_or_default();
+                // SAFETY: the context is current; the text is NUL-terminated.
+                unsafe {
+                    mj.mjr_text(
+                        sys::mjFONT_NORMAL as i32,
+                        text.as_ptr(),
+                        &*self.context,
+                        left as f32 / width as f32,
+                        baseline as f32 / table_height as f32,
+                        shade,
+                        shade,
+                        shade,
+                    );
+                }
+            }
+        }
         self.window.swap()
+    }
+
+    /// How wide `text` is drawn in the normal font (pixels); characters the font lacks count as
+    /// a space.
+    fn text_width(&self, text: &str) -> u32 {
+        let widths = &self.context.charWidth;
+        let width = |c: char| {
+            let known = usize::try_from(u32::from(c))
+                .ok()
+                .filter(|&c| c < widths.len());
+            widths[known.unwrap_or(usize::from(b' '))]
+        };
+        u32::try_from(text.chars().map(width).sum::<i32>()).unwrap_or(0)
     }
 }
 

@@ -11,7 +11,7 @@ mod view;
 mod window;
 
 #[cfg(feature = "viewer")]
-pub use gallery::{Gallery, Picture};
+pub use gallery::{Gallery, Picture, TextRow};
 #[cfg(feature = "viewer")]
 pub use view::{Corner, Overlay, View, Visual};
 #[cfg(feature = "viewer")]
