@@ -2,8 +2,10 @@
 //! serial arm in MJCF.
 
 mod anet_a30;
+mod motion;
 mod profile;
 pub mod serial;
 pub mod ur;
 
 pub use anet_a30::{ARRIVED_MM, AnetA30, AxesDrive, WORK_VOLUME_MM};
+pub use motion::Motion;

@@ -1,8 +1,6 @@
 //! [`SerialArm`]: what a behaviour holds of any serial arm — joints, TCP, and motions with the
 //! UR arms' meaning (`move_j`, `move_l`, `stop`) in platform time.
 
-use std::future::{Future, IntoFuture};
-use std::pin::Pin;
 use std::rc::Rc;
 
 use nalgebra::Isometry3;
@@ -13,6 +11,8 @@ use super::controller::{Actuation, Controller, Goal, SimJoints, within};
 use super::error::SerialMotionError;
 use super::kinematics::{SerialKinematics, TcpFrame};
 use super::names::SerialNames;
+use crate::robots::Motion;
+use crate::robots::motion::MotionControl;
 use crate::robots::ur::{ARRIVED_M, ARRIVED_RAD, MOVE_J_DEFAULTS, MOVE_L_DEFAULTS};
 
 /// How stiffly (rad/s, the natural frequency of the tracking error) motor-driven joints follow
@@ -189,7 +189,7 @@ impl SerialArm {
 
     /// A joint motion to `target` (URScript `movej`'s meaning): every joint starts and stops
     /// together, the one moving furthest at the speed and acceleration given
-    /// ([`MOVE_J_DEFAULTS`]). `.await` it, or [`SerialMove::start`] it.
+    /// ([`MOVE_J_DEFAULTS`]). `.await` it, or [`Motion::start`] it.
     pub fn move_j(&self, target: Vec<f64>) -> SerialMove<'_> {
         self.motion(Goal::Joints(target), MOVE_J_DEFAULTS)
     }
@@ -205,13 +205,8 @@ impl SerialArm {
         self.motion(Goal::Line(pose), MOVE_L_DEFAULTS)
     }
 
-    fn motion(&self, goal: Goal, (speed, acceleration): (f64, f64)) -> SerialMove<'_> {
-        SerialMove {
-            controller: &self.controller,
-            goal,
-            speed,
-            acceleration,
-        }
+    fn motion(&self, goal: Goal, defaults: (f64, f64)) -> SerialMove<'_> {
+        Motion::new(&*self.controller, goal, defaults)
     }
 
     /// Stops the motion under way: it decelerates along its path at its own acceleration; its
@@ -221,86 +216,6 @@ impl SerialArm {
     }
 }
 
-/// A serial arm's motion about to start: set its speed and acceleration, then `.await` it (it
-/// resolves on arrival) or [`SerialMove::start`] it.
-///
-/// # Cancel safety
-///
-/// Dropping the awaited future before arrival stops the arm (as [`SerialArm::stop`]).
-#[must_use = "a motion does nothing until awaited or started"]
-pub struct SerialMove<'a> {
-    controller: &'a Controller,
-    goal: Goal,
-    speed: f64,
-    acceleration: f64,
-}
-
-impl std::fmt::Debug for SerialMove<'_> {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("SerialMove")
-            .field("goal", &self.goal)
-            .field("speed", &self.speed)
-            .field("acceleration", &self.acceleration)
-            .finish()
-    }
-}
-
-impl SerialMove<'_> {
-    /// The speed: of the leading joint for `move_j`, of the TCP (m/s) for `move_l`.
-    pub fn speed(mut self, speed: f64) -> Self {
-        self.speed = speed;
-        self
-    }
-
-    /// The acceleration.
-    pub fn acceleration(mut self, acceleration: f64) -> Self {
-        self.acceleration = acceleration;
-        self
-    }
-
-    /// Starts the motion and returns at once.
-    ///
-    /// # Errors
-    ///
-    /// [`SerialMotionError`] when the target or a point on the way cannot be reached, or the
-    /// limits are not positive numbers: nothing moves then.
-    pub fn start(self) -> Result<(), SerialMotionError> {
-        self.controller
-            .start(self.goal, self.speed, self.acceleration)
-            .map(drop)
-    }
-}
-
-impl<'a> IntoFuture for SerialMove<'a> {
-    type Output = Result<(), SerialMotionError>;
-    type IntoFuture = Pin<Box<dyn Future<Output = Self::Output> + 'a>>;
-
-    fn into_future(self) -> Self::IntoFuture {
-        Box::pin(async move {
-            let controller = self.controller;
-            let id = controller.start(self.goal, self.speed, self.acceleration)?;
-            let _stop_if_dropped = StopIfDropped { controller, id };
-            let mut outcome = None;
-            controller
-                .clock()
-                .wait(|| {
-                    outcome = controller.outcome(id);
-                    outcome.is_some()
-                })
-                .await?;
-            outcome.unwrap_or(Err(SerialMotionError::Replaced))
-        })
-    }
-}
-
-/// Stops motion `id` when its future is dropped before it ends.
-struct StopIfDropped<'a> {
-    controller: &'a Controller,
-    id: u64,
-}
-
-impl Drop for StopIfDropped<'_> {
-    fn drop(&mut self) {
-        self.controller.stop(Some(self.id));
-    }
-}
+/// A serial arm's motion about to start ([`SerialArm::move_j`], [`SerialArm::move_l`]):
+/// `.await` it, or [`Motion::start`] it.
+pub type SerialMove<'a> = Motion<'a, SerialMotionError>;

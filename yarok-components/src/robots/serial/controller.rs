@@ -6,6 +6,8 @@ use std::cell::RefCell;
 
 use nalgebra::Isometry3;
 use yarok_core::time::Clock;
+
+use crate::robots::motion::MotionControl;
 use yarok_mjc::{Actuator, Joint, ServoGains};
 
 use super::error::SerialMotionError;
@@ -185,10 +187,6 @@ impl Controller {
         }
     }
 
-    pub(super) fn clock(&self) -> &Clock {
-        &self.clock
-    }
-
     pub(super) fn kinematics(&self) -> std::cell::RefMut<'_, SerialKinematics> {
         self.kinematics.borrow_mut()
     }
@@ -341,11 +339,16 @@ impl Controller {
             actuator.set(control);
         }
     }
+}
+
+impl MotionControl for Controller {
+    type Goal = Goal;
+    type Error = SerialMotionError;
 
     /// Starts a motion after checking its whole path; its id.
-    pub(super) fn start(
+    fn start(
         &self,
-        goal: Goal,
+        goal: Self::Goal,
         speed: f64,
         acceleration: f64,
     ) -> Result<u64, SerialMotionError> {
@@ -397,7 +400,7 @@ impl Controller {
     }
 
     /// Stops the motion under way (only motion `id`, if given): it decelerates along its path.
-    pub(super) fn stop(&self, id: Option<u64>) {
+    fn stop(&self, id: Option<u64>) {
         let mut state = self.state.borrow_mut();
         let now = self.clock.time();
         let Some(motion) = state.motion.as_mut() else {
@@ -413,13 +416,21 @@ impl Controller {
     }
 
     /// How motion `id` is: `None` while under way.
-    pub(super) fn outcome(&self, id: u64) -> Option<Result<(), SerialMotionError>> {
+    fn outcome(&self, id: u64) -> Option<Result<(), SerialMotionError>> {
         let state = self.state.borrow();
         match (&state.motion, &state.ended) {
             (Some(motion), _) if motion.id == id => None,
             (_, Some((ended, outcome))) if *ended == id => Some(outcome.clone()),
             _ => Some(Err(SerialMotionError::Replaced)),
         }
+    }
+
+    fn clock(&self) -> &Clock {
+        &self.clock
+    }
+
+    fn replaced() -> SerialMotionError {
+        SerialMotionError::Replaced
     }
 }
 

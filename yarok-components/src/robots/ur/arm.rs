@@ -7,15 +7,16 @@ use nalgebra::Isometry3;
 use yarok_core::component::{Bind, BindError, Environment, Mock};
 use yarok_mjc::Sim;
 
+use super::Move;
 use super::config::ArmConfig;
 use super::controller::{ARRIVED_RAD, Controller, Goal, within};
 use super::drive::ArmDrive;
 use super::exposed;
 use super::kinematics::{Joints, Kinematics, pose_from_vector};
 use super::mock::FollowingJoints;
-use super::motion::Move;
 use super::payload::Payload;
 use super::sim::Servos;
+use crate::robots::motion::MotionControl;
 
 /// How close (metres) counts as arrived for a pose ([`Arm::is_at_pose`]); its rotation within
 /// [`ARRIVED_RAD`].
@@ -160,7 +161,7 @@ impl Arm {
 
     /// A joint motion to `target` (URScript `movej`): every joint starts and stops together,
     /// the one moving furthest at the speed and acceleration given ([`MOVE_J_DEFAULTS`]).
-    /// `.await` it (it resolves on arrival; dropping it stops the arm), or [`Move::start`] it.
+    /// `.await` it (it resolves on arrival; dropping it stops the arm), or [`Motion::start`](crate::robots::Motion::start) it.
     pub fn move_j(&self, target: Joints) -> Move<'_> {
         self.motion(Goal::Joints(target), MOVE_J_DEFAULTS)
     }
@@ -172,18 +173,13 @@ impl Arm {
         self.motion(Goal::JointsFor(pose), MOVE_J_DEFAULTS)
     }
 
-    fn motion(&self, goal: Goal, (speed, acceleration): (f64, f64)) -> Move<'_> {
-        Move {
-            controller: &self.controller,
-            goal,
-            speed,
-            acceleration,
-        }
+    fn motion(&self, goal: Goal, defaults: (f64, f64)) -> Move<'_> {
+        Move::new(&*self.controller, goal, defaults)
     }
 
     /// A straight-line motion of the TCP to `pose` in the base frame (URScript `movel`): the
     /// TCP moves along the line (turning on the way) at the speed and acceleration given
-    /// ([`MOVE_L_DEFAULTS`]). `.await` it, or [`Move::start`] it.
+    /// ([`MOVE_L_DEFAULTS`]). `.await` it, or [`Motion::start`](crate::robots::Motion::start) it.
     pub fn move_l(&self, pose: Isometry3<f64>) -> Move<'_> {
         self.motion(Goal::Line(pose), MOVE_L_DEFAULTS)
     }

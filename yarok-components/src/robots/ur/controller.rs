@@ -8,6 +8,8 @@ use std::rc::Rc;
 use nalgebra::Isometry3;
 use yarok_core::time::Clock;
 
+use crate::robots::motion::MotionControl;
+
 use super::drive::{ArmDrive, Order, Setpoint};
 use super::error::MotionError;
 use super::kinematics::{IkError, Joints, Kinematics};
@@ -106,10 +108,6 @@ impl Controller {
 
     pub(super) fn kinematics(&self) -> &Kinematics {
         &self.kinematics
-    }
-
-    pub(super) fn clock(&self) -> &Clock {
-        &self.clock
     }
 
     /// Joint angles (radians).
@@ -227,13 +225,25 @@ impl Controller {
         self.command();
     }
 
+    fn joint_path(&self, from: Joints, target: Joints) -> Result<Path, MotionError> {
+        let inside = target
+            .iter()
+            .zip(&self.kinematics.limits)
+            .all(|(q, (lower, upper))| q.is_finite() && (lower..=upper).contains(&q));
+        if inside {
+            Ok(Path::Joints { from, to: target })
+        } else {
+            Err(MotionError::InvalidTarget { target })
+        }
+    }
+}
+
+impl MotionControl for Controller {
+    type Goal = Goal;
+    type Error = MotionError;
+
     /// Starts a motion to `to`, after checking the whole path; its id.
-    pub(super) fn start(
-        &self,
-        goal: Goal,
-        speed: f64,
-        acceleration: f64,
-    ) -> Result<u64, MotionError> {
+    fn start(&self, goal: Self::Goal, speed: f64, acceleration: f64) -> Result<u64, MotionError> {
         if !(speed > 0.0 && acceleration > 0.0 && speed.is_finite() && acceleration.is_finite()) {
             return Err(MotionError::InvalidLimits {
                 speed,
@@ -285,20 +295,8 @@ impl Controller {
         Ok(id)
     }
 
-    fn joint_path(&self, from: Joints, target: Joints) -> Result<Path, MotionError> {
-        let inside = target
-            .iter()
-            .zip(&self.kinematics.limits)
-            .all(|(q, (lower, upper))| q.is_finite() && (lower..=upper).contains(&q));
-        if inside {
-            Ok(Path::Joints { from, to: target })
-        } else {
-            Err(MotionError::InvalidTarget { target })
-        }
-    }
-
     /// Stops the motion under way (only motion `id`, if given).
-    pub(super) fn stop(&self, id: Option<u64>) {
+    fn stop(&self, id: Option<u64>) {
         let mut state = self.state.borrow_mut();
         let now = self.clock.time();
         let Some(motion) = state.motion.as_mut() else {
@@ -319,13 +317,21 @@ impl Controller {
     }
 
     /// How motion `id` is: `None` while under way.
-    pub(super) fn outcome(&self, id: u64) -> Option<Result<(), MotionError>> {
+    fn outcome(&self, id: u64) -> Option<Result<(), MotionError>> {
         let state = self.state.borrow();
         match (&state.motion, &state.ended) {
             (Some(motion), _) if motion.id == id => None,
             (_, Some((ended, outcome))) if *ended == id => Some(outcome.clone()),
             _ => Some(Err(MotionError::Replaced)),
         }
+    }
+
+    fn clock(&self) -> &Clock {
+        &self.clock
+    }
+
+    fn replaced() -> MotionError {
+        MotionError::Replaced
     }
 }
 

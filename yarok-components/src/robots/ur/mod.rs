@@ -12,7 +12,6 @@ mod kinematics;
 mod measured;
 mod mock;
 mod model;
-mod motion;
 mod path;
 mod payload;
 mod real;
@@ -28,7 +27,9 @@ pub use kinematics::{
     pose_to_vector,
 };
 pub use measured::{MeasuredKinematics, isometry_of};
-pub use motion::Move;
+/// A UR arm's motion about to start ([`Arm::move_j`], [`Arm::move_l`]): `.await` it, or
+/// [`Motion::start`](crate::robots::Motion::start) it.
+pub type Move<'a> = crate::robots::Motion<'a, MotionError>;
 pub use path::PathError;
 pub use payload::Payload;
 
