@@ -1,18 +1,13 @@
 //! [`Reconnecting`]: a Marlin printer opened again when its connection drops — a USB printer
 //! unplugged and plugged back in.
 
-use std::time::Duration;
-
 use tokio::io::{AsyncRead, AsyncWrite};
-use tokio::time::Instant;
 
 use super::{Marlin, MarlinError, MarlinSettings};
+use crate::reopen;
 
 /// Why the last attempt to reconnect failed.
 type Failure = Box<dyn std::error::Error + Send + Sync>;
-
-/// How often a printer that went away is looked for again.
-const RETRY_EVERY: Duration = Duration::from_millis(250);
 
 /// A [`Marlin`] printer that is reconnected when its connection drops: the transport is opened
 /// again with the function it was made with (for a serial port, the device path — a stable one
@@ -124,36 +119,32 @@ where
         }
     }
 
-    /// Opens and connects again until the printer answers or the replug time is up.
+    /// Opens and connects again ([`reopen`]'s doubling waits) until the printer answers or the
+    /// replug time is up.
     async fn reconnect(&mut self) -> Result<&mut Marlin<T>, MarlinError> {
         self.marlin = None;
         let limit = self.settings.replug_timeout;
-        let give_up = Instant::now() + limit;
         tracing::warn!(printer = %self.settings.name, "connection lost; waiting for the printer");
-        loop {
-            let (open, settings) = (&mut self.open, &self.settings);
-            let attempt = async {
-                let transport = open().await.map_err(Failure::from)?;
-                Marlin::connect(transport, settings.clone())
-                    .await
-                    .map_err(Failure::from)
-            };
-            let last = match tokio::time::timeout_at(give_up, attempt).await {
-                Ok(Ok(marlin)) => {
-                    tracing::info!(printer = %self.settings.name, "reconnected");
-                    return Ok(self.marlin.insert(marlin));
-                }
-                Ok(Err(error)) => error,
-                Err(elapsed) => Failure::from(elapsed),
-            };
-            if Instant::now() + RETRY_EVERY >= give_up {
-                return Err(MarlinError::Unplugged {
-                    printer: self.settings.name.clone(),
-                    seconds: limit.as_secs_f64(),
-                    source: last,
-                });
+        let (open, settings) = (&mut self.open, &self.settings);
+        let attempt = async || {
+            let transport = open().await.map_err(Failure::from)?;
+            Marlin::connect(transport, settings.clone())
+                .await
+                .map_err(Failure::from)
+        };
+        // An attempt still under way when the time is up is cut short.
+        let last = match tokio::time::timeout(limit, reopen(limit, attempt)).await {
+            Ok(Ok(marlin)) => {
+                tracing::info!(printer = %self.settings.name, "reconnected");
+                return Ok(self.marlin.insert(marlin));
             }
-            tokio::time::sleep(RETRY_EVERY).await;
-        }
+            Ok(Err(error)) => error,
+            Err(elapsed) => Failure::from(elapsed),
+        };
+        Err(MarlinError::Unplugged {
+            printer: self.settings.name.clone(),
+            seconds: limit.as_secs_f64(),
+            source: last,
+        })
     }
 }
