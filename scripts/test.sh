@@ -21,10 +21,10 @@ echo "== tests"
 if cargo nextest --version >/dev/null 2>&1; then
   echo "runner: cargo nextest (one process per test, no retries)"
   cargo nextest run --workspace --locked --no-fail-fast --retries 0
-  echo "runner: cargo nextest, the camera, viewer, zenoh and dataset features' tests"
+  echo "runner: cargo nextest, the camera, viewer, zenoh and dataset features' tests (and yarok-components' unit tests with them)"
   cargo nextest run --workspace --features yarok/camera,yarok/viewer,yarok/zenoh,yarok/dataset --locked --no-fail-fast \
     --retries 0 \
-    -E 'binary(camera_decode) | binary(video_device) | binary(cam_real) | binary(tactile_real) | binary(viewer) | binary(zenoh_bridge) | binary(named_state) | binary(dataset_lerobot)'
+    -E 'binary(camera_decode) | binary(video_device) | binary(cam_real) | binary(tactile_real) | binary(viewer) | binary(zenoh_bridge) | binary(named_state) | binary(dataset_lerobot) | binary_id(yarok-components)'
 else
   echo "runner: cargo test (cargo-nextest is not installed)"
   cargo test --workspace --locked --no-fail-fast
