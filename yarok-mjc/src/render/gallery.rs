@@ -142,10 +142,7 @@ impl Gallery {
             self.flipped
                 .extend(picture.rgb.chunks_exact(row).rev().flatten());
             let bottom = height - y - h;
-            let label =
-                std::ffi::CString::new(picture.label.replace('\0', " ")).unwrap_or_default();
-            // SAFETY: the context is current; the pixels fill the viewport (checked above);
-            // the label is NUL-terminated.
+            // SAFETY: the context is current; the pixels fill the viewport (checked above).
             unsafe {
                 mj.mjr_drawPixels(
                     self.flipped.as_ptr(),
@@ -153,17 +150,12 @@ impl Gallery {
                     rect(x, bottom, w, h),
                     &*self.context,
                 );
-                mj.mjr_text(
-                    sys::mjFONT_NORMAL as i32,
-                    label.as_ptr(),
-                    &*self.context,
-                    x as f32 / width as f32,
-                    (bottom + h + 6) as f32 / height as f32,
-                    0.9,
-                    0.9,
-                    0.9,
-                );
             }
+            let label_at = [
+                x as f32 / width as f32,
+                (bottom + h + 6) as f32 / height as f32,
+            ];
+            self.text(picture.label, label_at, 0.9);
         }
         let table_height = height - pictures_bottom;
         // SAFETY: the context is current and the rectangle within the window; it also makes the
@@ -172,23 +164,34 @@ impl Gallery {
         for (index, row) in table.iter().enumerate() {
             let baseline = table_height - line * (index as u32 + 1) + line / 4;
             for (left, text, shade) in [(GAP, row.name, 0.7), (value_left, row.value, 0.95)] {
-                let text = std::ffi::CString::new(text.replace('\0', " ")).unwrap_or_default();
-                // SAFETY: the context is current; the text is NUL-terminated.
-                unsafe {
-                    mj.mjr_text(
-                        sys::mjFONT_NORMAL as i32,
-                        text.as_ptr(),
-                        &*self.context,
-                        left as f32 / width as f32,
-                        baseline as f32 / table_height as f32,
-                        shade,
-                        shade,
-                        shade,
-                    );
-                }
+                let at = [
+                    left as f32 / width as f32,
+                    baseline as f32 / table_height as f32,
+                ];
+                self.text(text, at, shade);
             }
         }
         self.window.swap()
+    }
+
+    /// Draws `text` in the normal font, grey of `shade`, at `at` (left, baseline) in the current
+    /// viewport's relative coordinates.
+    fn text(&self, text: &str, at: [f32; 2], shade: f32) {
+        let text = std::ffi::CString::new(text.replace('\0', " ")).unwrap_or_default();
+        // SAFETY: the window's context is current (made so by `show`); the text is
+        // NUL-terminated and outlives the call.
+        unsafe {
+            self.model.mj().mjr_text(
+                sys::mjFONT_NORMAL as i32,
+                text.as_ptr(),
+                &*self.context,
+                at[0],
+                at[1],
+                shade,
+                shade,
+                shade,
+            );
+        }
     }
 
     /// How wide `text` is drawn in the normal font (pixels); characters the font lacks count as
