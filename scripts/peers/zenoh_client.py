@@ -14,19 +14,15 @@ import queue
 import sys
 import time
 
-import zenoh
 from PIL import Image
+
+import zenoh_peer
 
 
 def main():
     endpoint, world, target = sys.argv[1], sys.argv[2], json.loads(sys.argv[3])
-    config = zenoh.Config()
-    config.insert_json5("mode", '"client"')
-    config.insert_json5("connect/endpoints", json.dumps([endpoint]))
-    config.insert_json5("scouting/multicast/enabled", "false")
-    samples = queue.Queue()
-    with zenoh.open(config) as session:
-        session.declare_subscriber(f"yarok/{world}/**", lambda s: samples.put((str(s.key_expr), s.payload.to_bytes())))
+    with zenoh_peer.client(endpoint) as session:
+        samples = zenoh_peer.samples_of(session, f"yarok/{world}/**")
         joint_states, arm, image, deadline = 0, None, None, time.monotonic() + 20
         names = None
         while (joint_states < 5 or arm is None or image is None) and time.monotonic() < deadline:

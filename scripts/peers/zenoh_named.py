@@ -14,7 +14,7 @@ import queue
 import sys
 import time
 
-import zenoh
+import zenoh_peer
 
 
 def main():
@@ -22,13 +22,8 @@ def main():
     refused_bodies = sys.argv[9:]
     body, value = json.loads(body), json.loads(value)
     prefix = f"yarok/{world}/{path}"
-    config = zenoh.Config()
-    config.insert_json5("mode", '"client"')
-    config.insert_json5("connect/endpoints", json.dumps([endpoint]))
-    config.insert_json5("scouting/multicast/enabled", "false")
-    samples = queue.Queue()
-    with zenoh.open(config) as session:
-        session.declare_subscriber(f"{prefix}/**", lambda s: samples.put((str(s.key_expr), s.payload.to_bytes())))
+    with zenoh_peer.client(endpoint) as session:
+        samples = zenoh_peer.samples_of(session, f"{prefix}/**")
 
         def next_sample(deadline):
             while time.monotonic() < deadline:
