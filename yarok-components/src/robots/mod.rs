@@ -3,6 +3,7 @@
 
 mod anet_a30;
 mod motion;
+mod motions;
 mod profile;
 pub mod serial;
 pub mod ur;

@@ -7,13 +7,15 @@ use std::pin::Pin;
 
 use yarok_core::time::{Clock, WaitError};
 
+use super::motions::MotionEnding;
+
 /// What runs an arm's motions (the UR arms' controller, a serial arm's): starts one toward a
 /// goal, tells how one ended, stops one.
 pub(crate) trait MotionControl {
     /// Where a motion goes.
     type Goal: fmt::Debug + Clone;
     /// Why a motion did not arrive.
-    type Error;
+    type Error: MotionEnding;
     /// Starts a motion, after checking its whole path; its id.
     fn start(&self, goal: Self::Goal, speed: f64, acceleration: f64) -> Result<u64, Self::Error>;
     /// How motion `id` ended; `None` while it is under way.
@@ -22,8 +24,6 @@ pub(crate) trait MotionControl {
     fn stop(&self, id: Option<u64>);
     /// The platform's clock.
     fn clock(&self) -> &Clock;
-    /// The outcome of a motion a newer one replaced.
-    fn replaced() -> Self::Error;
 }
 
 /// An arm's motion about to start: set its speed and acceleration, then `.await` it (it
@@ -80,7 +80,7 @@ impl<C: MotionControl> Request<C::Error> for Bound<'_, C> {
     }
 
     fn replaced(&self) -> C::Error {
-        C::replaced()
+        C::Error::replaced()
     }
 }
 

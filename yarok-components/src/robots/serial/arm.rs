@@ -7,12 +7,13 @@ use nalgebra::Isometry3;
 use yarok_core::component::{Bind, BindError};
 use yarok_mjc::{Sim, SimBind};
 
-use super::controller::{Actuation, Controller, Goal, SimJoints, within};
+use super::controller::{Actuation, Controller, Goal, SimJoints};
 use super::error::SerialMotionError;
 use super::kinematics::{SerialKinematics, TcpFrame};
 use super::names::SerialNames;
 use crate::robots::Motion;
 use crate::robots::motion::MotionControl;
+use crate::robots::motions::within;
 use crate::robots::ur::{ARRIVED_M, ARRIVED_RAD, MOVE_J_DEFAULTS, MOVE_L_DEFAULTS};
 
 /// How stiffly (rad/s, the natural frequency of the tracking error) motor-driven joints follow

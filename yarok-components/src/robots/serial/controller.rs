@@ -8,12 +8,12 @@ use nalgebra::Isometry3;
 use yarok_core::time::Clock;
 
 use crate::robots::motion::MotionControl;
+use crate::robots::motions::Motions;
 use yarok_mjc::{Actuator, Joint, ServoGains};
 
 use super::error::SerialMotionError;
 use super::kinematics::SerialKinematics;
 use crate::robots::profile::Profile;
-use crate::robots::ur::{ARRIVED_RAD, SETTLE_SECONDS};
 
 /// Spacing (metres or radians of path length) at which a line is checked before it starts.
 const CHECK_SPACING: f64 = 0.005;
@@ -141,18 +141,7 @@ struct State {
     /// Each motor's integrated tracking error (an acceleration): what holds the joint against
     /// what the model's bias forces do not include (dry friction, damping).
     integral: Vec<f64>,
-    motion: Option<Motion>,
-    next_id: u64,
-    ended: Option<(u64, Result<(), SerialMotionError>)>,
-}
-
-struct Motion {
-    id: u64,
-    path: Path,
-    profile: Profile,
-    started: f64,
-    target: Vec<f64>,
-    stopping: bool,
+    motions: Motions<Path, Vec<f64>, SerialMotionError>,
 }
 
 /// Runs a serial arm's motions.
@@ -180,9 +169,7 @@ impl Controller {
                 speed: zeros.clone(),
                 acceleration: zeros.clone(),
                 integral: zeros,
-                motion: None,
-                next_id: 0,
-                ended: None,
+                motions: Motions::new(),
             }),
         }
     }
@@ -200,7 +187,7 @@ impl Controller {
     }
 
     pub(super) fn is_moving(&self) -> bool {
-        self.state.borrow().motion.is_some()
+        self.state.borrow().motions.is_moving()
     }
 
     /// After a step: the reference for the next one, and whether the motion has ended.
@@ -222,7 +209,7 @@ impl Controller {
 
     fn advance(&self, now: f64) {
         let mut state = self.state.borrow_mut();
-        let Some(mut motion) = state.motion.take() else {
+        let Some(mut motion) = state.motions.take() else {
             return;
         };
         let dt = self.clock.timestep();
@@ -252,7 +239,7 @@ impl Controller {
                         // A redundant arm ends a line where its path's solutions lead.
                         motion.target.clone_from(&state.reference);
                     }
-                    self.settled(&motion, now)
+                    motion.settled(self.q(), now)
                 } else {
                     None
                 }
@@ -262,26 +249,9 @@ impl Controller {
             Some(outcome) => {
                 state.speed.fill(0.0);
                 state.acceleration.fill(0.0);
-                state.ended = Some((motion.id, outcome));
+                state.motions.end(motion, outcome);
             }
-            None => state.motion = Some(motion),
-        }
-    }
-
-    fn settled(&self, motion: &Motion, now: f64) -> Option<Result<(), SerialMotionError>> {
-        let at = self.q();
-        if motion.stopping {
-            Some(Err(SerialMotionError::Stopped))
-        } else if within(&at, &motion.target) {
-            Some(Ok(()))
-        } else if now - (motion.started + motion.profile.duration()) > SETTLE_SECONDS {
-            Some(Err(SerialMotionError::NotArrived {
-                target: motion.target.clone(),
-                at,
-                seconds: SETTLE_SECONDS,
-            }))
-        } else {
-            None
+            None => state.motions.keep(motion),
         }
     }
 
@@ -289,9 +259,7 @@ impl Controller {
     pub(super) fn restart(&self, start: &[f64]) {
         {
             let mut state = self.state.borrow_mut();
-            if let Some(motion) = state.motion.take() {
-                state.ended = Some((motion.id, Err(SerialMotionError::Stopped)));
-            }
+            state.motions.abandon();
             state.reference = start.to_vec();
             state.speed.fill(0.0);
             state.acceleration.fill(0.0);
@@ -380,19 +348,10 @@ impl MotionControl for Controller {
         };
         let target = path.check(&mut kinematics, &state.reference)?;
         drop(kinematics);
-        let id = state.next_id;
-        state.next_id += 1;
-        if let Some(replaced) = state.motion.take() {
-            state.ended = Some((replaced.id, Err(SerialMotionError::Replaced)));
-        }
-        state.motion = Some(Motion {
-            id,
-            profile: Profile::rest_to_rest(path.length(), speed, acceleration),
-            path,
-            started: self.clock.time(),
-            target,
-            stopping: false,
-        });
+        let profile = Profile::rest_to_rest(path.length(), speed, acceleration);
+        let id = state
+            .motions
+            .start(path, profile, self.clock.time(), target);
         drop(state);
         self.advance(self.clock.time());
         self.command();
@@ -401,40 +360,16 @@ impl MotionControl for Controller {
 
     /// Stops the motion under way (only motion `id`, if given): it decelerates along its path.
     fn stop(&self, id: Option<u64>) {
-        let mut state = self.state.borrow_mut();
         let now = self.clock.time();
-        let Some(motion) = state.motion.as_mut() else {
-            return;
-        };
-        if motion.stopping || id.is_some_and(|id| id != motion.id) {
-            return;
-        }
-        let (along, speed) = motion.profile.at(now - motion.started);
-        motion.profile = Profile::stopping(along, speed, motion.profile.acceleration());
-        motion.started = now;
-        motion.stopping = true;
+        self.state.borrow_mut().motions.stop(id, now);
     }
 
     /// How motion `id` is: `None` while under way.
     fn outcome(&self, id: u64) -> Option<Result<(), SerialMotionError>> {
-        let state = self.state.borrow();
-        match (&state.motion, &state.ended) {
-            (Some(motion), _) if motion.id == id => None,
-            (_, Some((ended, outcome))) if *ended == id => Some(outcome.clone()),
-            _ => Some(Err(SerialMotionError::Replaced)),
-        }
+        self.state.borrow().motions.outcome(id)
     }
 
     fn clock(&self) -> &Clock {
         &self.clock
     }
-
-    fn replaced() -> SerialMotionError {
-        SerialMotionError::Replaced
-    }
-}
-
-/// Whether every joint of `q` is within [`ARRIVED_RAD`] of `target`.
-pub(super) fn within(q: &[f64], target: &[f64]) -> bool {
-    q.len() == target.len() && largest_difference(q, target) < ARRIVED_RAD
 }

@@ -2,6 +2,8 @@
 
 use yarok_core::time::WaitError;
 
+use crate::robots::motions::MotionEnding;
+
 use super::kinematics::SerialIkError;
 
 /// Why a [`SerialArm`](super::SerialArm)'s motion did not arrive.
@@ -58,4 +60,24 @@ pub enum SerialMotionError {
     /// The platform stopped, or a timeout passed.
     #[error(transparent)]
     Wait(#[from] WaitError),
+}
+
+impl MotionEnding for SerialMotionError {
+    type Joints = Vec<f64>;
+
+    fn stopped() -> Self {
+        Self::Stopped
+    }
+
+    fn replaced() -> Self {
+        Self::Replaced
+    }
+
+    fn not_arrived(target: Vec<f64>, at: Vec<f64>, seconds: f64) -> Self {
+        Self::NotArrived {
+            target,
+            at,
+            seconds,
+        }
+    }
 }

@@ -9,7 +9,7 @@ use yarok_mjc::Sim;
 
 use super::Move;
 use super::config::ArmConfig;
-use super::controller::{ARRIVED_RAD, Controller, Goal, within};
+use super::controller::{Controller, Goal};
 use super::drive::ArmDrive;
 use super::exposed;
 use super::kinematics::{Joints, Kinematics, pose_from_vector};
@@ -17,6 +17,7 @@ use super::mock::FollowingJoints;
 use super::payload::Payload;
 use super::sim::Servos;
 use crate::robots::motion::MotionControl;
+use crate::robots::motions::{ARRIVED_RAD, within};
 
 /// How close (metres) counts as arrived for a pose ([`Arm::is_at_pose`]); its rotation within
 /// [`ARRIVED_RAD`].

@@ -9,6 +9,7 @@ use nalgebra::Isometry3;
 use yarok_core::time::Clock;
 
 use crate::robots::motion::MotionControl;
+use crate::robots::motions::{Motions, Running};
 
 use super::drive::{ArmDrive, Order, Setpoint};
 use super::error::MotionError;
@@ -16,13 +17,6 @@ use super::kinematics::{IkError, Joints, Kinematics};
 use super::path::Path;
 use super::payload::Payload;
 use crate::robots::profile::Profile;
-
-/// How close (radians, every joint) counts as arrived.
-pub const ARRIVED_RAD: f64 = 1e-3;
-
-/// Seconds after its profile ends that a motion may take to settle within [`ARRIVED_RAD`]
-/// before it counts as failed (something blocks the arm).
-pub const SETTLE_SECONDS: f64 = 0.5;
 
 /// Where a motion goes, and how.
 #[derive(Debug, Clone, Copy)]
@@ -46,38 +40,23 @@ struct State {
     /// What is commanded for the next step, with the payload set by
     /// [`Controller::set_payload`].
     setpoint: Setpoint,
-    motion: Option<Motion>,
-    next_id: u64,
-    /// How the last motion that ended, ended.
-    ended: Option<(u64, Result<(), MotionError>)>,
+    motions: Motions<Path, Joints, MotionError>,
 }
 
-struct Motion {
-    id: u64,
-    path: Path,
-    profile: Profile,
-    /// Platform time at which the profile starts.
-    started: f64,
-    target: Joints,
-    stopping: bool,
-}
-
-impl Motion {
-    /// The joints `t` seconds into the motion (by inverse kinematics near `near` on a line),
-    /// and their speeds over the step of `dt` that follows.
-    fn reference(
-        &self,
-        t: f64,
-        dt: f64,
-        kinematics: &Kinematics,
-        near: &Joints,
-    ) -> Result<(Joints, Joints), IkError> {
-        let (along, _) = self.profile.at(t);
-        let (ahead, _) = self.profile.at(t + dt);
-        let q = Path::joints_at(self.path.point(along), kinematics, near)?;
-        let next = Path::joints_at(self.path.point(ahead), kinematics, &q)?;
-        Ok((q, std::array::from_fn(|i| (next[i] - q[i]) / dt)))
-    }
+/// The joints `t` seconds into `motion` (by inverse kinematics near `near` on a line), and
+/// their speeds over the step of `dt` that follows.
+fn reference(
+    motion: &Running<Path, Joints>,
+    t: f64,
+    dt: f64,
+    kinematics: &Kinematics,
+    near: &Joints,
+) -> Result<(Joints, Joints), IkError> {
+    let (along, _) = motion.profile.at(t);
+    let (ahead, _) = motion.profile.at(t + dt);
+    let q = Path::joints_at(motion.path.point(along), kinematics, near)?;
+    let next = Path::joints_at(motion.path.point(ahead), kinematics, &q)?;
+    Ok((q, std::array::from_fn(|i| (next[i] - q[i]) / dt)))
 }
 
 impl Controller {
@@ -99,9 +78,7 @@ impl Controller {
                     acceleration: [0.0; 6],
                     payload: None,
                 },
-                motion: None,
-                next_id: 0,
-                ended: None,
+                motions: Motions::new(),
             }),
         }
     }
@@ -127,7 +104,7 @@ impl Controller {
 
     /// Whether a motion is under way.
     pub(super) fn is_moving(&self) -> bool {
-        self.state.borrow().motion.is_some()
+        self.state.borrow().motions.is_moving()
     }
 
     /// After a step: the reference for the next one, and whether the motion has ended.
@@ -139,15 +116,14 @@ impl Controller {
     /// Moves the reference to where the motion is due at `now` plus a step.
     fn advance(&self, now: f64) {
         let mut state = self.state.borrow_mut();
-        let Some(motion) = state.motion.take() else {
+        let Some(motion) = state.motions.take() else {
             return;
         };
         let dt = self.clock.timestep();
         let t = now + dt - motion.started;
         let reference = match self.drive.halt() {
             Some(error) => Err(error),
-            None => motion
-                .reference(t, dt, &self.kinematics, &state.setpoint.q)
+            None => reference(&motion, t, dt, &self.kinematics, &state.setpoint.q)
                 .map_err(MotionError::from),
         };
         let outcome = match reference {
@@ -159,8 +135,8 @@ impl Controller {
                     std::array::from_fn(|i| (speed[i] - (q[i] - before[i]) / dt) / dt);
                 setpoint.q = q;
                 setpoint.speed = speed;
-                if t >= motion.profile.duration() {
-                    self.settled(&motion, now, &state)
+                if t >= motion.profile.duration() && self.drive.is_current() {
+                    motion.settled(self.drive.q(&state.setpoint), now)
                 } else {
                     None
                 }
@@ -170,30 +146,9 @@ impl Controller {
             Some(outcome) => {
                 state.setpoint.speed = [0.0; 6];
                 state.setpoint.acceleration = [0.0; 6];
-                state.ended = Some((motion.id, outcome));
+                state.motions.end(motion, outcome);
             }
-            None => state.motion = Some(motion),
-        }
-    }
-
-    /// How a motion whose profile is over ends: `None` while the arm settles.
-    fn settled(&self, motion: &Motion, now: f64, state: &State) -> Option<Result<(), MotionError>> {
-        let at = self.drive.q(&state.setpoint);
-        if !self.drive.is_current() {
-            // Where the arm is will be known again, or the run ends.
-            None
-        } else if motion.stopping {
-            Some(Err(MotionError::Stopped))
-        } else if within(&at, &motion.target) {
-            Some(Ok(()))
-        } else if now - (motion.started + motion.profile.duration()) > SETTLE_SECONDS {
-            Some(Err(MotionError::NotArrived {
-                target: motion.target,
-                at,
-                seconds: SETTLE_SECONDS,
-            }))
-        } else {
-            None
+            None => state.motions.keep(motion),
         }
     }
 
@@ -202,9 +157,7 @@ impl Controller {
     pub(super) fn restart(&self, start: Joints) {
         {
             let mut state = self.state.borrow_mut();
-            if let Some(motion) = state.motion.take() {
-                state.ended = Some((motion.id, Err(MotionError::Stopped)));
-            }
+            state.motions.abandon();
             let setpoint = &mut state.setpoint;
             setpoint.q = start;
             setpoint.speed = [0.0; 6];
@@ -263,19 +216,10 @@ impl MotionControl for Controller {
             },
         };
         let target = path.check(&self.kinematics, &from)?;
-        let id = state.next_id;
-        state.next_id += 1;
-        if let Some(replaced) = state.motion.take() {
-            state.ended = Some((replaced.id, Err(MotionError::Replaced)));
-        }
-        state.motion = Some(Motion {
-            id,
-            path,
-            profile: Profile::rest_to_rest(path.length(), speed, acceleration),
-            started: self.clock.time(),
-            target,
-            stopping: false,
-        });
+        let profile = Profile::rest_to_rest(path.length(), speed, acceleration);
+        let id = state
+            .motions
+            .start(path, profile, self.clock.time(), target);
         drop(state);
         self.drive.order(match path {
             Path::Line { to, .. } => Order::MoveL {
@@ -298,45 +242,21 @@ impl MotionControl for Controller {
     /// Stops the motion under way (only motion `id`, if given).
     fn stop(&self, id: Option<u64>) {
         let mut state = self.state.borrow_mut();
-        let now = self.clock.time();
-        let Some(motion) = state.motion.as_mut() else {
-            return;
-        };
-        if motion.stopping || id.is_some_and(|id| id != motion.id) {
-            return;
+        if let Some(motion) = state.motions.stop(id, self.clock.time()) {
+            let deceleration = motion.profile.acceleration();
+            self.drive.order(match motion.path {
+                Path::Line { .. } => Order::StopL { deceleration },
+                Path::Joints { .. } => Order::StopJ { deceleration },
+            });
         }
-        let (along, speed) = motion.profile.at(now - motion.started);
-        let deceleration = motion.profile.acceleration();
-        self.drive.order(match motion.path {
-            Path::Line { .. } => Order::StopL { deceleration },
-            Path::Joints { .. } => Order::StopJ { deceleration },
-        });
-        motion.profile = Profile::stopping(along, speed, deceleration);
-        motion.started = now;
-        motion.stopping = true;
     }
 
     /// How motion `id` is: `None` while under way.
     fn outcome(&self, id: u64) -> Option<Result<(), MotionError>> {
-        let state = self.state.borrow();
-        match (&state.motion, &state.ended) {
-            (Some(motion), _) if motion.id == id => None,
-            (_, Some((ended, outcome))) if *ended == id => Some(outcome.clone()),
-            _ => Some(Err(MotionError::Replaced)),
-        }
+        self.state.borrow().motions.outcome(id)
     }
 
     fn clock(&self) -> &Clock {
         &self.clock
     }
-
-    fn replaced() -> MotionError {
-        MotionError::Replaced
-    }
-}
-
-pub(super) fn within(q: &Joints, target: &Joints) -> bool {
-    q.iter()
-        .zip(target)
-        .all(|(a, b)| (a - b).abs() < ARRIVED_RAD)
 }

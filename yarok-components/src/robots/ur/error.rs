@@ -2,6 +2,8 @@
 
 use yarok_core::time::WaitError;
 
+use crate::robots::motions::MotionEnding;
+
 use super::kinematics::{IkError, Joints};
 use super::path::PathError;
 
@@ -67,5 +69,25 @@ pub enum MotionError {
 impl From<IkError> for MotionError {
     fn from(error: IkError) -> Self {
         Self::Path(PathError::Kinematics(error))
+    }
+}
+
+impl MotionEnding for MotionError {
+    type Joints = Joints;
+
+    fn stopped() -> Self {
+        Self::Stopped
+    }
+
+    fn replaced() -> Self {
+        Self::Replaced
+    }
+
+    fn not_arrived(target: Joints, at: Joints, seconds: f64) -> Self {
+        Self::NotArrived {
+            target,
+            at,
+            seconds,
+        }
     }
 }

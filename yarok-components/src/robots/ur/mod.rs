@@ -17,9 +17,9 @@ mod payload;
 mod real;
 mod sim;
 
+pub use crate::robots::motions::{ARRIVED_RAD, SETTLE_SECONDS};
 pub use arm::{ARRIVED_M, Arm, MOVE_J_DEFAULTS, MOVE_L_DEFAULTS};
 pub use config::{ArmConfig, ArmNames};
-pub use controller::{ARRIVED_RAD, SETTLE_SECONDS};
 pub use drive::{ArmDrive, Order, Setpoint};
 pub use error::MotionError;
 pub use kinematics::{
