@@ -83,12 +83,7 @@ fn main() {
         let calibration = if set.name == "digit" {
             Calibration::digit()
         } else {
-            let geometry = Calibration::digit().geometry();
-            let settings = FitSettings {
-                contact_scales: vec![geometry.contact_scale],
-                spreads: vec![geometry.spread],
-                ..FitSettings::default()
-            };
+            let settings = FitSettings::with_geometry(&Calibration::digit().geometry());
             Calibration::fit(&set.untouched, &set.calibration, &settings).expect("a calibration")
         };
         let geometry = calibration.geometry();

@@ -75,12 +75,7 @@ fn held_out_medians(sensor: &str, presses: &str, params: PhongParams, surface: f
     let calibration = if sensor == "digit" {
         Calibration::digit()
     } else {
-        let geometry = Calibration::digit().geometry();
-        let settings = FitSettings {
-            contact_scales: vec![geometry.contact_scale],
-            spreads: vec![geometry.spread],
-            ..FitSettings::default()
-        };
+        let settings = FitSettings::with_geometry(&Calibration::digit().geometry());
         Calibration::fit(&untouched, &calibration_presses, &settings).unwrap()
     };
     let geometry = calibration.geometry();

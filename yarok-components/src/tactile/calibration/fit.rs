@@ -41,6 +41,26 @@ impl Default for FitSettings {
     }
 }
 
+impl FitSettings {
+    /// Settings that keep `geometry` (another calibration's) and fit only how the sensor's
+    /// surface becomes colour: for a sensor pressed like one already calibrated.
+    ///
+    /// ```
+    /// use yarok_components::tactile::calibration::{Calibration, FitSettings};
+    ///
+    /// let like_the_digit = FitSettings::with_geometry(&Calibration::digit().geometry());
+    /// assert_eq!(like_the_digit.spreads, [Calibration::digit().geometry().spread]);
+    /// ```
+    pub fn with_geometry(geometry: &Geometry) -> Self {
+        Self {
+            ball_diameter_mm: geometry.ball_diameter_mm,
+            pixels_per_mm: geometry.pixels_per_mm,
+            contact_scales: vec![geometry.contact_scale],
+            spreads: vec![geometry.spread],
+        }
+    }
+}
+
 /// Beyond how many radii of its centre a press's frame shows the untouched gel.
 const FAR_FIELD: f64 = 1.8;
 /// Within how many radii of its centre a press's pixels are fitted.
