@@ -1,4 +1,4 @@
-//! Depth images as recordings and the bridge carry them (16-bit PNG): read back by Pillow, an
+//! Depth images as the Zenoh bridge carries them (16-bit PNG): read back by Pillow, an
 //! independent reader, every depth is the one written to within half its stated unit — a
 //! tactile probe's micrometre, so a 2 mm gel spans 2000 levels — in the byte order the PNG
 //! standard defines, with the unit in the PNG's own text.

@@ -3,7 +3,8 @@
 //! schema is free of `$ref` and follows the field rules of the open-source Foxglove Studio's and
 //! Lichtblick's JSON Schema parser; every message validates (PyPI's `jsonschema`) against its
 //! channel's schema and against Foxglove's published schema of that name (npm's
-//! `@foxglove/schemas`); the chunks are zstd-compressed. The joints are named as the model
+//! `@foxglove/schemas`); the chunks are zstd-compressed; depth is `foxglove.RawImage` `16UC1`
+//! in micrometres (numpy reads it back). The joints are named as the model
 //! names them, the images are in the cameras' optical frames that `/tf` carries, and the joint
 //! positions (read by PyPI's `mcap`) are, bit for bit, those of the run's `joints_csv` file.
 
@@ -34,9 +35,12 @@ fn a_foxglove_recording_validates_against_foxglove_schemas() {
         ("/log".to_owned(), "foxglove.Log", Some(3)),
     ];
     for side in ["left", "right"] {
-        for probe in ["image", "depth"] {
+        for (probe, schema) in [
+            ("image", "foxglove.CompressedImage"),
+            ("depth", "foxglove.RawImage"),
+        ] {
             let topic = format!("/arm/gripper/{side}_digit/{probe}");
-            expected.push((topic, "foxglove.CompressedImage", None));
+            expected.push((topic, schema, None));
         }
     }
     for (topic, schema, count) in expected {
@@ -67,6 +71,36 @@ fn a_foxglove_recording_validates_against_foxglove_schemas() {
         }
     }
     assert!(frames.contains(&"large/block"), "{frames:?}");
+
+    // Depth in micrometres: the gel's face is 18 mm from the camera, 2 mm thick, and the grasp
+    // presses it in.
+    for side in ["left", "right"] {
+        let topic = format!("/arm/gripper/{side}_digit/depth");
+        let depths: Vec<(f64, f64)> = checked
+            .lines()
+            .filter_map(|l| l.strip_prefix(&format!("depth {topic} ")))
+            .map(|depth| {
+                let fields: Vec<&str> = depth.split(' ').collect();
+                assert_eq!(
+                    fields[..5],
+                    ["16UC1", "240", "320", "480", "1e-06"],
+                    "{depth}"
+                );
+                (fields[5].parse().unwrap(), fields[6].parse().unwrap())
+            })
+            .collect();
+        assert!(!depths.is_empty(), "{topic}");
+        assert!(
+            depths
+                .iter()
+                .all(|(near, far)| *near > 0.015 && *far <= 0.0181),
+            "{depths:?}"
+        );
+        assert!(
+            depths.iter().any(|(near, _)| *near < 0.0175),
+            "the grasp shows in {topic}"
+        );
+    }
 
     // The joints by their names, positions bit for bit the CSV's.
     let summary = peers::run("mcap_summary.py", &[mcap.to_str().unwrap()]);

@@ -12,6 +12,9 @@ Prints, a line each:
   `channel TOPIC SCHEMA COUNT` for every channel, once all its messages validated;
   `frames FRAME...` the child frames of the last /tf message;
   `image_frame TOPIC FRAME` for every image channel;
+  `depth TOPIC ENCODING WIDTH HEIGHT STEP UNIT NEAREST FARTHEST` for every foxglove.RawImage,
+    NEAREST and FARTHEST in metres: counts (16UC1, little-endian, 0 for none) times the unit
+    its channel's metadata states under `depth_unit_m`;
   `chunks COUNT COMPRESSION...` the distinct compressions of the file's chunks.
 Exits non-zero naming the channel, the message and the rule when anything fails.
 """
@@ -23,6 +26,7 @@ from collections import Counter
 from pathlib import Path
 
 import jsonschema
+import numpy
 from mcap.reader import make_reader
 
 FIELD_TYPES = {"boolean", "string", "number", "integer", "object", "array"}
@@ -87,6 +91,19 @@ def base64_fields(schema, value, where):
                 base64_fields(field["items"], item, f"{where}.{name}[{index}]")
 
 
+def print_depth(channel, body):
+    unit = float(channel.metadata["depth_unit_m"])
+    if body["encoding"] != "16UC1":
+        fail(f"{channel.topic}: depth encoded {body['encoding']}")
+    data = base64.b64decode(body["data"])
+    if len(data) != body["step"] * body["height"]:
+        fail(f"{channel.topic}: {len(data)} bytes for {body['height']} rows of {body['step']}")
+    counts = numpy.frombuffer(data, dtype="<u2").reshape(body["height"], body["step"] // 2)
+    seen = counts[:, : body["width"]][counts[:, : body["width"]] > 0] * unit
+    print("depth", channel.topic, body["encoding"], body["width"], body["height"], body["step"],
+          repr(unit), repr(float(seen.min())), repr(float(seen.max())))
+
+
 def main():
     path, published_dir = sys.argv[1], Path(sys.argv[2])
     counts = Counter()
@@ -129,6 +146,8 @@ def main():
                     fail(f"{where} against {name}: {error.message} at {list(error.absolute_path)}")
             base64_fields(schema, body, where)
             counts[channel.id] += 1
+            if schema.get("title") == "foxglove.RawImage":
+                print_depth(channel, body)
             if channel.topic == "/tf":
                 last_frames = [t["child_frame_id"] for t in body["transforms"]]
             elif "frame_id" in body:

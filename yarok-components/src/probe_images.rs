@@ -30,10 +30,10 @@ pub(crate) fn depth(image: DepthImage, unit: f32) -> ProbeImage {
 /// a micrometre).
 pub const DEPTH_UNIT_KEYWORD: &str = "depth_unit_m";
 
-/// `image` as PNG, as recorders and the bridge send it: colour as 8-bit RGB; depth as 16-bit
-/// grey (big-endian, as the PNG standard has it) in counts of the image's unit, which a text
-/// chunk [`DEPTH_UNIT_KEYWORD`] states (`1e-6`), 0 where there is no depth (nothing within
-/// range, or not a number) and 65535 beyond the range.
+/// `image` as PNG, as the Zenoh bridge sends it (and recorders colour images): colour as 8-bit
+/// RGB; depth as 16-bit grey (big-endian, as the PNG standard has it) in counts of the image's
+/// unit, which a text chunk [`DEPTH_UNIT_KEYWORD`] states (`1e-6`), 0 where there is no depth
+/// (nothing within range, or not a number) and 65535 beyond the range.
 ///
 /// # Errors
 ///
@@ -79,7 +79,7 @@ pub fn png(image: &ProbeImage) -> Result<Vec<u8>, yarok_core::BoxError> {
 }
 
 /// `metres` in counts of `unit`: 0 for no depth, 65535 beyond the range.
-fn counts(metres: f32, unit: f32) -> u16 {
+pub(crate) fn counts(metres: f32, unit: f32) -> u16 {
     if metres.is_nan() || metres <= 0.0 {
         return 0;
     }

@@ -120,9 +120,8 @@ fn run_metadata(
 /// velocity, `foxglove.JointStates`), `/tf` (`foxglove.FrameTransforms`: every named body's
 /// pose in the world frame, and every named camera's optical frame, `{camera}/optical`), one
 /// image topic per probe (`/arm/gripper/left/image`: PNG in its camera's optical frame; depth as
-/// 16-bit counts of the unit its channel's metadata and the PNG's text state under
-/// `depth_unit_m` — a tactile sensor's 1 µm, a camera's 1 mm; see
-/// [`probe_images::png`](crate::probe_images::png)) and per camera asked for
+/// a `foxglove.RawImage` of 16-bit `16UC1` counts of the unit its channel's metadata states
+/// under `depth_unit_m` — a tactile sensor's 1 µm, a camera's 1 mm) and per camera asked for
 /// (`/cameras/overview`), one topic per component's
 /// [named state](yarok_core::component::NamedState) (`/arm/state`, `yarok.State`: its fields
 /// and a `timestamp`, every `every` ticks in any environment), and `/log` (the behaviours' [`Pl::log`](yarok_core::runtime::Pl::log)

@@ -1,7 +1,9 @@
 //! The Foxglove profile: JSON messages in the shapes of Foxglove's well-known schemas
 //! (`foxglove.JointStates`, `foxglove.FrameTransforms`, `foxglove.CompressedImage`,
-//! `foxglove.Log`), each channel with a self-contained JSON Schema (no `$ref`, which the
-//! open-source Foxglove Studio and Lichtblick parsers do not resolve); images as PNG.
+//! `foxglove.RawImage`, `foxglove.Log`), each channel with a self-contained JSON Schema (no
+//! `$ref`, which the open-source Foxglove Studio and Lichtblick parsers do not resolve); colour
+//! images as PNG, depth as raw `16UC1` counts of the probe's unit, which Foxglove's Image panel
+//! colours by its depth settings (a browser decodes a 16-bit PNG to 8 bits).
 
 use base64::Engine;
 use serde::Serialize;
@@ -91,6 +93,17 @@ struct CompressedImage<'a> {
 }
 
 #[derive(Serialize)]
+struct RawImage<'a> {
+    timestamp: Time,
+    frame_id: &'a str,
+    width: u32,
+    height: u32,
+    encoding: &'static str,
+    step: u32,
+    data: String,
+}
+
+#[derive(Serialize)]
 struct Log<'a> {
     timestamp: Time,
     level: u8,
@@ -126,10 +139,13 @@ impl RecordingProfile for Foxglove {
                 "foxglove.FrameTransforms",
                 include_str!("foxglove_schemas/frame_transforms.json"),
             ),
-            // Depth too: a 16-bit PNG.
-            MessageKind::Image | MessageKind::Depth => schema(
+            MessageKind::Image => schema(
                 "foxglove.CompressedImage",
                 include_str!("foxglove_schemas/compressed_image.json"),
+            ),
+            MessageKind::Depth => schema(
+                "foxglove.RawImage",
+                include_str!("foxglove_schemas/raw_image.json"),
             ),
             MessageKind::Log => schema("foxglove.Log", include_str!("foxglove_schemas/log.json")),
             MessageKind::State => {
@@ -182,13 +198,35 @@ impl RecordingProfile for Foxglove {
     }
 
     fn image(&self, time: f64, frame: &str, image: &ProbeImage) -> Result<Vec<u8>, BoxError> {
-        let png = probe_images::png(image)?;
-        Ok(bytes(&CompressedImage {
-            timestamp: Time::at(time),
-            frame_id: frame,
-            data: base64::engine::general_purpose::STANDARD.encode(png),
-            format: "png",
-        }))
+        let base64 = |data: &[u8]| base64::engine::general_purpose::STANDARD.encode(data);
+        Ok(match image {
+            ProbeImage::Depth {
+                width,
+                height,
+                metres,
+                unit,
+            } => {
+                let counts: Vec<u8> = metres
+                    .iter()
+                    .flat_map(|m| probe_images::counts(*m, *unit).to_le_bytes())
+                    .collect();
+                bytes(&RawImage {
+                    timestamp: Time::at(time),
+                    frame_id: frame,
+                    width: *width,
+                    height: *height,
+                    encoding: "16UC1",
+                    step: width * 2,
+                    data: base64(&counts),
+                })
+            }
+            colour => bytes(&CompressedImage {
+                timestamp: Time::at(time),
+                frame_id: frame,
+                data: base64(&probe_images::png(colour)?),
+                format: "png",
+            }),
+        })
     }
 
     fn log(&self, time: f64, text: &str) -> Vec<u8> {
