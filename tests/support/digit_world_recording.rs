@@ -27,3 +27,20 @@ pub(crate) fn record_digit_world(folder: &Path, options: &[&str]) -> (PathBuf, J
     yarok_test::assert_succeeded(&output);
     (mcap, JointsCsv::read(&csv))
 }
+
+/// Asserts what a DIGIT's depth frames (`(nearest, farthest)` metres each) must show in a
+/// `digit_world` recording: the gel's face is 18 mm from the camera, 2 mm thick, and the grasp
+/// presses it in.
+pub(crate) fn assert_gel_depths(depths: &[(f64, f64)], what: &str) {
+    assert!(!depths.is_empty(), "{what}: no depth frames");
+    assert!(
+        depths
+            .iter()
+            .all(|(near, far)| *near > 0.015 && *far <= 0.0181),
+        "{what}: {depths:?}"
+    );
+    assert!(
+        depths.iter().any(|(near, _)| *near < 0.0175),
+        "{what}: the grasp shows in the depth"
+    );
+}
