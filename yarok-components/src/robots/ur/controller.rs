@@ -135,6 +135,7 @@ impl Controller {
                     std::array::from_fn(|i| (speed[i] - (q[i] - before[i]) / dt) / dt);
                 setpoint.q = q;
                 setpoint.speed = speed;
+                // A real arm's position not yet current is known again, or the run ends.
                 if t >= motion.profile.duration() && self.drive.is_current() {
                     motion.settled(self.drive.q(&state.setpoint), now)
                 } else {
