@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 use std::sync::OnceLock;
 
-use yarok::components::grippers::{GripperNames, ParallelGripper};
+use yarok::components::grippers::{GripperNames, Robotiq2f85};
 use yarok::components::robots::ur::{Arm, ArmConfig, ArmNames, MeasuredKinematics};
 use yarok::components::toys::{Block, Spot};
 use yarok::mjc::Sim;
@@ -56,9 +56,10 @@ impl Interface<Sim> for MenagerieUr5e {
     }
 }
 
-/// Menagerie's `robotiq_2f85/2f85.xml`, driven through its own servo.
+/// Menagerie's `robotiq_2f85/2f85.xml`, driven through its own servo by the bundled
+/// [`Robotiq2f85`].
 #[derive(Clone, Debug)]
-pub(crate) struct Menagerie2f85(pub(crate) ParallelGripper);
+pub(crate) struct Menagerie2f85(pub(crate) Robotiq2f85);
 
 impl Component for Menagerie2f85 {
     fn declaration() -> Declaration {
@@ -72,7 +73,7 @@ impl Component for Menagerie2f85 {
 
 impl Interface<Sim> for Menagerie2f85 {
     async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
-        ParallelGripper::bind_sim(bind, &GripperNames::MENAGERIE_2F85).map(Menagerie2f85)
+        Robotiq2f85::bind_sim(bind, &GripperNames::MENAGERIE_2F85).map(Menagerie2f85)
     }
 }
 
