@@ -9,6 +9,7 @@ use yarok_core::time::Clock;
 
 use crate::robots::motion::MotionControl;
 use crate::robots::motions::Motions;
+use crate::robots::path_length;
 use yarok_mjc::{Actuator, Joint, ServoGains};
 
 use super::error::SerialMotionError;
@@ -49,14 +50,8 @@ enum Path {
 impl Path {
     fn length(&self) -> f64 {
         match self {
-            Path::Joints { from, to } => from
-                .iter()
-                .zip(to)
-                .map(|(a, b)| (b - a).abs())
-                .fold(0.0, f64::max),
-            Path::Line { from, to, .. } => (to.translation.vector - from.translation.vector)
-                .norm()
-                .max(from.rotation.angle_to(&to.rotation)),
+            Path::Joints { from, to } => path_length::joints_length(from, to),
+            Path::Line { from, to, .. } => path_length::line_length(from, to),
         }
     }
 
@@ -67,12 +62,7 @@ impl Path {
         kinematics: &mut SerialKinematics,
         near: &[f64],
     ) -> Result<Vec<f64>, SerialMotionError> {
-        let length = self.length();
-        let fraction = if length > 0.0 {
-            (along / length).clamp(0.0, 1.0)
-        } else {
-            1.0
-        };
+        let fraction = path_length::fraction(along, self.length());
         match self {
             Path::Joints { from, to } => Ok(from
                 .iter()

@@ -4,6 +4,7 @@
 use nalgebra::Isometry3;
 
 use super::kinematics::{IkError, Joints, Kinematics};
+use crate::robots::path_length;
 
 /// Spacing (metres or radians of path length) at which a line is checked before it starts.
 const CHECK_SPACING: f64 = 0.005;
@@ -35,25 +36,14 @@ pub(crate) enum Point {
 impl Path {
     pub(crate) fn length(&self) -> f64 {
         match self {
-            Path::Joints { from, to } => from
-                .iter()
-                .zip(to)
-                .map(|(a, b)| (b - a).abs())
-                .fold(0.0, f64::max),
-            Path::Line { from, to } => (to.translation.vector - from.translation.vector)
-                .norm()
-                .max(from.rotation.angle_to(&to.rotation)),
+            Path::Joints { from, to } => path_length::joints_length(from, to),
+            Path::Line { from, to } => path_length::line_length(from, to),
         }
     }
 
     /// The point `along` (0 to [`Path::length`]) the path.
     pub(crate) fn point(&self, along: f64) -> Point {
-        let length = self.length();
-        let fraction = if length > 0.0 {
-            (along / length).clamp(0.0, 1.0)
-        } else {
-            1.0
-        };
+        let fraction = path_length::fraction(along, self.length());
         match self {
             Path::Joints { from, to } => Point::Joints(std::array::from_fn(|i| {
                 from[i] + (to[i] - from[i]) * fraction

@@ -1,0 +1,55 @@
+//! How long an arm's path is, and how far along it a length reaches: one measure for the UR and
+//! the serial arms' joint moves and TCP lines, so that their profiles run alike.
+
+use nalgebra::Isometry3;
+
+/// A joint move's length: the largest joint motion (radians), so that the leading joint
+/// follows the profile and the others move in proportion.
+pub(crate) fn joints_length(from: &[f64], to: &[f64]) -> f64 {
+    from.iter()
+        .zip(to)
+        .map(|(a, b)| (b - a).abs())
+        .fold(0.0, f64::max)
+}
+
+/// A TCP line's length: the longer of its distance (metres) and its turn (radians).
+pub(crate) fn line_length(from: &Isometry3<f64>, to: &Isometry3<f64>) -> f64 {
+    (to.translation.vector - from.translation.vector)
+        .norm()
+        .max(from.rotation.angle_to(&to.rotation))
+}
+
+/// The fraction (0 to 1) of a path `length` long that `along` reaches; the whole of an empty
+/// path.
+pub(crate) fn fraction(along: f64, length: f64) -> f64 {
+    if length > 0.0 {
+        (along / length).clamp(0.0, 1.0)
+    } else {
+        1.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use nalgebra::{Isometry3, Vector3};
+
+    use super::*;
+
+    #[test]
+    fn the_leading_joint_or_the_longer_of_distance_and_turn_measures_a_path() {
+        assert_eq!(joints_length(&[0.0, 1.0, -1.0], &[0.5, 0.0, -1.25]), 1.0);
+        let from = Isometry3::identity();
+        let moved = Isometry3::translation(0.3, 0.4, 0.0);
+        assert!((line_length(&from, &moved) - 0.5).abs() < 1e-12);
+        let turned = Isometry3::new(Vector3::new(0.1, 0.0, 0.0), Vector3::z() * 1.5);
+        assert!((line_length(&from, &turned) - 1.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_fraction_stays_on_the_path_and_an_empty_path_is_done() {
+        assert_eq!(fraction(0.25, 1.0), 0.25);
+        assert_eq!(fraction(-1.0, 2.0), 0.0);
+        assert_eq!(fraction(3.0, 2.0), 1.0);
+        assert_eq!(fraction(0.0, 0.0), 1.0);
+    }
+}
