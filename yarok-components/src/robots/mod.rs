@@ -4,7 +4,7 @@
 mod anet_a30;
 mod motion;
 mod motions;
-mod path_length;
+mod paths;
 mod profile;
 pub mod serial;
 pub mod ur;

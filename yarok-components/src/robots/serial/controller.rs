@@ -9,19 +9,12 @@ use yarok_core::time::Clock;
 
 use crate::robots::motion::MotionControl;
 use crate::robots::motions::Motions;
-use crate::robots::path_length;
+use crate::robots::paths;
 use yarok_mjc::{Actuator, Joint, ServoGains};
 
 use super::error::SerialMotionError;
 use super::kinematics::SerialKinematics;
 use crate::robots::profile::Profile;
-
-/// Spacing (metres or radians of path length) at which a line is checked before it starts.
-const CHECK_SPACING: f64 = 0.005;
-
-/// The largest joint step between two checked points of a line; more means the line passes a
-/// singularity.
-const MAX_JOINT_STEP: f64 = 0.25;
 
 /// Where a motion goes.
 #[derive(Debug, Clone)]
@@ -50,8 +43,8 @@ enum Path {
 impl Path {
     fn length(&self) -> f64 {
         match self {
-            Path::Joints { from, to } => path_length::joints_length(from, to),
-            Path::Line { from, to, .. } => path_length::line_length(from, to),
+            Path::Joints { from, to } => paths::joints_length(from, to),
+            Path::Line { from, to, .. } => paths::line_length(from, to),
         }
     }
 
@@ -62,7 +55,7 @@ impl Path {
         kinematics: &mut SerialKinematics,
         near: &[f64],
     ) -> Result<Vec<f64>, SerialMotionError> {
-        let fraction = path_length::fraction(along, self.length());
+        let fraction = paths::fraction(along, self.length());
         match self {
             Path::Joints { from, to } => Ok(from
                 .iter()
@@ -83,29 +76,19 @@ impl Path {
         start: &[f64],
     ) -> Result<Vec<f64>, SerialMotionError> {
         let length = self.length();
-        let steps = match self {
-            Path::Joints { .. } => 1,
-            Path::Line { .. } => ((length / CHECK_SPACING).ceil() as usize).max(1),
-        };
+        let steps = paths::checked_points(length, matches!(self, Path::Line { .. }));
         let mut q = start.to_vec();
         for step in 1..=steps {
             let along = length * step as f64 / steps as f64;
             let next = self.joints_at(along, kinematics, &q)?;
-            let jump = largest_difference(&next, &q);
-            if matches!(self, Path::Line { .. }) && jump > MAX_JOINT_STEP {
+            let jump = paths::joints_length(&q, &next);
+            if matches!(self, Path::Line { .. }) && jump > paths::MAX_JOINT_STEP {
                 return Err(SerialMotionError::Singular { along, jump });
             }
             q = next;
         }
         Ok(q)
     }
-}
-
-fn largest_difference(a: &[f64], b: &[f64]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0, f64::max)
 }
 
 /// How an actuator moves its joint.

@@ -4,14 +4,7 @@
 use nalgebra::Isometry3;
 
 use super::kinematics::{IkError, Joints, Kinematics};
-use crate::robots::path_length;
-
-/// Spacing (metres or radians of path length) at which a line is checked before it starts.
-const CHECK_SPACING: f64 = 0.005;
-
-/// The largest joint step (radians) between two checked points of a line; more means the line
-/// passes a singularity or changes IK branch.
-const MAX_JOINT_STEP: f64 = 0.25;
+use crate::robots::paths;
 
 #[derive(Debug, Clone, Copy)]
 pub(crate) enum Path {
@@ -36,14 +29,14 @@ pub(crate) enum Point {
 impl Path {
     pub(crate) fn length(&self) -> f64 {
         match self {
-            Path::Joints { from, to } => path_length::joints_length(from, to),
-            Path::Line { from, to } => path_length::line_length(from, to),
+            Path::Joints { from, to } => paths::joints_length(from, to),
+            Path::Line { from, to } => paths::line_length(from, to),
         }
     }
 
     /// The point `along` (0 to [`Path::length`]) the path.
     pub(crate) fn point(&self, along: f64) -> Point {
-        let fraction = path_length::fraction(along, self.length());
+        let fraction = paths::fraction(along, self.length());
         match self {
             Path::Joints { from, to } => Point::Joints(std::array::from_fn(|i| {
                 from[i] + (to[i] - from[i]) * fraction
@@ -73,20 +66,13 @@ impl Path {
         start: &Joints,
     ) -> Result<Joints, PathError> {
         let length = self.length();
-        let steps = match self {
-            Path::Joints { .. } => 1,
-            Path::Line { .. } => ((length / CHECK_SPACING).ceil() as usize).max(1),
-        };
+        let steps = paths::checked_points(length, matches!(self, Path::Line { .. }));
         let mut q = *start;
         for step in 1..=steps {
             let along = length * step as f64 / steps as f64;
             let next = Self::joints_at(self.point(along), kinematics, &q)?;
-            let jump = next
-                .iter()
-                .zip(&q)
-                .map(|(a, b)| (a - b).abs())
-                .fold(0.0, f64::max);
-            if matches!(self, Path::Line { .. }) && jump > MAX_JOINT_STEP {
+            let jump = paths::joints_length(&q, &next);
+            if matches!(self, Path::Line { .. }) && jump > paths::MAX_JOINT_STEP {
                 return Err(PathError::Singular { along, jump });
             }
             q = next;

@@ -1,10 +1,29 @@
-//! How long an arm's path is, and how far along it a length reaches: one measure for the UR and
-//! the serial arms' joint moves and TCP lines, so that their profiles run alike.
+//! What the UR and serial arms' paths (joint moves and TCP lines) share: how long a path is, how
+//! far along it a length reaches, and how finely a line is checked before it starts.
 
 use nalgebra::Isometry3;
 
+/// The largest joint step (radians) between two checked points of a line; more means the line
+/// passes a singularity or changes IK branch.
+pub(crate) const MAX_JOINT_STEP: f64 = 0.25;
+
+/// Spacing (metres or radians of path length) at which a line is checked before it starts.
+const CHECK_SPACING: f64 = 0.005;
+
+/// At how many points, evenly spaced to its end, a path `length` long is checked before it
+/// starts: a line's every [`CHECK_SPACING`]; a joint move's end alone (its joints move in
+/// proportion, through no singularity).
+pub(crate) fn checked_points(length: f64, line: bool) -> usize {
+    if line {
+        ((length / CHECK_SPACING).ceil() as usize).max(1)
+    } else {
+        1
+    }
+}
+
 /// A joint move's length: the largest joint motion (radians), so that the leading joint
-/// follows the profile and the others move in proportion.
+/// follows the profile and the others move in proportion (also the largest step between two
+/// checked points).
 pub(crate) fn joints_length(from: &[f64], to: &[f64]) -> f64 {
     from.iter()
         .zip(to)
@@ -43,6 +62,13 @@ mod tests {
         assert!((line_length(&from, &moved) - 0.5).abs() < 1e-12);
         let turned = Isometry3::new(Vector3::new(0.1, 0.0, 0.0), Vector3::z() * 1.5);
         assert!((line_length(&from, &turned) - 1.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_line_is_checked_every_five_millimetres_and_a_joint_move_at_its_end() {
+        assert_eq!(checked_points(0.1, true), 20);
+        assert_eq!(checked_points(0.0, true), 1);
+        assert_eq!(checked_points(2.0, false), 1);
     }
 
     #[test]
