@@ -5,7 +5,7 @@ use nalgebra::Isometry3;
 
 /// The largest joint step (radians) between two checked points of a line; more means the line
 /// passes a singularity or changes IK branch.
-pub(crate) const MAX_JOINT_STEP: f64 = 0.25;
+const MAX_JOINT_STEP: f64 = 0.25;
 
 /// Spacing (metres or radians of path length) at which a line is checked before it starts.
 const CHECK_SPACING: f64 = 0.005;
@@ -13,12 +13,38 @@ const CHECK_SPACING: f64 = 0.005;
 /// At how many points, evenly spaced to its end, a path `length` long is checked before it
 /// starts: a line's every [`CHECK_SPACING`]; a joint move's end alone (its joints move in
 /// proportion, through no singularity).
-pub(crate) fn checked_points(length: f64, line: bool) -> usize {
+fn checked_points(length: f64, line: bool) -> usize {
     if line {
         ((length / CHECK_SPACING).ceil() as usize).max(1)
     } else {
         1
     }
+}
+
+/// Checks, before anything moves, that an arm can follow a path `length` long (a TCP `line`,
+/// or a joint move) from the joints `start`: `joints_at(along, near)` gives the joints at each
+/// checked point, found near the previous point's; a line whose joints would jump more than
+/// [`MAX_JOINT_STEP`] between two points (a singularity or a change of branch on the way) is
+/// `singular(along, jump)`. Returns the joints at the end.
+pub(crate) fn check<J: AsRef<[f64]>, E>(
+    length: f64,
+    line: bool,
+    start: J,
+    mut joints_at: impl FnMut(f64, &J) -> Result<J, E>,
+    singular: impl Fn(f64, f64) -> E,
+) -> Result<J, E> {
+    let steps = checked_points(length, line);
+    let mut q = start;
+    for step in 1..=steps {
+        let along = length * step as f64 / steps as f64;
+        let next = joints_at(along, &q)?;
+        let jump = joints_length(q.as_ref(), next.as_ref());
+        if line && jump > MAX_JOINT_STEP {
+            return Err(singular(along, jump));
+        }
+        q = next;
+    }
+    Ok(q)
 }
 
 /// A joint move's length: the largest joint motion (radians), so that the leading joint
@@ -69,6 +95,32 @@ mod tests {
         assert_eq!(checked_points(0.1, true), 20);
         assert_eq!(checked_points(0.0, true), 1);
         assert_eq!(checked_points(2.0, false), 1);
+    }
+
+    #[test]
+    fn a_check_walks_a_line_and_stops_where_its_joints_jump() {
+        let mut asked = Vec::new();
+        let end = check(
+            0.01,
+            true,
+            vec![0.0],
+            |along, _| {
+                asked.push(along);
+                Ok::<_, (f64, f64)>(vec![along])
+            },
+            |along, jump| (along, jump),
+        );
+        assert_eq!(end, Ok(vec![0.01]));
+        assert_eq!(asked, [0.005, 0.01]);
+        let jumping = |along: f64, _: &Vec<f64>| Ok(vec![if along > 0.006 { 1.0 } else { 0.0 }]);
+        assert_eq!(
+            check(0.01, true, vec![0.0], jumping, |along, jump| (along, jump)),
+            Err((0.01, 1.0))
+        );
+        assert_eq!(
+            check(0.01, false, vec![0.0], jumping, |along, jump| (along, jump)),
+            Ok(vec![1.0])
+        );
     }
 
     #[test]

@@ -75,19 +75,13 @@ impl Path {
         kinematics: &mut SerialKinematics,
         start: &[f64],
     ) -> Result<Vec<f64>, SerialMotionError> {
-        let length = self.length();
-        let steps = paths::checked_points(length, matches!(self, Path::Line { .. }));
-        let mut q = start.to_vec();
-        for step in 1..=steps {
-            let along = length * step as f64 / steps as f64;
-            let next = self.joints_at(along, kinematics, &q)?;
-            let jump = paths::joints_length(&q, &next);
-            if matches!(self, Path::Line { .. }) && jump > paths::MAX_JOINT_STEP {
-                return Err(SerialMotionError::Singular { along, jump });
-            }
-            q = next;
-        }
-        Ok(q)
+        paths::check(
+            self.length(),
+            matches!(self, Path::Line { .. }),
+            start.to_vec(),
+            |along, near| self.joints_at(along, kinematics, near),
+            |along, jump| SerialMotionError::Singular { along, jump },
+        )
     }
 }
 

@@ -65,19 +65,13 @@ impl Path {
         kinematics: &Kinematics,
         start: &Joints,
     ) -> Result<Joints, PathError> {
-        let length = self.length();
-        let steps = paths::checked_points(length, matches!(self, Path::Line { .. }));
-        let mut q = *start;
-        for step in 1..=steps {
-            let along = length * step as f64 / steps as f64;
-            let next = Self::joints_at(self.point(along), kinematics, &q)?;
-            let jump = paths::joints_length(&q, &next);
-            if matches!(self, Path::Line { .. }) && jump > paths::MAX_JOINT_STEP {
-                return Err(PathError::Singular { along, jump });
-            }
-            q = next;
-        }
-        Ok(q)
+        paths::check(
+            self.length(),
+            matches!(self, Path::Line { .. }),
+            *start,
+            |along, near| Ok(Self::joints_at(self.point(along), kinematics, near)?),
+            |along, jump| PathError::Singular { along, jump },
+        )
     }
 }
 
