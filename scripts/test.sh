@@ -49,6 +49,10 @@ cargo test --workspace --locked --test render_offscreen
 cargo test --workspace --locked --test runtime_interrupt
 cargo test --workspace --locked --test warnings_visible
 cargo test --workspace --features yarok/camera,yarok/viewer,yarok/zenoh,yarok/dataset --doc --locked
+echo "== the Python package: built into a fresh venv as the README installs it, then its tests (pytest)"
+bash scripts/setup-python.sh
+"${YAROK_CACHE_DIR:-$HOME/.cache/yarok}/python/bin/pip" install -q --disable-pip-version-check --force-reinstall --no-deps ./yarok-py
+(cd yarok-py && "${YAROK_CACHE_DIR:-$HOME/.cache/yarok}/python/bin/python" -m pytest -q -p no:cacheprovider tests)
 echo "== docs"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --features yarok/camera,yarok/viewer,yarok/zenoh,yarok/dataset
 echo "== example binary, started directly"

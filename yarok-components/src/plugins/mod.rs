@@ -9,9 +9,9 @@ mod encoder;
 mod inspector;
 mod joint_recorder;
 mod mcap_recorder;
-mod model_cameras;
+pub(crate) mod model_cameras;
 mod recording_profile;
-mod sim_state;
+pub(crate) mod sim_state;
 mod status_line;
 mod video_recorder;
 #[cfg(feature = "viewer")]

@@ -10,7 +10,7 @@ use yarok_mjc::{RenderPreset, Renderer};
 
 /// Cameras of a `sim` model, by name, rendered at one size.
 #[derive(Debug, Default)]
-pub(super) struct ModelCameras {
+pub(crate) struct ModelCameras {
     cameras: Vec<(String, CameraId)>,
     /// `None` when no camera was asked for: no renderer is made.
     renderer: Option<CameraRenderer>,
@@ -24,7 +24,7 @@ impl ModelCameras {
     ///
     /// When the model has no camera of one of the names (naming it), or the renderer cannot be
     /// made.
-    pub(super) fn find(
+    pub(crate) fn find(
         sim: &SimBackend,
         names: &[String],
         size: [u32; 2],
@@ -60,7 +60,7 @@ impl ModelCameras {
     /// # Errors
     ///
     /// When rendering fails.
-    pub(super) fn render(&mut self, sim: &SimBackend) -> Result<Vec<Vec<u8>>, BoxError> {
+    pub(crate) fn render(&mut self, sim: &SimBackend) -> Result<Vec<Vec<u8>>, BoxError> {
         let Some(renderer) = &mut self.renderer else {
             return Ok(Vec::new());
         };

@@ -11,7 +11,7 @@ use yarok_mjc::{BodyId, CameraId, JointId, Pose, SimBackend};
 /// frame, `{camera}/optical` (+x right and +y down in the image, +z forward), the frame its
 /// images are in.
 #[derive(Debug, Default)]
-pub(super) struct SimState {
+pub(crate) struct SimState {
     joints: Vec<JointId>,
     joint_names: Vec<String>,
     bodies: Vec<BodyId>,
@@ -29,7 +29,7 @@ pub(super) fn optical_frame(camera: &str) -> String {
 
 impl SimState {
     /// The joints and frames of `sim`'s model.
-    pub(super) fn of(sim: &SimBackend) -> Self {
+    pub(crate) fn of(sim: &SimBackend) -> Self {
         let model = sim.model();
         let data = sim.data();
         let mut state = Self::default();
@@ -61,7 +61,7 @@ impl SimState {
     }
 
     /// The joints' names.
-    pub(super) fn joint_names(&self) -> &[String] {
+    pub(crate) fn joint_names(&self) -> &[String] {
         &self.joint_names
     }
 
@@ -88,7 +88,7 @@ impl SimState {
     }
 
     /// Every joint's position and velocity now.
-    pub(super) fn joint_values(&self, sim: &SimBackend) -> (Vec<f64>, Vec<f64>) {
+    pub(crate) fn joint_values(&self, sim: &SimBackend) -> (Vec<f64>, Vec<f64>) {
         let data = sim.data();
         self.joints
             .iter()

@@ -8,8 +8,8 @@ use serde::Serialize;
 use serde::de::DeserializeOwned;
 
 use super::{
-    Backend, Environment, HandleError, Handles, Lifecycle, NameKind, NameMap, NamedCommand,
-    NamedState, Probe, ProbeImage, StopAction,
+    Actuators, Backend, Environment, HandleError, Handles, Lifecycle, NameKind, NameMap,
+    NamedCommand, NamedState, Probe, ProbeImage, StopAction,
 };
 use crate::BoxError;
 use crate::config::ConfigOrigins;
@@ -387,6 +387,58 @@ impl<E: Environment> Bind<E> {
                 name.to_owned(),
                 // The path names the field a body got wrong (`brightness: invalid type: …`).
                 Box::new(move |body| run(serde_path_to_error::deserialize(body)?)),
+            ));
+    }
+
+    /// Registers how a policy drives the component's `actuators` — each named as the composed
+    /// model names it (`arm/shoulder_pan`), with the range of its target, lowest first (targets
+    /// outside are refused before `set` sees them): `target` reads the targets they follow now (what
+    /// a dataset records as the action), `set` sets new ones (what a policy's action does).
+    /// Listed to plugins by [`World::actuations`](crate::runtime::World::actuations); a
+    /// world's action is every component's, in binding order.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use std::cell::Cell;
+    /// use std::rc::Rc;
+    /// use yarok_core::component::{Bind, BindError, Mock};
+    ///
+    /// fn bind(bind: &mut Bind<Mock>) -> Result<Rc<Cell<f64>>, BindError> {
+    ///     let target = Rc::new(Cell::new(0.0));
+    ///     let (read, set) = (Rc::clone(&target), Rc::clone(&target));
+    ///     bind.actuation(
+    ///         [("slide/motor".to_owned(), [-1.0, 1.0])],
+    ///         move || vec![read.get()],
+    ///         move |targets| {
+    ///             set.set(targets[0]);
+    ///             Ok(())
+    ///         },
+    ///     );
+    ///     Ok(target)
+    /// }
+    /// ```
+    pub fn actuation(
+        &mut self,
+        actuators: impl IntoIterator<Item = (String, [f64; 2])>,
+        target: impl Fn() -> Vec<f64> + 'static,
+        set: impl Fn(&[f64]) -> Result<(), BoxError> + 'static,
+    ) {
+        let (names, ranges) = actuators.into_iter().unzip();
+        let actuators = Actuators {
+            names,
+            ranges,
+            target: Box::new(target),
+            set: Box::new(set),
+        };
+        self.context
+            .lifecycle
+            .borrow_mut()
+            .actuations
+            .push(super::NamedActuation::new(
+                self.context.path.clone(),
+                "action".to_owned(),
+                Box::new(actuators),
             ));
     }
 

@@ -1,10 +1,10 @@
 //! What interfaces register while they bind: per-tick steps, tasks, restart and stop actions,
-//! probes, named states and commands.
+//! probes, named states and commands, actuations.
 
 use std::future::Future;
 use std::pin::Pin;
 
-use super::{NamedCommand, NamedState, Probe};
+use super::{NamedActuation, NamedCommand, NamedState, Probe};
 use crate::BoxError;
 
 /// A per-tick step an interface registered.
@@ -33,4 +33,5 @@ pub(crate) struct Lifecycle {
     pub(crate) probes: Vec<Probe>,
     pub(crate) states: Vec<NamedState>,
     pub(crate) commands: Vec<NamedCommand>,
+    pub(crate) actuations: Vec<NamedActuation>,
 }

@@ -51,6 +51,7 @@
 //! assert_eq!(counter.environments(), ["mock", "replay"]);
 //! ```
 
+mod actuation;
 mod backend;
 mod bind;
 mod command;
@@ -67,6 +68,7 @@ mod state;
 use std::any::TypeId;
 use std::fmt;
 
+pub use actuation::{Actuators, NamedActuation};
 pub use backend::{Backend, MockBackend};
 pub(crate) use bind::BindContext;
 pub use bind::{Bind, BindError, DEFAULT_STOP_SECONDS};

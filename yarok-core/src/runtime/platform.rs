@@ -15,8 +15,8 @@ use super::interrupt::Interrupt;
 use super::pl::PlParts;
 use super::{BehaviourResult, Pl, PlatformBuilder, Plugin, RuntimeError, World};
 use crate::component::{
-    Backend, BindContext, Binder, Handles, Lifecycle, NamedCommand, NamedState, Probe, StopAction,
-    TickStep,
+    Backend, BindContext, Binder, Handles, Lifecycle, NamedActuation, NamedCommand, NamedState,
+    Probe, StopAction, TickStep,
 };
 use crate::compose::{Composition, Instance};
 use crate::config::{ConfigOrigins, PlatformSettings, Settings};
@@ -77,6 +77,7 @@ pub struct Platform {
     probes: Vec<Probe>,
     states: Vec<NamedState>,
     commands: Vec<NamedCommand>,
+    actuations: Vec<NamedActuation>,
     executor: Executor,
     phase: Phase,
     ctrl_c: bool,
@@ -148,6 +149,7 @@ impl Platform {
             probes: Vec::new(),
             states: Vec::new(),
             commands: Vec::new(),
+            actuations: Vec::new(),
             executor,
             phase: Phase::Built,
             ctrl_c: prepared.ctrl_c,
@@ -343,6 +345,7 @@ impl Platform {
             self.probes = std::mem::take(&mut lifecycle.probes);
             self.states = std::mem::take(&mut lifecycle.states);
             self.commands = std::mem::take(&mut lifecycle.commands);
+            self.actuations = std::mem::take(&mut lifecycle.actuations);
             std::mem::take(&mut lifecycle.tasks)
         };
         self.backend.remember_start();
@@ -476,6 +479,23 @@ impl Platform {
         Ok(())
     }
 
+    /// The world as plugins see it, between ticks: for a driver that steps the platform with
+    /// [`Platform::step`] and reads or commands the world in between (a Gymnasium
+    /// environment). Probes, states, commands and actuations are listed once the platform
+    /// has started (after the first step).
+    pub fn world(&self) -> World<'_> {
+        World {
+            pl: &self.pl,
+            backend: self.backend.as_ref(),
+            composition: &self.composition,
+            settings: &self.settings,
+            probes: &self.probes,
+            states: &self.states,
+            commands: &self.commands,
+            actuations: &self.actuations,
+        }
+    }
+
     /// The plugins, and the world they see.
     fn plugins_and_world(&mut self) -> (&mut [Box<dyn Plugin>], World<'_>) {
         let world = World {
@@ -486,6 +506,7 @@ impl Platform {
             probes: &self.probes,
             states: &self.states,
             commands: &self.commands,
+            actuations: &self.actuations,
         };
         (&mut self.plugins, world)
     }

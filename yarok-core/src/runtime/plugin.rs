@@ -3,7 +3,7 @@
 
 use super::Pl;
 use crate::BoxError;
-use crate::component::{Backend, NamedCommand, NamedState, Probe};
+use crate::component::{Backend, NamedActuation, NamedCommand, NamedState, Probe};
 use crate::compose::Composition;
 use crate::config::Settings;
 
@@ -19,6 +19,7 @@ pub struct World<'a> {
     pub(crate) probes: &'a [Probe],
     pub(crate) states: &'a [NamedState],
     pub(crate) commands: &'a [NamedCommand],
+    pub(crate) actuations: &'a [NamedActuation],
 }
 
 impl std::fmt::Debug for World<'_> {
@@ -80,6 +81,12 @@ impl<'a> World<'a> {
     /// Every component's named commands, in binding order.
     pub fn commands(&self) -> &'a [NamedCommand] {
         self.commands
+    }
+
+    /// Every component's actuation (how a policy drives its actuators), in binding order:
+    /// together, the world's action.
+    pub fn actuations(&self) -> &'a [NamedActuation] {
+        self.actuations
     }
 
     /// The command `name` of the component at `path`, if it accepts one.

@@ -33,6 +33,25 @@ pub fn movej(q: &[f64; 6], speed: f64, acceleration: f64) -> String {
     format!("movej({}, a={acceleration}, v={speed})", six_decimals(q))
 }
 
+/// `servoj` to the joint angles `q` (radians), reached in `seconds` (the control period of
+/// whoever streams them), smoothed over `lookahead` seconds with `gain` (URScript's range
+/// 0.03–0.2 s and 100–2000): the command a policy streams at its rate.
+///
+/// ```
+/// use yarok_hw::ur::script;
+///
+/// assert_eq!(
+///     script::servoj(&[0.3, -1.5, 1.4, -1.2, -1.6, 0.0], 0.05, 0.1, 300.0),
+///     "servoj([0.300000, -1.500000, 1.400000, -1.200000, -1.600000, 0.000000], t=0.05, lookahead_time=0.1, gain=300)"
+/// );
+/// ```
+pub fn servoj(q: &[f64; 6], seconds: f64, lookahead: f64, gain: f64) -> String {
+    format!(
+        "servoj({}, t={seconds}, lookahead_time={lookahead}, gain={gain})",
+        six_decimals(q)
+    )
+}
+
 /// A program that sets the TCP (`tcp`, a pose in the flange frame) and runs `movel` to the TCP
 /// pose `to` (in the base frame) at `speed` m/s and `acceleration` m/s². A program, so that the
 /// TCP it moves by is the one it was planned with.

@@ -1,10 +1,12 @@
-//! What a [`ParallelGripper`] shows any plugin: its state (`state`) and the grips it takes
-//! (`command`).
+//! What a [`ParallelGripper`] shows any plugin: its state (`state`), the grips it takes
+//! (`command`) and the position a policy requests (its actuation, `…/position`).
+
+use std::rc::Rc;
 
 use yarok_core::BoxError;
 use yarok_core::component::{Bind, Environment};
 
-use super::ParallelGripper;
+use super::{ParallelGripper, Request};
 
 /// The gripper's state, as the 2F-85 reports it.
 #[derive(serde::Serialize)]
@@ -43,6 +45,23 @@ pub(super) fn expose<E: Environment>(bind: &mut Bind<E>, gripper: &ParallelGripp
     bind.command("command", move |command: GripperCommand| {
         run(&commanded, command)
     });
+    let name = format!("{}/position", bind.path().trim_start_matches('/'));
+    let (read, requested) = (Rc::clone(&gripper.drive), Rc::clone(&gripper.drive));
+    bind.actuation(
+        [(name, [0.0, 255.0])],
+        move || vec![read.requested().position],
+        move |targets| {
+            let position = targets[0].round();
+            let request = requested.requested();
+            if position != request.position {
+                requested.request(Request {
+                    position,
+                    ..request
+                });
+            }
+            Ok(())
+        },
+    );
 }
 
 fn run(gripper: &ParallelGripper, command: GripperCommand) -> Result<(), BoxError> {

@@ -22,6 +22,7 @@ use self::tables::{DataFiles, EpisodeRow, Widths, write_episodes, write_tasks};
 use super::encoder::H264;
 use super::model_cameras::ModelCameras;
 use super::sim_state::SimState;
+use crate::features::image_key;
 
 /// What and how a [`DatasetRecorder`] records (`[plugins.dataset]`).
 #[derive(Debug, Clone, PartialEq, serde::Deserialize)]
@@ -362,15 +363,6 @@ impl DatasetRecorder {
         }
         write_json(&self.root.join("meta/stats.json"), &Value::Object(stats))
     }
-}
-
-/// The key of a video feature of images from `path` (a probe's `/arm/left/image`, a camera's
-/// `overview`): `observation.images.arm.left.image`.
-fn image_key(path: &str) -> String {
-    format!(
-        "observation.images.{}",
-        path.trim_start_matches('/').replace('/', ".")
-    )
 }
 
 /// Makes `root` ready for a new dataset: created, or emptied of the dataset it holds.

@@ -1,9 +1,13 @@
-//! What an [`AnetA30`] shows any plugin: where its head is (`state`) and where it is sent
-//! (`command`).
+//! What an [`AnetA30`] shows any plugin: where its head is (`state`), where it is sent
+//! (`command`), and the head's target a policy sets (its actuation, `…/x`, `…/y`, `…/z` in
+//! millimetres).
+
+use std::cell::Cell;
+use std::rc::Rc;
 
 use yarok_core::component::{Bind, Environment};
 
-use super::AnetA30;
+use super::{AnetA30, WORK_VOLUME_MM};
 
 /// Where the head is (millimetres).
 #[derive(serde::Serialize)]
@@ -27,4 +31,28 @@ pub(super) fn expose<E: Environment>(bind: &mut Bind<E>, printer: &AnetA30) {
         commanded.move_to(move_to);
         Ok(())
     });
+    // The head's target: where a policy last sent it, else where the head is.
+    let target: Rc<Cell<Option<[f64; 3]>>> = Rc::default();
+    let forgotten = Rc::clone(&target);
+    bind.on_restart(move || forgotten.set(None));
+    let prefix = bind.path().trim_start_matches('/').to_owned();
+    let axes = std::array::from_fn::<_, 3, _>(|i| {
+        (
+            format!("{prefix}/{}", ["x", "y", "z"][i]),
+            [0.0, WORK_VOLUME_MM[i]],
+        )
+    });
+    let (read, shown, sent, driven) =
+        (Rc::clone(&target), printer.clone(), target, printer.clone());
+    bind.actuation(
+        axes,
+        move || read.get().unwrap_or_else(|| shown.at()).to_vec(),
+        move |targets| {
+            let to = [targets[0], targets[1], targets[2]];
+            if sent.replace(Some(to)) != Some(to) {
+                driven.move_to(to);
+            }
+            Ok(())
+        },
+    );
 }

@@ -200,6 +200,24 @@ impl Arm {
         self.controller.unlock_protective_stop().await
     }
 
+    /// Streams a joint target, as URScript's `servoj` does: the arm holds `target` from the
+    /// next step (a motion under way ends as stopped) and the next target is expected within
+    /// `seconds` (a policy's control period). What a policy's action sets.
+    ///
+    /// # Errors
+    ///
+    /// [`MotionError::InvalidTarget`](super::MotionError::InvalidTarget) when a joint is
+    /// beyond its limits or not a number.
+    pub fn servo_j(&self, target: Joints, seconds: f64) -> Result<(), super::MotionError> {
+        self.controller.servo(target, seconds)
+    }
+
+    /// The joint angles commanded for the next step: where a motion is due, or the last
+    /// streamed target.
+    pub fn commanded(&self) -> Joints {
+        self.controller.setpoint()
+    }
+
     /// Stops the motion under way: it decelerates along its path (a line stays a line) at its
     /// own acceleration; its awaiting future ends with [`MotionError::Stopped`](super::MotionError::Stopped).
     pub fn stop(&self) {

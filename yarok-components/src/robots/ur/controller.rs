@@ -167,6 +167,28 @@ impl Controller {
         self.command();
     }
 
+    /// Holds `target` from the next step, as URScript's `servoj` streamed every `seconds`
+    /// does: a motion under way ends as stopped, and the servos are set to the target at once.
+    pub(super) fn servo(&self, target: Joints, seconds: f64) -> Result<(), MotionError> {
+        self.joint_path(target, target)?;
+        {
+            let mut state = self.state.borrow_mut();
+            state.motions.abandon();
+            let setpoint = &mut state.setpoint;
+            setpoint.q = target;
+            setpoint.speed = [0.0; 6];
+            setpoint.acceleration = [0.0; 6];
+        }
+        self.drive.order(Order::ServoJ { target, seconds });
+        self.command();
+        Ok(())
+    }
+
+    /// The joints commanded for the next step.
+    pub(super) fn setpoint(&self) -> Joints {
+        self.state.borrow().setpoint.q
+    }
+
     /// Commands the setpoint to the drive.
     pub(super) fn command(&self) {
         self.drive.command(&self.state.borrow().setpoint);

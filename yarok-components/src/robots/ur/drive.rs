@@ -45,6 +45,14 @@ pub enum Order {
         /// m/s².
         acceleration: f64,
     },
+    /// `servoj` to `target`: the joints follow a streamed target (a policy's actions), each
+    /// reached within `seconds`.
+    ServoJ {
+        /// Joint angles (radians).
+        target: Joints,
+        /// The time the target is reached in: the streaming period.
+        seconds: f64,
+    },
     /// `stopj`: a joint motion decelerates to a stop.
     StopJ {
         /// rad/s².

@@ -1,9 +1,17 @@
-//! What an [`Arm`] shows any plugin: its state (`state`) and the motions it takes (`command`).
+//! What an [`Arm`] shows any plugin: its state (`state`), the motions it takes (`command`) and
+//! the joint targets a policy streams (its actuation).
 
 use yarok_core::BoxError;
 use yarok_core::component::{Bind, Environment};
 
 use super::{Arm, Joints, pose_to_vector};
+
+/// The arm's actuators, as yarok's templates and Menagerie's UR5e name them.
+const ACTUATORS: [&str; 6] = super::ArmNames::YAROK.actuators;
+
+/// The longest a streamed target is given to be reached in (seconds), however long the policy
+/// took to send the next.
+const LONGEST_SERVO_S: f64 = 0.2;
 
 /// The arm's state: joint angles and speeds, and the TCP as a UR pose vector.
 #[derive(serde::Serialize)]
@@ -37,6 +45,24 @@ pub(super) fn expose<E: Environment>(bind: &mut Bind<E>, arm: &Arm) {
     bind.command("command", move |command: ArmCommand| {
         run(&commanded, command)
     });
+    let prefix = bind.path().trim_start_matches('/').to_owned();
+    let limits = arm.kinematics().limits;
+    let actuators = std::array::from_fn::<_, 6, _>(|i| {
+        (format!("{prefix}/{}", ACTUATORS[i]), limits[i].into())
+    });
+    let (read, streamed, clock) = (arm.clone(), arm.clone(), bind.clock());
+    let last_target = std::cell::Cell::new(f64::NEG_INFINITY);
+    bind.actuation(
+        actuators,
+        move || read.commanded().to_vec(),
+        move |targets| {
+            let now = clock.time();
+            let since = (now - last_target.replace(now)).min(LONGEST_SERVO_S);
+            let target = std::array::from_fn(|i| targets[i]);
+            streamed.servo_j(target, since.max(clock.timestep()))?;
+            Ok(())
+        },
+    );
 }
 
 fn run(arm: &Arm, command: ArmCommand) -> Result<(), BoxError> {

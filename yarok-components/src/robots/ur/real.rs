@@ -33,6 +33,10 @@ const DASHBOARD_PORT: u16 = 29999;
 /// How long the stop's connection waits, once `stopj` is sent, for the controller to close it.
 const STOP_LINGER: Duration = Duration::from_millis(250);
 
+/// `servoj`'s smoothing of a streamed target (seconds) and its gain: URScript's defaults.
+const SERVO_LOOKAHEAD_S: f64 = 0.1;
+const SERVO_GAIN: f64 = 300.0;
+
 /// What the arm streams over RTDE, in this order.
 const OUTPUTS: [&str; 4] = ["actual_q", "actual_qd", "robot_mode", "safety_mode"];
 
@@ -197,6 +201,9 @@ impl ArmDrive for RealLink {
                 speed,
                 acceleration,
             ),
+            Order::ServoJ { target, seconds } => {
+                script::servoj(&target, seconds, SERVO_LOOKAHEAD_S, SERVO_GAIN)
+            }
             Order::StopJ { deceleration } => script::stopj(deceleration),
             Order::StopL { deceleration } => script::stopl(deceleration),
             Order::SetPayload(payload) => script::set_payload(payload.mass, payload.centre),

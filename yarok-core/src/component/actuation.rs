@@ -1,0 +1,82 @@
+//! [`NamedActuation`]: the targets a component's actuators follow, as a policy sets them and a
+//! dataset records them — one number per actuator.
+
+use super::Named;
+use crate::BoxError;
+
+/// What sets a component's actuators' targets.
+type SetTargets = Box<dyn Fn(&[f64]) -> Result<(), BoxError>>;
+
+/// What a component's actuators are driven by: their names, the targets they follow now, and
+/// how a new target is set.
+pub struct Actuators {
+    pub(crate) names: Vec<String>,
+    pub(crate) ranges: Vec<[f64; 2]>,
+    pub(crate) target: Box<dyn Fn() -> Vec<f64>>,
+    pub(crate) set: SetTargets,
+}
+
+impl std::fmt::Debug for Actuators {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Actuators")
+            .field("names", &self.names)
+            .finish()
+    }
+}
+
+/// A component's actuation: registered with [`Bind::actuation`](super::Bind::actuation),
+/// listed to plugins by [`World::actuations`](crate::runtime::World::actuations). The world's
+/// action is every actuation's targets, in binding order.
+pub type NamedActuation = Named<Actuators>;
+
+impl NamedActuation {
+    /// The actuators' names, as the composed model names them (`arm/shoulder_pan`).
+    pub fn names(&self) -> &[String] {
+        &self.function().names
+    }
+
+    /// The range of each actuator's target, lowest first (a joint's limits, a gripper's 0–255).
+    pub fn ranges(&self) -> &[[f64; 2]] {
+        &self.function().ranges
+    }
+
+    /// The targets the actuators follow now (an arm's commanded joint positions, a gripper's
+    /// commanded position), one per name.
+    pub fn target(&self) -> Vec<f64> {
+        (self.function().target)()
+    }
+
+    /// Sets new targets, one per name, which the actuators follow from the next tick.
+    ///
+    /// # Errors
+    ///
+    /// When `targets` has not one number per actuator, one is outside its range or not a
+    /// number, or the component refuses them, naming the actuation
+    /// (`actuation /arm/action: …`).
+    pub fn set(&self, targets: &[f64]) -> Result<(), BoxError> {
+        let names = self.names();
+        if targets.len() != names.len() {
+            return Err(format!(
+                "actuation {}: {} targets given for {} actuators ({})",
+                self.path(),
+                targets.len(),
+                names.len(),
+                names.join(", ")
+            )
+            .into());
+        }
+        let outside =
+            |(target, [lowest, highest]): (&f64, &[f64; 2])| !(*lowest..=*highest).contains(target);
+        if let Some(at) = targets.iter().zip(self.ranges()).position(outside) {
+            let [lowest, highest] = self.ranges()[at];
+            return Err(format!(
+                "actuation {}: the target of {} is {}, outside its range {lowest} to {highest}",
+                self.path(),
+                names[at],
+                targets[at]
+            )
+            .into());
+        }
+        (self.function().set)(targets).map_err(|e| format!("actuation {}: {e}", self.path()).into())
+    }
+}

@@ -1,0 +1,32 @@
+"""yarok from Python: worlds composed from reusable MJCF components, simulated in MuJoCo (or
+driven on real hardware) by yarok's Rust runtime, as Gymnasium environments.
+
+>>> import yarok
+>>> world = yarok.World("digit_world")                   # a bundled world, in `sim`
+>>> observation = world.reset(episode=0)                 # dict of numpy arrays
+>>> observation = world.advance(0.05, action=None)       # 50 ms of platform time
+>>> world.close()
+
+Gymnasium environments are registered as ``yarok/PickPlace-v0`` and ``yarok/TactilePress-v0``;
+``yarok.YarokEnv`` makes any world an environment with your own task (reward, success, reset),
+and ``yarok.YarokVectorEnv`` steps N copies on N Rust threads.
+"""
+
+from ._native import World, Worlds, YarokError
+from .env import Task, YarokEnv
+from .vector import YarokVectorEnv
+from . import tasks
+from .registration import register_environments
+
+__all__ = [
+    "Task",
+    "World",
+    "Worlds",
+    "YarokEnv",
+    "YarokError",
+    "YarokVectorEnv",
+    "register_environments",
+    "tasks",
+]
+
+register_environments()

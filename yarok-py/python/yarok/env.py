@@ -1,0 +1,160 @@
+"""YarokEnv: a yarok world as a Gymnasium environment, with a Task giving its reward, success
+and randomised start."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Sequence
+
+import gymnasium
+import numpy as np
+
+from ._native import World
+
+
+@dataclass
+class Task:
+    """What makes a world an environment: which world, how each episode starts, the reward and
+    when it is won. Subclass it and override what your task needs.
+
+    ``placements(rng)`` returns the free bodies to put somewhere when an episode begins,
+    ``[(body, (x, y, z), (qw, qx, qy, qz)), ...]`` (body names as in
+    ``World.environment_names``, without the ``/x`` suffix); draw from ``rng`` only, so that a
+    seed gives the same start every time.
+    """
+
+    world: str = "digit_world"
+    settings: Sequence[str] = ()
+    cameras: Sequence[str] = ()
+    camera_size: tuple[int, int] = (84, 84)
+    control_hz: float = 20.0
+    render_camera: str | None = None
+
+    def bind(self, features) -> None:
+        """Called once the world has started, with its ``features`` (names of the state,
+        environment state and action): where a task finds the indices it reads."""
+
+    def placements(self, rng: np.random.Generator) -> list[tuple[str, tuple, tuple]]:
+        return []
+
+    def reward(self, observation: dict[str, np.ndarray], action: np.ndarray) -> float:
+        return 0.0
+
+    def success(self, observation: dict[str, np.ndarray]) -> bool:
+        return False
+
+
+def observation_space(world) -> gymnasium.spaces.Dict:
+    """The observation space of a world's ``features``: the LeRobot dataset's features, same keys and shapes."""
+    spaces: dict[str, gymnasium.spaces.Space] = {
+        "observation.state": gymnasium.spaces.Box(
+            -np.inf, np.inf, (len(world.state_names),), np.float32
+        ),
+        "observation.environment_state": gymnasium.spaces.Box(
+            -np.inf, np.inf, (len(world.environment_names),), np.float32
+        ),
+    }
+    for key, shape in world.images:
+        spaces[key] = gymnasium.spaces.Box(0, 255, shape, np.uint8)
+    return gymnasium.spaces.Dict(spaces)
+
+
+def action_space(world) -> gymnasium.spaces.Box:
+    """The action space of a world's ``features``: ``action``'s numbers within their ranges."""
+    ranges = np.array(world.action_ranges, dtype=np.float64).reshape(-1, 2)
+    return gymnasium.spaces.Box(
+        ranges[:, 0].astype(np.float32), ranges[:, 1].astype(np.float32), dtype=np.float32
+    )
+
+
+class YarokEnv(gymnasium.Env):
+    """A yarok world as a Gymnasium environment.
+
+    Observations are the world's LeRobot features (``observation.state``,
+    ``observation.environment_state``, ``observation.images.*``), the action its ``action``
+    (each component's targets: an arm's joints in radians, a gripper's position 0-255), so a
+    policy trained on a dataset ``yarok run WORLD --dataset DIR`` wrote takes them unchanged.
+    Each step sets the action (clipped to the action space) and advances ``1 / control_hz``
+    seconds of platform time. ``reset(seed=s)`` puts the world back to its start and places
+    the task's bodies as drawn from ``s``: the same seed, the same episode, bit for bit.
+
+    ``env="real"`` drives the real robot through yarok's drivers with the same actions;
+    ``close()`` stops it (devices left safe).
+    """
+
+    metadata = {"render_modes": ["rgb_array"], "render_fps": 20}
+
+    def __init__(
+        self,
+        task: Task | None = None,
+        env: str = "sim",
+        settings: Sequence[str] = (),
+        config: Sequence[str] = (),
+        render_mode: str | None = None,
+    ):
+        self.task = task if task is not None else Task()
+        cameras = list(self.task.cameras)
+        if render_mode == "rgb_array" and self.task.render_camera not in (None, *cameras):
+            cameras.append(self.task.render_camera)
+        if render_mode not in (None, "rgb_array"):
+            raise ValueError(f"render_mode {render_mode!r}: yarok renders 'rgb_array' only")
+        self.render_mode = render_mode
+        self.world = World(
+            self.task.world,
+            env=env,
+            settings=[*self.task.settings, *settings],
+            config=list(config),
+            cameras=cameras,
+            camera_size=tuple(self.task.camera_size),
+        )
+        self.task.bind(self.world.features)
+        spaces = observation_space(self.world.features).spaces
+        if self.task.render_camera is not None and self.task.render_camera not in self.task.cameras:
+            spaces.pop(f"observation.images.{self.task.render_camera}", None)
+        self.observation_space = gymnasium.spaces.Dict(spaces)
+        self._observed_keys = set(spaces)
+        self.action_space = action_space(self.world.features)
+        self.metadata = {**self.metadata, "render_fps": self.task.control_hz}
+        self._episodes = 0
+        self._start_tick = 0
+        self._last: dict[str, np.ndarray] | None = None
+
+    def _keep(self, observation: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+        self._last = observation
+        return {key: value for key, value in observation.items() if key in self._observed_keys}
+
+    def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
+        super().reset(seed=seed)
+        placements = self.task.placements(self.np_random)
+        observation = self.world.reset(self._episodes, placements)
+        self._episodes += 1
+        self._start_tick = self.world.ticks
+        return self._keep(observation), {"time": 0.0}
+
+    def step(self, action):
+        action = np.clip(
+            np.asarray(action, dtype=np.float64), self.action_space.low, self.action_space.high
+        )
+        observation = self.world.advance(1.0 / self.task.control_hz, action.tolist())
+        reward = float(self.task.reward(observation, action))
+        success = bool(self.task.success(observation))
+        time = (self.world.ticks - self._start_tick) * self.world.features.timestep
+        info = {"is_success": success, "time": time}
+        return self._keep(observation), reward, success, False, info
+
+    def render(self):
+        if self.render_mode != "rgb_array" or self._last is None:
+            return None
+        key = _render_key(self.task, self._last)
+        return None if key is None else self._last[key]
+
+    def close(self):
+        if getattr(self, "world", None) is not None:
+            self.world.close()
+
+
+def _render_key(task: Task, observation: dict[str, np.ndarray]) -> str | None:
+    if task.render_camera is not None:
+        return f"observation.images.{task.render_camera}"
+    images = [key for key in observation if key.startswith("observation.images.")]
+    return images[0] if images else None

@@ -1,0 +1,103 @@
+"""The registered tasks: a pick-and-place in DigitWorld and a press on the tactile rig."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .env import Task
+
+TABLE_HEIGHT = 0.4
+"""The table top's height in PickAndPlaceWorld and DigitWorld (metres, world frame)."""
+
+
+def _yaw(angle: float) -> tuple[float, float, float, float]:
+    return (float(np.cos(angle / 2)), 0.0, 0.0, float(np.sin(angle / 2)))
+
+
+def _pose(observation: dict[str, np.ndarray], index: int) -> np.ndarray:
+    """The position of the free body whose pose starts at ``index`` in the environment state."""
+    return observation["observation.environment_state"][index : index + 3]
+
+
+@dataclass
+class PickPlace(Task):
+    """DigitWorld: put the medium block (3.5 cm) on the target spot. Won when the block rests
+    on the target within 5 mm with the gripper open. Each episode starts with the block at a
+    place and yaw drawn from the seed, within the arm's reach and clear of the other blocks.
+
+    The reward is dense: minus the block's distance to the target (metres), plus 1 when won.
+    """
+
+    world: str = "digit_world"
+    target: tuple[float, float] = (0.42, 0.38)
+    block: str = "medium"
+    block_size: float = 0.035
+    region: tuple[tuple[float, float], tuple[float, float]] = ((0.56, 0.68), (-0.12, 0.06))
+    tolerance: float = 0.005
+    render_camera: str | None = "overview"
+
+    def bind(self, features) -> None:
+        names = features.environment_names
+        self.block_index = names.index(f"{self.block}/block/x")
+        self.gripper_index = features.action_names.index("arm/gripper/position")
+        self.finger_index = features.state_names.index("arm/gripper/right_driver")
+
+    def placements(self, rng):
+        (x_low, x_high), (y_low, y_high) = self.region
+        position = (
+            float(rng.uniform(x_low, x_high)),
+            float(rng.uniform(y_low, y_high)),
+            TABLE_HEIGHT + self.block_size / 2,
+        )
+        yaw = _yaw(float(rng.uniform(-np.pi / 4, np.pi / 4)))
+        return [(f"{self.block}/block", position, yaw)]
+
+    def distance(self, observation) -> float:
+        block = _pose(observation, self.block_index)
+        return float(np.hypot(block[0] - self.target[0], block[1] - self.target[1]))
+
+    def success(self, observation) -> bool:
+        block = _pose(observation, self.block_index)
+        resting = abs(block[2] - (TABLE_HEIGHT + self.block_size / 2)) < 0.003
+        gripper_open = observation["observation.state"][self.finger_index] < 0.05
+        return self.distance(observation) < self.tolerance and resting and bool(gripper_open)
+
+    def reward(self, observation, action) -> float:
+        return -self.distance(observation) + (1.0 if self.success(observation) else 0.0)
+
+
+@dataclass
+class TactilePress(Task):
+    """The tactile rig with a DIGIT: press the indenter into the gel until the sensor's image
+    changes by a target amount (mean absolute change of its pixels from the first frame of the
+    episode, in grey levels), drawn from the seed between 2 and 6. The action is the printer
+    head's target (millimetres). Won when the change is within 0.5 of the target.
+    """
+
+    world: str = "tactile_rig_world"
+    settings: tuple[str, ...] = ('sensor="digit"',)
+    control_hz: float = 20.0
+    tolerance: float = 0.5
+
+    def __post_init__(self):
+        self.target = 4.0
+        self._reference: np.ndarray | None = None
+
+    def placements(self, rng):
+        self.target = float(rng.uniform(2.0, 6.0))
+        self._reference = None
+        return []
+
+    def change(self, observation) -> float:
+        image = observation["observation.images.sensor.image"].astype(np.float32)
+        if self._reference is None:
+            self._reference = image
+        return float(np.abs(image - self._reference).mean())
+
+    def reward(self, observation, action) -> float:
+        return -abs(self.change(observation) - self.target)
+
+    def success(self, observation) -> bool:
+        return abs(self.change(observation) - self.target) < self.tolerance

@@ -1,0 +1,46 @@
+//! The native half of yarok's Python package (`yarok._native`): [`World`](world::World), a
+//! world driven step by step from Python, and [`Worlds`](worlds::Worlds), several stepped at
+//! once on threads of their own. The Gymnasium environments are Python, over these.
+
+mod features;
+mod observation;
+mod worker;
+mod world;
+mod worlds;
+
+use pyo3::prelude::*;
+
+pyo3::create_exception!(
+    _native,
+    YarokError,
+    pyo3::exceptions::PyRuntimeError,
+    "What yarok refused or what failed in a world, in yarok's words."
+);
+
+#[pymodule]
+fn _native(module: &Bound<'_, PyModule>) -> PyResult<()> {
+    module.add("YarokError", module.py().get_type::<YarokError>())?;
+    module.add_class::<features::Features>()?;
+    module.add_class::<world::World>()?;
+    module.add_class::<worlds::Worlds>()?;
+    Ok(())
+}
+
+/// Whether Ctrl-C (or another signal Python handles) arrived: checked with the GIL, while a
+/// world works without it. The exception is kept to be raised.
+fn interrupted(pending: &mut Option<PyErr>) -> impl FnMut() -> bool + '_ {
+    move || {
+        Python::attach(|py| match py.check_signals() {
+            Ok(()) => false,
+            Err(error) => {
+                *pending = Some(error);
+                true
+            }
+        })
+    }
+}
+
+/// yarok's error text as a Python exception.
+fn error(text: String) -> PyErr {
+    YarokError::new_err(text)
+}

@@ -1,0 +1,366 @@
+//! [`Worker`]: a world on a thread of its own — the platform is built, stepped and shut down
+//! there (it is not `Send`) — driven by requests over a channel, so that Python waits for it
+//! without the GIL and N worlds step on N threads.
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender, channel};
+use std::thread::JoinHandle;
+use std::time::Duration;
+
+use yarok::components::demos;
+use yarok::components::features::{Features, Observation};
+use yarok::core::runtime::Platform;
+use yarok::core::suggest::did_you_mean;
+
+/// How a world is made: a bundled world's tag, the environment, and the command line's
+/// settings (`--set`, `--config`).
+#[derive(Debug, Clone)]
+pub(crate) struct WorldSpec {
+    pub(crate) world: String,
+    pub(crate) environment: String,
+    pub(crate) settings: Vec<String>,
+    pub(crate) configs: Vec<String>,
+    /// Cameras of the model observed as images (`overview`), and their size.
+    pub(crate) cameras: Vec<String>,
+    pub(crate) camera_size: [u32; 2],
+}
+
+/// A free body put somewhere when an episode begins.
+#[derive(Debug, Clone)]
+pub(crate) struct Placement {
+    pub(crate) body: String,
+    pub(crate) position: [f64; 3],
+    pub(crate) orientation: [f64; 4],
+}
+
+/// What a world's observations and actions are, found when it starts.
+#[derive(Debug, Clone)]
+pub(crate) struct WorldInfo {
+    pub(crate) state_names: Vec<String>,
+    pub(crate) environment_names: Vec<String>,
+    pub(crate) images: Vec<(String, [u32; 2])>,
+    pub(crate) action_names: Vec<String>,
+    pub(crate) action_ranges: Vec<[f64; 2]>,
+    pub(crate) timestep: f64,
+}
+
+/// An observation with the platform time and tick it was taken at.
+#[derive(Debug)]
+pub(crate) struct Observed {
+    pub(crate) observation: Observation,
+    pub(crate) time: f64,
+    pub(crate) ticks: u64,
+}
+
+enum Request {
+    /// Begin episode `episode`: the world back at its start, then the bodies placed, then one
+    /// tick so that every sensor sees the start.
+    Reset {
+        episode: u64,
+        placements: Vec<Placement>,
+    },
+    /// Set the action (if any), then advance `ticks` ticks.
+    Step {
+        action: Option<Vec<f64>>,
+        ticks: u64,
+    },
+    /// Stop the platform: devices left safe, plugins ended.
+    Close,
+}
+
+type Reply = Result<Observed, String>;
+
+/// A world on its own thread.
+#[derive(Debug)]
+pub(crate) struct Worker {
+    requests: Sender<Request>,
+    replies: Receiver<Reply>,
+    /// How the run ended, sent once the platform has shut down.
+    ended: Receiver<Result<(), String>>,
+    stop: Arc<AtomicBool>,
+    thread: Option<JoinHandle<()>>,
+    info: WorldInfo,
+    closed: bool,
+}
+
+/// How long a wait for the world's thread lasts before the caller looks for Ctrl-C.
+pub(crate) const POLL: Duration = Duration::from_millis(50);
+
+impl Worker {
+    /// Starts the world of `spec` on a new thread and waits until its components are bound,
+    /// calling `interrupted` every [`POLL`] (Python's Ctrl-C).
+    pub(crate) fn start(
+        spec: WorldSpec,
+        interrupted: &mut dyn FnMut() -> bool,
+    ) -> Result<Self, String> {
+        let (requests, inbox) = channel();
+        let (outbox, replies) = channel();
+        let (started, start_reply) = channel();
+        let (end, ended) = channel();
+        let stop = Arc::new(AtomicBool::new(false));
+        let flag = Arc::clone(&stop);
+        let thread = std::thread::Builder::new()
+            .name(format!("yarok {}", spec.world))
+            .spawn(move || serve(spec, flag, inbox, outbox, started, end))
+            .map_err(|e| format!("cannot start the world's thread: {e}"))?;
+        let info = loop {
+            match start_reply.recv_timeout(POLL) {
+                Ok(result) => break result?,
+                Err(RecvTimeoutError::Timeout) if interrupted() => {
+                    stop.store(true, Ordering::Relaxed);
+                    let _ = thread.join();
+                    return Err("interrupted while the world started".into());
+                }
+                Err(RecvTimeoutError::Timeout) => {}
+                Err(RecvTimeoutError::Disconnected) => {
+                    return Err("the world's thread ended while starting".into());
+                }
+            }
+        };
+        Ok(Self {
+            requests,
+            replies,
+            ended,
+            stop,
+            thread: Some(thread),
+            info,
+            closed: false,
+        })
+    }
+
+    pub(crate) fn info(&self) -> &WorldInfo {
+        &self.info
+    }
+
+    /// Sends a reset; its reply is taken with [`Worker::reply`].
+    pub(crate) fn send_reset(
+        &self,
+        episode: u64,
+        placements: Vec<Placement>,
+    ) -> Result<(), String> {
+        self.send(Request::Reset {
+            episode,
+            placements,
+        })
+    }
+
+    /// Sends a step; its reply is taken with [`Worker::reply`].
+    pub(crate) fn send_step(&self, action: Option<Vec<f64>>, ticks: u64) -> Result<(), String> {
+        self.send(Request::Step { action, ticks })
+    }
+
+    fn send(&self, request: Request) -> Result<(), String> {
+        if self.closed {
+            return Err("the world is closed".into());
+        }
+        self.requests
+            .send(request)
+            .map_err(|_| "the world's thread has ended".to_owned())
+    }
+
+    /// The reply to the request sent last, waiting [`POLL`] at a time; `None` when
+    /// `interrupted` says to stop waiting (the world is then stopped).
+    pub(crate) fn reply(&mut self, interrupted: &mut dyn FnMut() -> bool) -> Option<Reply> {
+        loop {
+            match self.replies.recv_timeout(POLL) {
+                Ok(reply) => return Some(reply),
+                Err(RecvTimeoutError::Timeout) if interrupted() => {
+                    self.stop.store(true, Ordering::Relaxed);
+                    let _ = self.finish();
+                    return None;
+                }
+                Err(RecvTimeoutError::Timeout) => {}
+                Err(RecvTimeoutError::Disconnected) => {
+                    return Some(Err("the world's thread ended".into()));
+                }
+            }
+        }
+    }
+
+    /// Stops the world — devices left safe — and waits for its thread: how the run ended.
+    pub(crate) fn close(&mut self) -> Result<(), String> {
+        if self.closed {
+            return Ok(());
+        }
+        let _ = self.requests.send(Request::Close);
+        self.finish()
+    }
+
+    fn finish(&mut self) -> Result<(), String> {
+        self.closed = true;
+        let Some(thread) = self.thread.take() else {
+            return Ok(());
+        };
+        let outcome = self
+            .ended
+            .recv()
+            .unwrap_or_else(|_| Err("the world's thread ended without a word".into()));
+        thread
+            .join()
+            .map_err(|_| "the world's thread panicked".to_owned())?;
+        outcome
+    }
+}
+
+impl Drop for Worker {
+    fn drop(&mut self) {
+        let _ = self.close();
+    }
+}
+
+/// The platform of `spec`, built and started (its components bound).
+fn start(spec: &WorldSpec, stop: Arc<AtomicBool>) -> Result<(Platform, Features), String> {
+    let demo = demos::find(&spec.world).ok_or_else(|| {
+        let tags: Vec<String> = demos::demos().iter().map(|demo| demo.tag()).collect();
+        format!(
+            "no bundled world {:?}{} (the worlds: {})",
+            spec.world,
+            did_you_mean(&spec.world, tags.iter().map(String::as_str)),
+            tags.join(", ")
+        )
+    })?;
+    let args = ["--env".to_owned(), spec.environment.clone()]
+        .into_iter()
+        .chain(
+            spec.settings
+                .iter()
+                .flat_map(|s| ["--set".to_owned(), s.clone()]),
+        )
+        .chain(
+            spec.configs
+                .iter()
+                .flat_map(|c| ["--config".to_owned(), c.clone()]),
+        );
+    let mut platform = yarok::platform()
+        .world_type(demo.world)
+        .args(args)
+        .map_err(|e| e.to_string())?
+        .stop_flag(stop)
+        .ctrl_c(false)
+        .behaviour_named("python", |pl| async move {
+            pl.wait_forever().await?;
+            Ok(())
+        })
+        .build()
+        .map_err(|e| e.to_string())?;
+    if !platform.step().map_err(|e| e.to_string())? {
+        return Err("the world stopped as it started".into());
+    }
+    let features = Features::of(&platform.world(), &spec.cameras, spec.camera_size, false)
+        .map_err(|e| e.to_string())?;
+    Ok((platform, features))
+}
+
+fn info(platform: &Platform, features: &Features) -> WorldInfo {
+    WorldInfo {
+        state_names: features.state_names().to_vec(),
+        environment_names: features.environment_names().to_vec(),
+        images: features
+            .images()
+            .iter()
+            .map(|image| (image.key.clone(), image.size))
+            .collect(),
+        action_names: features.action_names().to_vec(),
+        action_ranges: features.action_ranges().to_vec(),
+        timestep: platform.pl().timestep(),
+    }
+}
+
+/// The world's thread: starts it, then answers requests until closed.
+fn serve(
+    spec: WorldSpec,
+    stop: Arc<AtomicBool>,
+    inbox: Receiver<Request>,
+    outbox: Sender<Reply>,
+    started: Sender<Result<WorldInfo, String>>,
+    end: Sender<Result<(), String>>,
+) {
+    let (mut platform, mut features) = match start(&spec, stop) {
+        Ok(started) => started,
+        Err(error) => {
+            let _ = started.send(Err(error));
+            return;
+        }
+    };
+    if started.send(Ok(info(&platform, &features))).is_err() {
+        return;
+    }
+    while let Ok(request) = inbox.recv() {
+        // A refused action or placement leaves the world as it was; a failed tick ends it.
+        let (reply, ended) = match request {
+            Request::Reset {
+                episode,
+                placements,
+            } => match begin(&platform, &features, episode, &placements) {
+                Ok(()) => advance(&mut platform, &mut features, 1),
+                Err(refused) => (Err(refused), false),
+            },
+            Request::Step { action, ticks } => match act(&platform, &features, action) {
+                Ok(()) => advance(&mut platform, &mut features, ticks),
+                Err(refused) => (Err(refused), false),
+            },
+            Request::Close => break,
+        };
+        if outbox.send(reply).is_err() || ended {
+            break;
+        }
+    }
+    platform.pl().stop();
+    let outcome = platform.step().map(drop).map_err(|e| e.to_string());
+    let _ = end.send(outcome);
+}
+
+/// Begins episode `episode`: the world back at its start, the bodies placed.
+fn begin(
+    platform: &Platform,
+    features: &Features,
+    episode: u64,
+    placements: &[Placement],
+) -> Result<(), String> {
+    platform
+        .pl()
+        .begin_episode(episode)
+        .map_err(|e| e.to_string())?;
+    for placement in placements {
+        features
+            .place(
+                &platform.world(),
+                &placement.body,
+                placement.position,
+                placement.orientation,
+            )
+            .map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
+
+fn act(platform: &Platform, features: &Features, action: Option<Vec<f64>>) -> Result<(), String> {
+    match action {
+        Some(action) => features
+            .act(&platform.world(), &action)
+            .map_err(|e| e.to_string()),
+        None => Ok(()),
+    }
+}
+
+/// Advances `ticks` ticks, then observes; whether the world ended.
+fn advance(platform: &mut Platform, features: &mut Features, ticks: u64) -> (Reply, bool) {
+    for _ in 0..ticks {
+        match platform.step() {
+            Ok(true) => {}
+            Ok(false) => return (Err("the world stopped".into()), true),
+            Err(error) => return (Err(error.to_string()), true),
+        }
+    }
+    let observed = features
+        .observe(&platform.world())
+        .map_err(|e| e.to_string())
+        .map(|observation| Observed {
+            observation,
+            time: platform.pl().time(),
+            ticks: platform.pl().ticks(),
+        });
+    let ended = observed.is_err();
+    (observed, ended)
+}
