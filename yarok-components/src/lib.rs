@@ -16,7 +16,6 @@ pub use zenoh;
 
 pub mod cameras;
 pub mod demos;
-pub mod features;
 pub mod grippers;
 pub mod plugins;
 pub mod probe_images;

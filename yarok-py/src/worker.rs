@@ -9,7 +9,7 @@ use std::thread::JoinHandle;
 use std::time::Duration;
 
 use yarok::components::demos;
-use yarok::components::features::{Features, Observation};
+use yarok::components::plugins::features::{Features, Observation};
 use yarok::core::runtime::Platform;
 use yarok::core::suggest::did_you_mean;
 

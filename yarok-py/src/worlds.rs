@@ -137,8 +137,7 @@ impl Worlds {
             .into_iter()
             .enumerate()
             .map(|(index, action)| {
-                let send: SendRequest =
-                    Box::new(move |worker| worker.send_step(action, ticks));
+                let send: SendRequest = Box::new(move |worker| worker.send_step(action, ticks));
                 (index, send)
             })
             .collect();

@@ -5,6 +5,7 @@ mod cdr;
 #[cfg(feature = "dataset")]
 mod dataset_recorder;
 mod encoder;
+pub mod features;
 #[cfg(feature = "viewer")]
 mod inspector;
 mod joint_recorder;

@@ -20,9 +20,9 @@ use self::meta::{Feature, INDEX_FEATURES, Info, stats_json, write_json};
 use self::stats::FeatureStats;
 use self::tables::{DataFiles, EpisodeRow, Widths, write_episodes, write_tasks};
 use super::encoder::H264;
+use super::features::image_key;
 use super::model_cameras::ModelCameras;
 use super::sim_state::SimState;
-use crate::features::image_key;
 
 /// What and how a [`DatasetRecorder`] records (`[plugins.dataset]`).
 #[derive(Debug, Clone, PartialEq, serde::Deserialize)]

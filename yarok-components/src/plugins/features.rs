@@ -1,5 +1,5 @@
 //! [`Features`]: a world's observation and action as a policy sees them and a LeRobot dataset
-//! records them — `observation.state`, `observation.environment_state`,
+//! records them (beside the plugins, which record and show them) — `observation.state`, `observation.environment_state`,
 //! `observation.images.*` and `action`, with the same names and shapes everywhere.
 
 use yarok_core::BoxError;
@@ -7,8 +7,8 @@ use yarok_core::component::ProbeImage;
 use yarok_core::runtime::World;
 use yarok_mjc::{ActuatorId, JointId};
 
-use crate::plugins::model_cameras::ModelCameras;
-use crate::plugins::sim_state::SimState;
+use super::model_cameras::ModelCameras;
+use super::sim_state::SimState;
 
 /// The numbers of a free body's pose in `observation.environment_state`: position, then
 /// orientation as a unit quaternion (w first, as MuJoCo's).
@@ -82,7 +82,7 @@ impl Features {
         size: [u32; 2],
         quality: bool,
     ) -> Result<Self, BoxError> {
-        let sim = crate::plugins::sim_backend(world)?;
+        let sim = super::sim_backend(world)?;
         let model = sim.model();
         let data = sim.data();
         let mut free_joints = Vec::new();
@@ -183,7 +183,7 @@ impl Features {
     ///
     /// When the world is not simulated.
     pub fn observe_state(&self, world: &World<'_>) -> Result<(Vec<f64>, Vec<f64>), BoxError> {
-        let sim = crate::plugins::sim_backend(world)?;
+        let sim = super::sim_backend(world)?;
         let (state, _) = self.sim.joint_values(sim);
         let data = sim.data();
         let environment = self
@@ -211,7 +211,7 @@ impl Features {
                 }
             }
         }
-        images.extend(self.cameras.render(crate::plugins::sim_backend(world)?)?);
+        images.extend(self.cameras.render(super::sim_backend(world)?)?);
         Ok(Observation {
             state,
             environment_state,
@@ -226,7 +226,7 @@ impl Features {
     ///
     /// When the world is not simulated.
     pub fn action(&self, world: &World<'_>) -> Result<Vec<f64>, BoxError> {
-        let sim = crate::plugins::sim_backend(world)?;
+        let sim = super::sim_backend(world)?;
         let mut action: Vec<f64> = world
             .actuations()
             .iter()
@@ -263,7 +263,7 @@ impl Features {
             actuation.set(share)?;
             rest = after;
         }
-        let sim = crate::plugins::sim_backend(world)?;
+        let sim = super::sim_backend(world)?;
         let mut data = sim.data_mut();
         for (actuator, value) in self.raw_actuators.iter().zip(rest) {
             data.set_ctrl(*actuator, *value);
@@ -284,7 +284,7 @@ impl Features {
         position: [f64; 3],
         orientation: [f64; 4],
     ) -> Result<(), BoxError> {
-        let sim = crate::plugins::sim_backend(world)?;
+        let sim = super::sim_backend(world)?;
         let index = self
             .environment_names
             .iter()
