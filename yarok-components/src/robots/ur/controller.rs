@@ -156,29 +156,25 @@ impl Controller {
     /// The world went back to its start (an episode began): the arm holds `start` again, and a
     /// motion under way ends as stopped.
     pub(super) fn restart(&self, start: Joints) {
-        {
-            let mut state = self.state.borrow_mut();
-            state.motions.abandon();
-            let setpoint = &mut state.setpoint;
-            setpoint.q = start;
-            setpoint.speed = [0.0; 6];
-            setpoint.acceleration = [0.0; 6];
-        }
+        self.hold(start);
         self.command();
+    }
+
+    /// Ends a motion under way as stopped and holds `q` at rest.
+    fn hold(&self, q: Joints) {
+        let mut state = self.state.borrow_mut();
+        state.motions.abandon();
+        let setpoint = &mut state.setpoint;
+        setpoint.q = q;
+        setpoint.speed = [0.0; 6];
+        setpoint.acceleration = [0.0; 6];
     }
 
     /// Holds `target` from the next step, as URScript's `servoj` streamed every `seconds`
     /// does: a motion under way ends as stopped, and the servos are set to the target at once.
     pub(super) fn servo(&self, target: Joints, seconds: f64) -> Result<(), MotionError> {
         self.joint_path(target, target)?;
-        {
-            let mut state = self.state.borrow_mut();
-            state.motions.abandon();
-            let setpoint = &mut state.setpoint;
-            setpoint.q = target;
-            setpoint.speed = [0.0; 6];
-            setpoint.acceleration = [0.0; 6];
-        }
+        self.hold(target);
         self.drive.order(Order::ServoJ { target, seconds });
         self.command();
         Ok(())
