@@ -1,6 +1,5 @@
-//! The native half of yarok's Python package (`yarok._native`): [`World`](world::World), a
-//! world driven step by step from Python, and [`Worlds`](worlds::Worlds), several stepped at
-//! once on threads of their own. The Gymnasium environments are Python, over these.
+//! The native half of yarok's Python package (`yarok._native`): `World`, a world driven step
+//! by step from Python, and `Worlds`, several stepped at once on threads of their own. The Gymnasium environments are Python, over these.
 
 mod features;
 mod observation;
