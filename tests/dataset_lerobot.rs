@@ -111,6 +111,7 @@ fn a_digit_world_run_is_a_lerobot_dataset_whose_videos_are_the_recorded_images()
     }
     for feature in [
         "observation.state",
+        "observation.environment_state",
         "action",
         "timestamp",
         "frame_index",
@@ -127,7 +128,8 @@ fn a_digit_world_run_is_a_lerobot_dataset_whose_videos_are_the_recorded_images()
         );
     }
 
-    // The features are named as the model names its joints and actuators.
+    // The features are named as the model names its joints and bodies, and the action as the
+    // components name their actuation.
     let info: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dataset.join("meta/info.json")).unwrap())
             .unwrap();
@@ -136,8 +138,98 @@ fn a_digit_world_run_is_a_lerobot_dataset_whose_videos_are_the_recorded_images()
         features["observation.state"]["names"][0],
         "arm/shoulder_pan"
     );
-    assert_eq!(features["action"]["names"][6], "arm/gripper/fingers");
+    let actions = features["action"]["names"].as_array().unwrap();
+    assert!(
+        actions.contains(&"arm/gripper/position".into()),
+        "{actions:?}"
+    );
+    assert!(actions.contains(&"arm/wrist_3".into()), "{actions:?}");
     assert_eq!(info["robot_type"], "digit_world");
+    // The last frame: the medium block rests on the target (0.42, 0.38), where the behaviour
+    // put it, and the gripper was last told to open (position 0).
+    let (x, y) = (
+        frame(&read, "end 0", "medium/block/x"),
+        frame(&read, "end 0", "medium/block/y"),
+    );
+    assert!(
+        (x - 0.42).hypot(y - 0.38) < 0.01,
+        "the block ends at {x}, {y}"
+    );
+    assert_eq!(frame(&read, "end 0", "arm/gripper/position"), 0.0);
+}
+
+/// From `lerobot_read.py`'s `start I …` or `end I …` lines (`which`), the value of the element
+/// `name` of a vector feature.
+fn frame(read: &str, which: &str, name: &str) -> f64 {
+    let element = format!(" {name}=");
+    let line = read
+        .lines()
+        .find(|l| l.starts_with(&format!("{which} ")) && l.contains(&element))
+        .unwrap_or_else(|| panic!("no {which} {name}: {read}"));
+    let (_, value) = line.split_once(&element).unwrap();
+    value.split(' ').next().unwrap().parse().unwrap()
+}
+
+#[test]
+fn demonstrations_start_where_the_seed_puts_the_block_and_end_with_it_on_the_target() {
+    let folder = tempfile::tempdir().unwrap();
+    let demonstrate = |dataset: &str, seed: u64, episodes: u64| {
+        let run = yarok(
+            folder.path(),
+            &[
+                "run",
+                "digit_world",
+                "--behaviour",
+                "demonstrate",
+                "--dataset",
+                dataset,
+                "--set",
+                &format!("behaviour/episodes={episodes}"),
+                "--set",
+                &format!("behaviour/seed={seed}"),
+                "--set",
+                "plugins/dataset/fps=20",
+            ],
+        );
+        assert_succeeded(&run);
+        let path = folder.path().join(dataset);
+        (
+            peers::run("lerobot_read.py", &[path.to_str().unwrap()]),
+            path,
+        )
+    };
+    let (read, first) = demonstrate("first", 7, 2);
+    assert_eq!(totals(&read)[0], 2, "{read}");
+    let starts: Vec<[f64; 2]> = (0..2)
+        .map(|episode| {
+            let which = format!("start {episode}");
+            let start = [
+                frame(&read, &which, "medium/block/x"),
+                frame(&read, &which, "medium/block/y"),
+            ];
+            // Within the drawn region, not where the world's template puts the block.
+            assert!((0.56..=0.68).contains(&start[0]), "{start:?}");
+            assert!((-0.12..=0.06).contains(&start[1]), "{start:?}");
+            assert!((start[0] - 0.62).hypot(start[1] - 0.02) > 1e-3, "{start:?}");
+            let which = format!("end {episode}");
+            let end = [
+                frame(&read, &which, "medium/block/x"),
+                frame(&read, &which, "medium/block/y"),
+            ];
+            assert!((end[0] - 0.42).hypot(end[1] - 0.38) < 0.005, "{end:?}");
+            start
+        })
+        .collect();
+    assert_ne!(starts[0], starts[1]);
+    // The same seed, the same frames, bit for bit; another seed, other starts.
+    let (_, again) = demonstrate("again", 7, 2);
+    let data = "data/chunk-000/file-000.parquet";
+    assert_eq!(
+        std::fs::read(first.join(data)).unwrap(),
+        std::fs::read(again.join(data)).unwrap()
+    );
+    let (other, _) = demonstrate("other", 8, 1);
+    assert_ne!(frame(&other, "start 0", "medium/block/x"), starts[0][0]);
 }
 
 #[test]

@@ -17,7 +17,9 @@ Prints, a line each:
   `matched KEY frames N min_psnr DB own DB next DB` per video feature, with MCAP files: the
   lowest PSNR of a frame against its recorded image, and the mean PSNR of the frames against
   their own recorded image and against the next one (a frame one off would score the second);
-  `stats FEATURE ok` per feature, once its statistics equal the recomputed ones.
+  `stats FEATURE ok` per feature, once its statistics equal the recomputed ones;
+  `start I FEATURE NAME=VALUE ...` and `end I FEATURE NAME=VALUE ...` per episode and vector
+  feature: the episode's first and last frames, element by element as the feature names them.
 Exits non-zero naming the file, the episode, the feature and the rule when anything fails.
 """
 
@@ -243,6 +245,13 @@ def main():
         used = [tasks[int(t)] for t in dict.fromkeys(columns["task_index"][rows])]
         expect(used == episode["tasks"], f"episode {episode['episode_index']}: tasks {episode['tasks']}, frames' {used}")
         print(f"episode {episode['episode_index']} length {episode['length']} tasks {'|'.join(used)}")
+    for episode in episodes:
+        for name, feature in info["features"].items():
+            if feature["dtype"] == "float32" and feature.get("names") and name in columns:
+                for end, row in (("start", episode["dataset_from_index"]), ("end", episode["dataset_to_index"] - 1)):
+                    values = np.asarray(columns[name][row], dtype=np.float64)
+                    print(f"{end} {episode['episode_index']} {name} "
+                          + " ".join(f"{n}={v:.6f}" for n, v in zip(feature["names"], values)))
     if mcaps:
         expect(len(mcaps) == len(episodes), f"{len(mcaps)} recordings for {len(episodes)} episodes")
         checked = sum(check_states(mcap, info, columns, episode) for mcap, episode in zip(mcaps, episodes))

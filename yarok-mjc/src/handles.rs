@@ -117,6 +117,32 @@ impl Joint {
         data.forward();
     }
 
+    /// Puts a free joint's body at `position` (metres, world frame) with `orientation` (a unit
+    /// quaternion, w first) and at rest, and recomputes what follows from it, as at the start
+    /// of a run.
+    ///
+    /// # Errors
+    ///
+    /// When the joint is not a free joint, or the quaternion is not of unit length.
+    pub fn set_free_pose(&self, position: [f64; 3], orientation: [f64; 4]) -> Result<(), String> {
+        let norm = orientation.iter().map(|q| q * q).sum::<f64>().sqrt();
+        if !((1.0 - 1e-6)..=(1.0 + 1e-6)).contains(&norm) {
+            return Err(format!(
+                "the orientation {orientation:?} is not a unit quaternion (its length is {norm})"
+            ));
+        }
+        let mut data = self.data.borrow_mut();
+        let qpos = data.qpos_mut(self.id);
+        if qpos.len() != 7 {
+            return Err("only a free joint's body can be placed".into());
+        }
+        qpos[..3].copy_from_slice(&position);
+        qpos[3..].copy_from_slice(&orientation);
+        data.qvel_mut(self.id).fill(0.0);
+        data.forward();
+        Ok(())
+    }
+
     /// The joint-space inertia the joint sees (see [`Data::dof_inertia`]).
     pub fn inertia(&self) -> f64 {
         self.data.borrow().dof_inertia(self.id)

@@ -31,7 +31,7 @@ use yarok_core::component::{Component, ComponentType};
 use yarok_core::runtime::{BehaviourResult, Pl, PlatformBuilder};
 use yarok_core::value::Value;
 
-pub use digit_world::feel;
+pub use digit_world::{START_REGION, START_YAW, demonstrate, feel};
 pub use geltip_world::pull;
 pub use idle::idle;
 pub use pick_and_place::{stack, stack_with};
@@ -130,6 +130,11 @@ pub fn demos() -> Vec<Demo> {
                 name: "feel",
                 run: |pl| Box::pin(feel(pl)),
                 defaults: OUT,
+            },
+            DemoBehaviour {
+                name: "demonstrate",
+                run: |pl| Box::pin(demonstrate(pl)),
+                defaults: &[("episodes", "10"), ("seed", "0")],
             },
             IDLE,
         ]),

@@ -1,20 +1,21 @@
 //! [`Block`]: a cube to pick and place, and [`Spot`]: a marked place on a surface.
 
+use yarok_core::BoxError;
 use yarok_core::component::{
     Bind, BindError, Component, Declaration, Environment, Interface, Interfaces, Mock,
 };
 use yarok_hw::Real;
-use yarok_mjc::{Body, Sim, SimBind, Site};
+use yarok_mjc::{Body, Joint, Sim, SimBind, Site};
 
 /// A cube of side `size` metres (default 0.04) and `mass` kilograms (default 0.1), free to move,
 /// its centre placed at `pos`; colour `rgba`.
 ///
-/// Tag `block`. Environments: `sim` (where it is); `mock` and `real` (where it was placed: on
-/// real hardware, where you measured the real block to be).
+/// Tag `block`. Environments: `sim` (where it is, and it can be put elsewhere); `mock` and
+/// `real` (where it was placed: on real hardware, where you measured the real block to be).
 #[derive(Debug, Clone)]
 pub struct Block {
     size: f64,
-    body: Option<Body>,
+    body: Option<(Body, Joint)>,
     placed: [f64; 3],
 }
 
@@ -28,7 +29,22 @@ impl Block {
     pub fn position(&self) -> [f64; 3] {
         self.body
             .as_ref()
-            .map_or(self.placed, |body| body.pose().pos)
+            .map_or(self.placed, |(body, _)| body.pose().pos)
+    }
+
+    /// Puts it at rest with its centre at `position` (metres, world frame), turned `yaw`
+    /// radians about the vertical: where an episode starts it.
+    ///
+    /// # Errors
+    ///
+    /// Outside `sim`, where a real block is moved by hand.
+    pub fn place(&self, position: [f64; 3], yaw: f64) -> Result<(), BoxError> {
+        let Some((_, joint)) = &self.body else {
+            return Err("a block is placed by hand outside `sim`".into());
+        };
+        let half = yaw / 2.0;
+        joint.set_free_pose(position, [half.cos(), 0.0, 0.0, half.sin()])?;
+        Ok(())
     }
 }
 
@@ -54,7 +70,7 @@ impl Component for Block {
                 r#"<mujoco>
                   <worldbody>
                     <body name="block" pos="{pos}">
-                      <freejoint/>
+                      <freejoint name="block"/>
                       <geom name="block" type="box" size="{size / 2} {size / 2} {size / 2}" mass="{mass}"
                             rgba="{rgba}" friction="1 0.05 0.001" condim="4"/>
                     </body>
@@ -71,7 +87,7 @@ impl Component for Block {
 impl Interface<Sim> for Block {
     async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
         Ok(Block {
-            body: Some(bind.body("block")?),
+            body: Some((bind.body("block")?, bind.joint("block")?)),
             ..Block::placed(bind)?
         })
     }

@@ -8,7 +8,7 @@ use yarok_core::BoxError;
 use super::super::encoder::{Encoder, H264};
 use super::meta::{FileIndex, INDEX_FEATURES};
 use super::stats::{FeatureStats, ImageStats, NumberStats};
-use super::tables::{DataFiles, EpisodeRow, Frames, Widths};
+use super::tables::{DataFiles, EpisodeRow, Frames, VECTOR_FEATURES, Widths};
 
 /// A video feature being filmed for the episode.
 #[derive(Debug)]
@@ -22,8 +22,8 @@ struct VideoStream {
 /// What a frame holds besides its indices.
 #[derive(Debug)]
 pub(super) struct Frame<'a> {
-    pub(super) state: &'a [f64],
-    pub(super) action: &'a [f64],
+    /// Each of the vector features' numbers, in [`VECTOR_FEATURES`]' order.
+    pub(super) vectors: [&'a [f64]; 3],
     /// The frame's task, by its index among the dataset's tasks.
     pub(super) task: usize,
     /// Each video feature's image, RGB, in the order the recording was begun with.
@@ -95,12 +95,9 @@ impl EpisodeRecording {
     pub(super) fn add(&mut self, frame: Frame<'_>) -> Result<(), BoxError> {
         let number = self.len();
         let as_i64 = |n: u64| i64::try_from(n).unwrap_or(i64::MAX);
-        self.frames
-            .state
-            .extend(frame.state.iter().map(|v| *v as f32));
-        self.frames
-            .action
-            .extend(frame.action.iter().map(|v| *v as f32));
+        for (column, values) in self.frames.vectors.iter_mut().zip(frame.vectors) {
+            column.extend(values.iter().map(|v| *v as f32));
+        }
         self.frames
             .timestamp
             .push((number as f64 / f64::from(self.fps)) as f32);
@@ -140,10 +137,11 @@ impl EpisodeRecording {
         let length = self.len();
         let file = data.append(&self.frames)?;
         let mut stats = Vec::new();
-        for (name, values, width) in [
-            ("observation.state", &self.frames.state, self.widths.state),
-            ("action", &self.frames.action, self.widths.action),
-        ] {
+        for ((name, values), width) in VECTOR_FEATURES
+            .into_iter()
+            .zip(&self.frames.vectors)
+            .zip(self.widths)
+        {
             if width > 0 {
                 let mut numbers = NumberStats::new(width);
                 for frame in values.chunks_exact(width) {

@@ -11,18 +11,15 @@ use std::path::{Path, PathBuf};
 
 use serde_json::{Value, json};
 use yarok_core::BoxError;
-use yarok_core::component::ProbeImage;
 use yarok_core::runtime::{Episode, Happening, Plugin, World};
 use yarok_mjc::SimBackend;
 
 use self::episode::{EpisodeRecording, Frame};
 use self::meta::{Feature, INDEX_FEATURES, Info, stats_json, write_json};
 use self::stats::FeatureStats;
-use self::tables::{DataFiles, EpisodeRow, Widths, write_episodes, write_tasks};
+use self::tables::{DataFiles, EpisodeRow, VECTOR_FEATURES, Widths, write_episodes, write_tasks};
 use super::encoder::H264;
-use super::features::image_key;
-use super::model_cameras::ModelCameras;
-use super::sim_state::SimState;
+use super::features::Features;
 
 /// What and how a [`DatasetRecorder`] records (`[plugins.dataset]`).
 #[derive(Debug, Clone, PartialEq, serde::Deserialize)]
@@ -72,13 +69,14 @@ const KEYFRAME_INTERVAL: u32 = 2;
 /// frames) and `videos/{key}/chunk-000/file-{episode}.mp4`.
 ///
 /// Every frame, `fps` times a second of platform time, holds:
-/// - `observation.state`: every hinge's and slide's position (a gripper's fingers among them),
-///   named as in the model;
-/// - `action`: every actuator's control input, as the components set it from the behaviour's
-///   commands (a position servo's target, a motor's torque), named as in the model;
-/// - `observation.images.{probe}` for every RGB probe (`observation.images.arm.gripper.left_digit.image`:
-///   a tactile sensor's image) and `observation.images.{camera}` for each camera asked for:
-///   H.264 MP4 videos (`yuv420p`, a keyframe every 2 frames, `crf` as set), through `ffmpeg`;
+/// - the world's [`Features`], as a policy sees them in the world (yarok's Gymnasium
+///   environments observe the same): `observation.state` (every hinge's and slide's
+///   position), `observation.environment_state` (every free body's pose), `action` (each
+///   component's actuation, as the behaviour commands it: an arm's joint targets, a gripper's
+///   position) and `observation.images.{probe}` for every RGB probe
+///   (`observation.images.arm.gripper.left_digit.image`: a tactile sensor's image) and
+///   `observation.images.{camera}` for each camera asked for: H.264 MP4 videos (`yuv420p`, a
+///   keyframe every 2 frames, `crf` as set), through `ffmpeg`;
 /// - `timestamp` (`frame_index / fps`), `frame_index`, `episode_index`, `index` and
 ///   `task_index`: the task the behaviour last set ([`Pl::set_task`](yarok_core::runtime::Pl::set_task);
 ///   before any, the world's tag).
@@ -108,15 +106,13 @@ pub struct DatasetRecorder {
     /// The dataset's folder (the shard's).
     root: PathBuf,
     robot_type: String,
-    sim: Option<SimState>,
+    /// What a frame holds, found when the run starts.
+    observed: Option<Features>,
     widths: Widths,
     /// Every feature, in frame order.
     features: Vec<(String, Feature)>,
-    /// The video features: the RGB probes' (the world's probes of these indices), then the
-    /// cameras'.
+    /// The video features: the RGB probes', then the cameras'.
     videos: Vec<(String, H264)>,
-    probes: Vec<usize>,
-    cameras: ModelCameras,
     data: Option<DataFiles>,
     /// The dataset's tasks, in the order they were first set, and the one frames are of now.
     tasks: Vec<String>,
@@ -146,15 +142,10 @@ impl DatasetRecorder {
             root: settings.path.clone(),
             settings,
             robot_type: String::new(),
-            sim: None,
-            widths: Widths {
-                state: 0,
-                action: 0,
-            },
+            observed: None,
+            widths: [0; 3],
             features: Vec::new(),
             videos: Vec::new(),
-            probes: Vec::new(),
-            cameras: ModelCameras::default(),
             data: None,
             tasks: Vec::new(),
             task: None,
@@ -181,48 +172,25 @@ impl DatasetRecorder {
         })
     }
 
-    /// Finds the features of `sim`'s world: its joints, actuators, RGB probes and the cameras
-    /// asked for.
-    fn find_features(&mut self, world: &World<'_>, sim: &SimBackend) -> Result<(), BoxError> {
-        let model = sim.model();
-        let state = SimState::of(sim);
-        let actions: Vec<String> = model
-            .actuators()
-            .enumerate()
-            .map(|(index, actuator)| {
-                model
-                    .actuator_name(actuator)
-                    .unwrap_or_else(|| format!("actuator{index}"))
-            })
-            .collect();
-        self.widths = Widths {
-            state: state.joint_names().len(),
-            action: actions.len(),
-        };
-        if self.widths.state > 0 {
-            let feature = Feature::vector(state.joint_names());
-            self.features.push(("observation.state".into(), feature));
-        }
-        if !actions.is_empty() {
-            self.features
-                .push(("action".into(), Feature::vector(&actions)));
-        }
-        self.sim = Some(state);
-        for (index, probe) in world.probes().iter().enumerate() {
-            if let ProbeImage::Rgb { width, height, .. } = probe.read()? {
-                let key = image_key(&probe.path());
-                let video = self.video(&key, width, height)?;
-                self.videos.push((key, video));
-                self.probes.push(index);
+    /// Finds the features of the world: its [`Features`], with the cameras asked for.
+    fn find_features(&mut self, world: &World<'_>) -> Result<(), BoxError> {
+        let settings = &self.settings;
+        let observed = Features::of(world, &settings.cameras, settings.size, settings.quality)?;
+        let vectors = [
+            observed.state_names(),
+            observed.environment_names(),
+            observed.action_names(),
+        ];
+        self.widths = vectors.map(<[String]>::len);
+        for (name, names) in VECTOR_FEATURES.into_iter().zip(vectors) {
+            if !names.is_empty() {
+                self.features.push((name.into(), Feature::vector(names)));
             }
         }
-        let settings = &self.settings;
-        self.cameras = ModelCameras::find(sim, &settings.cameras, settings.size, settings.quality)?;
-        let [width, height] = self.settings.size;
-        for name in &self.settings.cameras {
-            let key = image_key(name);
-            let video = self.video(&key, width, height)?;
-            self.videos.push((key, video));
+        for image in observed.images() {
+            let [width, height] = image.size;
+            let video = self.video(&image.key, width, height)?;
+            self.videos.push((image.key.clone(), video));
         }
         let encoding = json!({"video.g": KEYFRAME_INTERVAL, "video.crf": self.settings.crf});
         for (key, video) in &self.videos {
@@ -233,6 +201,7 @@ impl DatasetRecorder {
         for (name, dtype) in INDEX_FEATURES {
             self.features.push((name.into(), Feature::scalar(dtype)));
         }
+        self.observed = Some(observed);
         Ok(())
     }
 
@@ -308,21 +277,13 @@ impl DatasetRecorder {
     }
 
     /// The frame of the world now.
-    fn take_frame(&mut self, world: &World<'_>, sim: &SimBackend) -> Result<(), BoxError> {
-        let (positions, _) = self
-            .sim
-            .as_ref()
-            .map(|state| state.joint_values(sim))
-            .unwrap_or_default();
-        let action = sim.data().ctrl().to_vec();
-        let mut images = Vec::with_capacity(self.videos.len());
-        for (index, (key, _)) in self.probes.iter().zip(&self.videos) {
-            match world.probes()[*index].read()? {
-                ProbeImage::Rgb { pixels, .. } => images.push(pixels),
-                _ => return Err(format!("{key}'s probe no longer gives RGB images").into()),
-            }
-        }
-        images.extend(self.cameras.render(sim)?);
+    fn take_frame(&mut self, world: &World<'_>) -> Result<(), BoxError> {
+        let observed = self
+            .observed
+            .as_mut()
+            .ok_or("the dataset's features have not been found")?;
+        let observation = observed.observe(world)?;
+        let action = observed.action(world)?;
         let task = match self.task {
             Some(task) => task,
             None => {
@@ -336,10 +297,9 @@ impl DatasetRecorder {
             return Ok(());
         };
         recording.add(Frame {
-            state: &positions,
-            action: &action,
+            vectors: [&observation.state, &observation.environment_state, &action],
             task,
-            images,
+            images: observation.images,
         })
     }
 
@@ -401,7 +361,6 @@ impl Plugin for DatasetRecorder {
     }
 
     fn start(&mut self, world: &World<'_>) -> Result<(), BoxError> {
-        let sim = crate::plugins::sim_backend(world)?;
         let shard = world.pl().shard();
         if !shard.is_whole() {
             let mut name = self
@@ -417,7 +376,7 @@ impl Plugin for DatasetRecorder {
             Some(robot_type) => robot_type.clone(),
             None => world.composition().instances[0].tag.clone(),
         };
-        self.find_features(world, sim)?;
+        self.find_features(world)?;
         prepare_folder(&self.root)?;
         self.data = Some(DataFiles::new(&self.root, self.widths));
         self.begin(None)
@@ -436,7 +395,7 @@ impl Plugin for DatasetRecorder {
             None => sim.data().time(),
         };
         if time + 1e-9 >= recording.next_frame_time() {
-            self.take_frame(world, sim)?;
+            self.take_frame(world)?;
         }
         Ok(())
     }

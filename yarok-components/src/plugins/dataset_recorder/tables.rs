@@ -23,10 +23,9 @@ use super::stats::Summary;
 /// One episode's frames, column by column.
 #[derive(Debug, Default)]
 pub(super) struct Frames {
-    /// `observation.state`, frame after frame (`state_width` values each).
-    pub(super) state: Vec<f32>,
-    /// `action`, frame after frame (`action_width` values each).
-    pub(super) action: Vec<f32>,
+    /// The vector features' numbers, frame after frame, in [`VECTOR_FEATURES`]' order
+    /// ([`Widths`] values a frame each).
+    pub(super) vectors: [Vec<f32>; 3],
     pub(super) timestamp: Vec<f32>,
     pub(super) frame_index: Vec<i64>,
     pub(super) episode_index: Vec<i64>,
@@ -34,12 +33,15 @@ pub(super) struct Frames {
     pub(super) task_index: Vec<i64>,
 }
 
-/// How wide the vectors of a frame are; a vector of no element is left out.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Widths {
-    pub(super) state: usize,
-    pub(super) action: usize,
-}
+/// The vector features of a frame, in their order in the tables.
+pub(super) const VECTOR_FEATURES: [&str; 3] = [
+    "observation.state",
+    "observation.environment_state",
+    "action",
+];
+
+/// How wide each of [`VECTOR_FEATURES`] is; a vector of no element is left out.
+pub(super) type Widths = [usize; 3];
 
 /// The elements of a vector column, as `datasets` names them.
 fn float_item() -> Arc<Field> {
@@ -61,10 +63,7 @@ fn fixed_size_list(values: &[f32], width: usize) -> Result<ArrayRef, BoxError> {
 /// `Sequence` of known length), then LeRobot's index columns.
 fn frame_schema(widths: Widths) -> SchemaRef {
     let mut fields = Vec::new();
-    for (name, width) in [
-        ("observation.state", widths.state),
-        ("action", widths.action),
-    ] {
+    for (name, width) in VECTOR_FEATURES.into_iter().zip(widths) {
         if width > 0 {
             let width = i32::try_from(width).unwrap_or(i32::MAX);
             let list = DataType::FixedSizeList(float_item(), width);
@@ -121,10 +120,7 @@ impl DataFiles {
         let path = self.current.data_path(&self.root);
         let failed = |e: &dyn std::fmt::Display| format!("cannot write {}: {e}", path.display());
         let mut columns = Vec::new();
-        for (values, width) in [
-            (&frames.state, self.widths.state),
-            (&frames.action, self.widths.action),
-        ] {
+        for (values, width) in frames.vectors.iter().zip(self.widths) {
             if width > 0 {
                 columns.push(fixed_size_list(values, width)?);
             }
