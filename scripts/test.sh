@@ -49,10 +49,22 @@ cargo test --workspace --locked --test render_offscreen
 cargo test --workspace --locked --test runtime_interrupt
 cargo test --workspace --locked --test warnings_visible
 cargo test --workspace --features yarok/camera,yarok/viewer,yarok/zenoh,yarok/dataset --doc --locked
-echo "== the Python package: built into a fresh venv as the README installs it, then its tests (pytest)"
+echo "== the Python package: installed into a new venv by the README's command, then its tests (pytest)"
 bash scripts/setup-python.sh
-"${YAROK_CACHE_DIR:-$HOME/.cache/yarok}/python/bin/pip" install -q --disable-pip-version-check --force-reinstall --no-deps ./yarok-py
-(cd yarok-py && "${YAROK_CACHE_DIR:-$HOME/.cache/yarok}/python/bin/python" -m pytest -q -p no:cacheprovider tests)
+cache="${YAROK_CACHE_DIR:-$HOME/.cache/yarok}"
+fresh="$(mktemp -d)"
+python3 -m venv "$fresh/.venv"
+"$fresh/.venv/bin/pip" install -q --disable-pip-version-check ./yarok-py
+"$fresh/.venv/bin/python" -c "import yarok; print('import yarok:', yarok.__file__)"
+rm -rf "$fresh"
+# The tests run in the project's venv (pinned Gymnasium and pytest), with the same package.
+"$cache/python/bin/pip" install -q --disable-pip-version-check --force-reinstall --no-deps ./yarok-py
+(cd yarok-py && "$cache/python/bin/python" -m pytest -q -p no:cacheprovider tests)
+echo "== the learning loop with LeRobot: demonstrations, lerobot-train, LeRobot's own evaluation"
+lerobot_python="$(bash scripts/setup-lerobot.sh)"
+"$(dirname "$lerobot_python")/pip" install -q --disable-pip-version-check --force-reinstall --no-deps ./yarok-py
+(cd yarok-py && YAROK_REQUIRE_LEROBOT=1 "$lerobot_python" -m pytest -q -p no:cacheprovider \
+  tests/test_lerobot_loop.py)
 echo "== docs"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --features yarok/camera,yarok/viewer,yarok/zenoh,yarok/dataset
 echo "== example binary, started directly"

@@ -1,13 +1,16 @@
 //! The native half of yarok's Python package (`yarok._native`): `World`, a world driven step
-//! by step from Python, and `Worlds`, several stepped at once on threads of their own. The Gymnasium environments are Python, over these.
+//! by step from Python, `Worlds`, several stepped at once on threads of their own, and `run`,
+//! a bundled world's demo behaviour run to its end (recording demonstrations). The Gymnasium environments are Python, over these.
 
 mod features;
 mod observation;
+mod run;
 mod worker;
 mod world;
 mod worlds;
 
 use pyo3::prelude::*;
+use yarok::components::demos;
 
 pyo3::create_exception!(
     _native,
@@ -22,6 +25,9 @@ fn _native(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_class::<features::Features>()?;
     module.add_class::<world::World>()?;
     module.add_class::<worlds::Worlds>()?;
+    module.add_function(wrap_pyfunction!(run::run, module)?)?;
+    module.add("DIGIT_WORLD_START_REGION", demos::START_REGION)?;
+    module.add("DIGIT_WORLD_START_YAW", demos::START_YAW)?;
     Ok(())
 }
 

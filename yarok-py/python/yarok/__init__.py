@@ -6,13 +6,15 @@ driven on real hardware) by yarok's Rust runtime, as Gymnasium environments.
 >>> observation = world.reset(episode=0)                 # dict of numpy arrays
 >>> observation = world.advance(0.05, action=None)       # 50 ms of platform time
 >>> world.close()
+>>> yarok.run("digit_world", "demonstrate", settings=["behaviour/episodes=20"],
+...           dataset="demos")                          # demonstrations, as a LeRobot dataset
 
 Gymnasium environments are registered as ``yarok/PickPlace-v0`` and ``yarok/TactilePress-v0``;
 ``yarok.YarokEnv`` makes any world an environment with your own task (reward, success, reset),
 and ``yarok.YarokVectorEnv`` steps N copies on N Rust threads.
 """
 
-from ._native import World, Worlds, YarokError
+from ._native import World, Worlds, YarokError, run
 from .env import Task, YarokEnv
 from .vector import YarokVectorEnv
 from . import tasks
@@ -26,6 +28,7 @@ __all__ = [
     "YarokError",
     "YarokVectorEnv",
     "register_environments",
+    "run",
     "tasks",
 ]
 

@@ -24,6 +24,7 @@ class Task:
     """
 
     world: str = "digit_world"
+    description: str = ""
     settings: Sequence[str] = ()
     cameras: Sequence[str] = ()
     camera_size: tuple[int, int] = (84, 84)
@@ -141,6 +142,11 @@ class YarokEnv(gymnasium.Env):
         time = (self.world.ticks - self._start_tick) * self.world.features.timestep
         info = {"is_success": success, "time": time}
         return self._keep(observation), reward, success, False, info
+
+    @property
+    def task_description(self) -> str:
+        """What the task asks, in words (the dataset's task; LeRobot's evaluation reads it)."""
+        return self.task.description
 
     def render(self):
         if self.render_mode != "rgb_array" or self._last is None:

@@ -6,6 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._native import DIGIT_WORLD_START_REGION, DIGIT_WORLD_START_YAW
 from .env import Task
 
 TABLE_HEIGHT = 0.4
@@ -25,16 +26,22 @@ def _pose(observation: dict[str, np.ndarray], index: int) -> np.ndarray:
 class PickPlace(Task):
     """DigitWorld: put the medium block (3.5 cm) on the target spot. Won when the block rests
     on the target within 5 mm with the gripper open. Each episode starts with the block at a
-    place and yaw drawn from the seed, within the arm's reach and clear of the other blocks.
+    place and yaw drawn from the seed, within the arm's reach and clear of the other blocks:
+    the region ``yarok.run("digit_world", "demonstrate")`` draws its demonstrations' starts
+    from.
 
     The reward is dense: minus the block's distance to the target (metres), plus 1 when won.
     """
 
     world: str = "digit_world"
+    description: str = "pick up the block and put it on the target"
     target: tuple[float, float] = (0.42, 0.38)
     block: str = "medium"
     block_size: float = 0.035
-    region: tuple[tuple[float, float], tuple[float, float]] = ((0.56, 0.68), (-0.12, 0.06))
+    region: tuple[tuple[float, float], tuple[float, float]] = tuple(
+        tuple(bounds) for bounds in DIGIT_WORLD_START_REGION
+    )
+    max_yaw: float = DIGIT_WORLD_START_YAW
     tolerance: float = 0.005
     render_camera: str | None = "overview"
 
@@ -51,7 +58,7 @@ class PickPlace(Task):
             float(rng.uniform(y_low, y_high)),
             TABLE_HEIGHT + self.block_size / 2,
         )
-        yaw = _yaw(float(rng.uniform(-np.pi / 4, np.pi / 4)))
+        yaw = _yaw(float(rng.uniform(-self.max_yaw, self.max_yaw)))
         return [(f"{self.block}/block", position, yaw)]
 
     def distance(self, observation) -> float:
@@ -77,6 +84,7 @@ class TactilePress(Task):
     """
 
     world: str = "tactile_rig_world"
+    description: str = "press the indenter until the sensor's image changes by the target"
     settings: tuple[str, ...] = ('sensor="digit"',)
     control_hz: float = 20.0
     tolerance: float = 0.5

@@ -1,0 +1,118 @@
+"""The learning loop with LeRobot unchanged: yarok's scripted demonstrations recorded as a
+LeRobot dataset → ``lerobot-train`` (ACT, a few steps) → the checkpoint loaded by LeRobot's
+own code → a full episode of ``yarok/PickPlace-v0`` driven through LeRobot's own
+``eval_policy``.
+
+LeRobot (≥ 0.5, Python ≥ 3.12) is installed by ``scripts/setup-lerobot.sh`` into the project's
+cache; where it is missing this test is skipped, unless ``YAROK_REQUIRE_LEROBOT=1`` (as
+``scripts/test.sh`` runs it), which makes its absence a failure.
+"""
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+if os.environ.get("YAROK_REQUIRE_LEROBOT") != "1":
+    pytest.importorskip("lerobot")
+
+import gymnasium  # noqa: E402
+from lerobot.policies.act.modeling_act import ACTPolicy  # noqa: E402
+from lerobot.policies.factory import make_pre_post_processors  # noqa: E402
+from lerobot.processor import PolicyProcessorPipeline  # noqa: E402
+from lerobot.scripts.lerobot_eval import eval_policy  # noqa: E402
+
+import yarok  # noqa: E402
+import yarok.lerobot  # noqa: E402
+
+
+def lerobot_train(*args: str) -> None:
+    """Runs LeRobot's own training command, as its documentation gives it."""
+    command = shutil.which("lerobot-train", path=str(Path(sys.executable).parent))
+    assert command is not None, "lerobot-train is not installed beside this Python"
+    done = subprocess.run([command, *args], capture_output=True, text=True, timeout=900)
+    assert done.returncode == 0, done.stdout[-4000:] + done.stderr[-4000:]
+
+
+def test_demonstrations_train_a_policy_that_lerobot_evaluates_in_the_environment(tmp_path):
+    demos = tmp_path / "demos"
+    yarok.run(
+        "digit_world",
+        "demonstrate",
+        settings=["behaviour/episodes=2", "behaviour/seed=1", "plugins/dataset/fps=20"],
+        dataset=demos,
+    )
+    info = json.loads((demos / "meta/info.json").read_text())
+    assert info["total_episodes"] == 2
+
+    # The environment observes what the dataset recorded: the same keys and shapes.
+    env = gymnasium.make("yarok/PickPlace-v0")
+    dataset_features = {
+        key: tuple(feature["shape"])
+        for key, feature in info["features"].items()
+        if key.startswith("observation.")
+    }
+    env_features = {key: space.shape for key, space in env.observation_space.spaces.items()}
+    env.close()
+    # The dataset's videos are height × width × channels, as are the environment's images.
+    assert env_features == dataset_features
+    assert env.action_space.shape == tuple(info["features"]["action"]["shape"])
+
+    out = tmp_path / "train"
+    lerobot_train(
+        "--dataset.repo_id=yarok/digit_world_demos",
+        f"--dataset.root={demos}",
+        "--policy.type=act",
+        "--policy.device=cpu",
+        "--policy.push_to_hub=false",
+        "--policy.pretrained_backbone_weights=null",
+        "--policy.chunk_size=20",
+        "--policy.n_action_steps=20",
+        "--policy.dim_model=64",
+        "--policy.dim_feedforward=128",
+        "--policy.n_encoder_layers=1",
+        "--steps=3",
+        "--batch_size=2",
+        "--num_workers=0",
+        "--save_freq=3",
+        "--log_freq=1",
+        "--wandb.enable=false",
+        f"--output_dir={out}",
+    )
+    checkpoint = out / "checkpoints/last/pretrained_model"
+    assert (checkpoint / "model.safetensors").is_file()
+
+    policy = ACTPolicy.from_pretrained(checkpoint)
+    preprocessor, postprocessor = make_pre_post_processors(
+        policy.config, pretrained_path=str(checkpoint)
+    )
+    # The policy reads the dataset's features; the environment gives each of them.
+    wanted = set(policy.config.input_features)
+    assert wanted <= set(dataset_features), wanted - set(dataset_features)
+
+    identity = PolicyProcessorPipeline(steps=[])
+    envs = yarok.lerobot.make_vector_env("yarok/PickPlace-v0", n_envs=1)
+    try:
+        results = eval_policy(
+            envs,
+            policy,
+            identity,
+            identity,
+            preprocessor,
+            postprocessor,
+            n_episodes=1,
+            start_seed=1000,
+        )
+    finally:
+        envs.close()
+    episode = results["per_episode"][0]
+    # A full episode: the barely trained policy does not succeed, so it runs to the time
+    # limit of 400 steps, each reward minus the block's distance from the target (metres):
+    # no reward is above the largest, so 400 of them sum to at most 400 times it.
+    assert not episode["success"]
+    assert -1.0 < episode["max_reward"] < 0
+    assert episode["sum_reward"] <= 399 * episode["max_reward"]
