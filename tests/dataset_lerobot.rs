@@ -85,10 +85,11 @@ fn a_digit_world_run_is_a_lerobot_dataset_whose_videos_are_the_recorded_images()
         peers::field(&read, "episode 0"),
         format!("length {frames} tasks pick up the block and put it on the target"),
     );
-    // Every frame's joint positions are, bit for bit, those recorded at its tick.
+    // Every frame's joint positions (the arm's six) are, bit for bit, those recorded at its
+    // tick.
     assert_eq!(
         peers::field(&read, "states"),
-        format!("{frames} equal to the recording's")
+        format!("{frames} equal to the recording's (joints 6)")
     );
     let keys = [
         "observation.images.arm.gripper.left_digit.image",
@@ -128,15 +129,15 @@ fn a_digit_world_run_is_a_lerobot_dataset_whose_videos_are_the_recorded_images()
         );
     }
 
-    // The features are named as the model names its joints and bodies, and the action as the
-    // components name their actuation.
+    // The state and the action are named as the components name their actuation (the
+    // model's joints), the environment state as the model names its bodies.
     let info: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dataset.join("meta/info.json")).unwrap())
             .unwrap();
     let features = &info["features"];
     assert_eq!(
-        features["observation.state"]["names"][0],
-        "arm/shoulder_pan"
+        features["observation.state"]["names"],
+        features["action"]["names"]
     );
     let actions = features["action"]["names"].as_array().unwrap();
     assert!(
@@ -147,19 +148,20 @@ fn a_digit_world_run_is_a_lerobot_dataset_whose_videos_are_the_recorded_images()
     assert_eq!(info["robot_type"], "digit_world");
     // The last frame: the medium block rests on the target (0.42, 0.38), where the behaviour
     // put it, and the gripper was last told to open (position 0).
+    let environment = "end 0 observation.environment_state";
     let (x, y) = (
-        frame(&read, "end 0", "medium/block/x"),
-        frame(&read, "end 0", "medium/block/y"),
+        frame(&read, environment, "medium/block/x"),
+        frame(&read, environment, "medium/block/y"),
     );
     assert!(
         (x - 0.42).hypot(y - 0.38) < 0.01,
         "the block ends at {x}, {y}"
     );
-    assert_eq!(frame(&read, "end 0", "arm/gripper/position"), 0.0);
+    assert_eq!(frame(&read, "end 0 action", "arm/gripper/position"), 0.0);
 }
 
-/// From `lerobot_read.py`'s `start I …` or `end I …` lines (`which`), the value of the element
-/// `name` of a vector feature.
+/// From `lerobot_read.py`'s `start I FEATURE …` or `end I FEATURE …` line (`which`), the value
+/// of the element `name`.
 fn frame(read: &str, which: &str, name: &str) -> f64 {
     let element = format!(" {name}=");
     let line = read
@@ -202,7 +204,7 @@ fn demonstrations_start_where_the_seed_puts_the_block_and_end_with_it_on_the_tar
     assert_eq!(totals(&read)[0], 2, "{read}");
     let starts: Vec<[f64; 2]> = (0..2)
         .map(|episode| {
-            let which = format!("start {episode}");
+            let which = format!("start {episode} observation.environment_state");
             let start = [
                 frame(&read, &which, "medium/block/x"),
                 frame(&read, &which, "medium/block/y"),
@@ -211,7 +213,7 @@ fn demonstrations_start_where_the_seed_puts_the_block_and_end_with_it_on_the_tar
             assert!((0.56..=0.68).contains(&start[0]), "{start:?}");
             assert!((-0.12..=0.06).contains(&start[1]), "{start:?}");
             assert!((start[0] - 0.62).hypot(start[1] - 0.02) > 1e-3, "{start:?}");
-            let which = format!("end {episode}");
+            let which = format!("end {episode} observation.environment_state");
             let end = [
                 frame(&read, &which, "medium/block/x"),
                 frame(&read, &which, "medium/block/y"),
@@ -229,7 +231,14 @@ fn demonstrations_start_where_the_seed_puts_the_block_and_end_with_it_on_the_tar
         std::fs::read(again.join(data)).unwrap()
     );
     let (other, _) = demonstrate("other", 8, 1);
-    assert_ne!(frame(&other, "start 0", "medium/block/x"), starts[0][0]);
+    assert_ne!(
+        frame(
+            &other,
+            "start 0 observation.environment_state",
+            "medium/block/x"
+        ),
+        starts[0][0]
+    );
 }
 
 #[test]

@@ -11,9 +11,10 @@ Prints, a line each:
   `episodes N frames N tasks N fps N`;
   `episode I length N tasks TASK|TASK`;
   `video KEY frames N codec C pix_fmt P` per video feature, over every episode;
-  `states N equal to the recording's`, with MCAP files: the frames whose `observation.state`
-  equals, bit for bit as 32-bit floats, the joint positions recorded at their tick (where the
-  recording has joint states at that tick);
+  `states N equal to the recording's (joints J)`, with MCAP files: the frames whose
+  `observation.state` equals, bit for bit as 32-bit floats, the joint positions recorded at
+  their tick (where the recording has joint states at that tick), over the J elements named as
+  recorded joints;
   `matched KEY frames N min_psnr DB own DB next DB` per video feature, with MCAP files: the
   lowest PSNR of a frame against its recorded image, and the mean PSNR of the frames against
   their own recorded image and against the next one (a frame one off would score the second);
@@ -162,26 +163,33 @@ def recorded_images(mcap_path, key):
 
 
 def recorded_states(mcap_path, names):
-    """Joint positions a yarok MCAP recording holds (`/joint_states`), by log time, in `names`'
-    order."""
-    states, image_times = {}, []
+    """Joint positions a yarok MCAP recording holds (`/joint_states`), by log time, of those of
+    `names` it records (in `names`' order), and which of `names` those are."""
+    states, image_times, recorded = {}, [], None
     with open(mcap_path, "rb") as file:
         for _, channel, message in make_reader(file).iter_messages():
             if channel.topic == "/joint_states":
                 joints = {j["name"]: j["position"] for j in json.loads(message.data)["joints"]}
-                states[message.log_time] = [joints[name] for name in names]
+                if recorded is None:
+                    recorded = [name for name in names if name in joints]
+                states[message.log_time] = [joints[name] for name in recorded]
             elif channel.topic.endswith("/image") or channel.topic.startswith("/cameras/"):
                 # The ticks images were taken at: the dataset's frames'.
                 image_times.append(message.log_time)
-    return states, sorted(set(image_times))
+    return states, sorted(set(image_times)), recorded or []
 
 
 def check_states(mcap_path, info, columns, episode):
     """Every frame's `observation.state` against the positions recorded at its tick, bit for bit
-    as 32-bit floats; the number of frames checked."""
+    as 32-bit floats, element by element where the recording has a joint of the element's name
+    (a gripper's measured position is no joint); the number of frames checked."""
     names = info["features"]["observation.state"]["names"]
-    states, image_times = recorded_states(mcap_path, names)
+    states, image_times, recorded = recorded_states(mcap_path, names)
+    if not recorded:
+        return 0
+    elements = [names.index(name) for name in recorded]
     rows = columns["observation.state"][episode["dataset_from_index"]:episode["dataset_to_index"]]
+    rows = rows[:, elements]
     expect(len(image_times) == len(rows), f"{mcap_path}: {len(image_times)} image times for {len(rows)} frames")
     checked = 0
     for number, (time, row) in enumerate(zip(image_times, rows)):
@@ -255,7 +263,8 @@ def main():
     if mcaps:
         expect(len(mcaps) == len(episodes), f"{len(mcaps)} recordings for {len(episodes)} episodes")
         checked = sum(check_states(mcap, info, columns, episode) for mcap, episode in zip(mcaps, episodes))
-        print(f"states {checked} equal to the recording's")
+        joints = len(recorded_states(mcaps[0], info["features"]["observation.state"]["names"])[2])
+        print(f"states {checked} equal to the recording's (joints {joints})")
     stats_json = json.loads((root / "meta/stats.json").read_text())
     all_pixels = {}
     for name, feature in info["features"].items():

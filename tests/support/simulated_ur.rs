@@ -177,6 +177,11 @@ fn follow(arm: &Arm, commands: &Receiver<ArmCommand>, target: &mut [f64; 6]) {
                     *target = end;
                 }
             }
+            ArmCommand::Servo { to, seconds } => {
+                if arm.servo_j(to, seconds).is_ok() {
+                    *target = to;
+                }
+            }
             ArmCommand::Stop => arm.stop(),
         }
     }

@@ -73,6 +73,8 @@ def test_the_observation_keys_and_shapes_are_the_worlds_features():
         assert observation["observation.environment_state"].shape == (len(features.environment_names),)
         assert dict(features.images)["observation.images.overview"] == (64, 96, 3)
         assert features.action_names[0] == "arm/gripper/position"
+        # Each actuated component is observed where its actuators are, by the same names.
+        assert features.state_names == features.action_names
         assert features.action_names[1:] == [
             f"arm/{joint}"
             for joint in ["shoulder_pan", "shoulder_lift", "elbow", "wrist_1", "wrist_2", "wrist_3"]

@@ -1,14 +1,14 @@
 //! [`Features`]: a world's observation and action as a policy sees them and a LeRobot dataset
-//! records them (beside the plugins, which record and show them) — `observation.state`, `observation.environment_state`,
-//! `observation.images.*` and `action`, with the same names and shapes everywhere.
+//! records them (beside the plugins, which record and show them) — `observation.state`,
+//! `observation.environment_state`, `observation.images.*` and `action` — with the same names
+//! and shapes everywhere, in `sim` and on hardware.
 
 use yarok_core::BoxError;
 use yarok_core::component::ProbeImage;
 use yarok_core::runtime::World;
-use yarok_mjc::{ActuatorId, JointId};
+use yarok_mjc::{ActuatorId, JointId, SimBackend};
 
 use super::model_cameras::ModelCameras;
-use super::sim_state::SimState;
 
 /// The numbers of a free body's pose in `observation.environment_state`: position, then
 /// orientation as a unit quaternion (w first, as MuJoCo's).
@@ -26,25 +26,34 @@ pub struct ImageFeature {
     probe: Option<usize>,
 }
 
-/// A `sim` world's features, found once when it starts:
-/// - `observation.state`: every hinge's and slide's position, named as in the model;
-/// - `observation.environment_state`: every free body's pose ([`POSE_PARTS`] each, named
-///   `medium/x` … `medium/qz`): where the objects are;
+/// A world's features, found once when it starts, in any environment:
+/// - `observation.state`: where each component's actuators are ([`World::actuations`]'
+///   measures: an arm's joint positions, a gripper's position), named as its action; in `sim`,
+///   then the position of every hinge and slide of the model outside the actuated components,
+///   named as in the model;
+/// - `observation.environment_state`: in `sim`, every free body's pose ([`POSE_PARTS`] each,
+///   named `medium/block/x` … `medium/block/qz`): where the objects are. On hardware nothing
+///   measures them: empty;
 /// - `observation.images.{probe}`: every RGB probe's image (`observation.images.arm.gripper.left_digit.image`),
-///   then `observation.images.{camera}` for each camera of the model asked for
+///   then, in `sim`, `observation.images.{camera}` for each camera of the model asked for
 ///   (`observation.images.overview`);
-/// - `action`: every component's actuation ([`World::actuations`]: an arm's joint targets, a
-///   gripper's position), then the raw control of every actuator no actuation drives.
+/// - `action`: every component's actuation (an arm's joint targets, a gripper's position), then
+///   in `sim` the raw control of every actuator no actuation drives.
+///
+/// So a policy trained on a `sim` world's dataset observes and drives the real world through
+/// the same names, as far as the real world can measure them.
 #[derive(Debug)]
 pub struct Features {
-    sim: SimState,
+    state_names: Vec<String>,
+    /// The model's hinges and slides outside the actuated components (`sim`).
+    joints: Vec<JointId>,
     free_joints: Vec<JointId>,
     environment_names: Vec<String>,
     images: Vec<ImageFeature>,
     cameras: ModelCameras,
     action_names: Vec<String>,
     action_ranges: Vec<[f64; 2]>,
-    /// The actuators driven by their control input directly.
+    /// The actuators driven by their control input directly (`sim`).
     raw_actuators: Vec<ActuatorId>,
 }
 
@@ -69,35 +78,34 @@ pub fn image_key(path: &str) -> String {
 }
 
 impl Features {
-    /// The features of `world`, a `sim` world that has started, with the model's `cameras`
-    /// rendered at `size` (with MuJoCo's shadows and reflections when `quality`).
+    /// The features of `world`, a world that has started, with the model's `cameras` rendered
+    /// at `size` (with MuJoCo's shadows and reflections when `quality`).
     ///
     /// # Errors
     ///
-    /// When the world is not simulated, a probe cannot be read, the model has no camera of a
-    /// name, or the renderer cannot be made.
+    /// When a probe cannot be read, cameras are asked for outside `sim`, the model has no
+    /// camera of a name, or the renderer cannot be made.
     pub fn of(
         world: &World<'_>,
         cameras: &[String],
         size: [u32; 2],
         quality: bool,
     ) -> Result<Self, BoxError> {
-        let sim = super::sim_backend(world)?;
-        let model = sim.model();
-        let data = sim.data();
-        let mut free_joints = Vec::new();
-        let mut environment_names = Vec::new();
-        for (index, joint) in model.joints().enumerate() {
-            if data.qpos(joint).len() != POSE_PARTS.len() {
-                continue;
-            }
-            let body = model
-                .body_name(model.joint_body(joint))
-                .unwrap_or_else(|| format!("free{index}"));
-            free_joints.push(joint);
-            environment_names.extend(POSE_PARTS.iter().map(|part| format!("{body}/{part}")));
-        }
-        drop(data);
+        let actuations = world.actuations();
+        let mut state_names: Vec<String> = actuations
+            .iter()
+            .flat_map(|actuation| actuation.names().iter().cloned())
+            .collect();
+        let mut action_names = state_names.clone();
+        let mut action_ranges: Vec<[f64; 2]> = actuations
+            .iter()
+            .flat_map(|actuation| actuation.ranges().iter().copied())
+            .collect();
+        let actuated: Vec<String> = actuations
+            .iter()
+            .map(|actuation| format!("{}/", actuation.component().trim_start_matches('/')))
+            .collect();
+        let is_actuated = |name: &str| actuated.iter().any(|prefix| name.starts_with(prefix));
         let mut images = Vec::new();
         for (probe, named) in world.probes().iter().enumerate() {
             if let ProbeImage::Rgb { width, height, .. } = named.read()? {
@@ -108,53 +116,88 @@ impl Features {
                 });
             }
         }
-        images.extend(cameras.iter().map(|camera| ImageFeature {
-            key: image_key(camera),
-            size,
-            probe: None,
-        }));
-        let mut action_names: Vec<String> = world
-            .actuations()
-            .iter()
-            .flat_map(|actuation| actuation.names().iter().cloned())
-            .collect();
-        let mut action_ranges: Vec<[f64; 2]> = world
-            .actuations()
-            .iter()
-            .flat_map(|actuation| actuation.ranges().iter().copied())
-            .collect();
-        let driven: Vec<String> = world
-            .actuations()
-            .iter()
-            .map(|actuation| format!("{}/", actuation.component().trim_start_matches('/')))
-            .collect();
-        let mut raw_actuators = Vec::new();
+        let mut features = Self {
+            state_names: Vec::new(),
+            joints: Vec::new(),
+            free_joints: Vec::new(),
+            environment_names: Vec::new(),
+            images,
+            cameras: ModelCameras::default(),
+            action_names: Vec::new(),
+            action_ranges: Vec::new(),
+            raw_actuators: Vec::new(),
+        };
+        let Some(sim) = world.backend::<SimBackend>() else {
+            if let Some(camera) = cameras.first() {
+                return Err(format!(
+                    "the model's camera {camera:?} is rendered only in `sim`; in `{}` a camera \
+                     is a component with a probe",
+                    world.pl().environment()
+                )
+                .into());
+            }
+            features.state_names = state_names;
+            features.action_names = action_names;
+            features.action_ranges = action_ranges;
+            return Ok(features);
+        };
+        let model = sim.model();
+        let data = sim.data();
+        for (index, joint) in model.joints().enumerate() {
+            let body = || {
+                model
+                    .body_name(model.joint_body(joint))
+                    .unwrap_or_else(|| format!("body{index}"))
+            };
+            match data.qpos(joint).len() {
+                1 => {
+                    let name = model
+                        .joint_name(joint)
+                        .unwrap_or_else(|| format!("{}/joint", body()));
+                    if !is_actuated(&name) {
+                        features.joints.push(joint);
+                        state_names.push(name);
+                    }
+                }
+                7 => {
+                    let body = body();
+                    features.free_joints.push(joint);
+                    features
+                        .environment_names
+                        .extend(POSE_PARTS.iter().map(|part| format!("{body}/{part}")));
+                }
+                _ => {}
+            }
+        }
+        drop(data);
         for (index, actuator) in model.actuators().enumerate() {
             let name = model
                 .actuator_name(actuator)
                 .unwrap_or_else(|| format!("actuator{index}"));
-            if !driven.iter().any(|prefix| name.starts_with(prefix)) {
-                raw_actuators.push(actuator);
+            if !is_actuated(&name) {
+                features.raw_actuators.push(actuator);
                 action_names.push(name);
                 let unbounded = [f64::NEG_INFINITY, f64::INFINITY];
                 action_ranges.push(model.ctrl_range(actuator).unwrap_or(unbounded));
             }
         }
-        Ok(Self {
-            sim: SimState::of(sim),
-            free_joints,
-            environment_names,
-            images,
-            cameras: ModelCameras::find(sim, cameras, size, quality)?,
-            action_names,
-            action_ranges,
-            raw_actuators,
-        })
+        features
+            .images
+            .extend(cameras.iter().map(|camera| ImageFeature {
+                key: image_key(camera),
+                size,
+                probe: None,
+            }));
+        features.cameras = ModelCameras::find(sim, cameras, size, quality)?;
+        features.state_names = state_names;
+        features.action_names = action_names;
+        features.action_ranges = action_ranges;
+        Ok(features)
     }
 
-    /// `observation.state`'s names: the joints.
+    /// `observation.state`'s names: the actuators', then (`sim`) the other joints'.
     pub fn state_names(&self) -> &[String] {
-        self.sim.joint_names()
+        &self.state_names
     }
 
     /// `observation.environment_state`'s names: the free bodies' pose numbers.
@@ -177,30 +220,34 @@ impl Features {
         &self.action_ranges
     }
 
-    /// The world's state now, without its images.
-    ///
-    /// # Errors
-    ///
-    /// When the world is not simulated.
-    pub fn observe_state(&self, world: &World<'_>) -> Result<(Vec<f64>, Vec<f64>), BoxError> {
-        let sim = super::sim_backend(world)?;
-        let (state, _) = self.sim.joint_values(sim);
+    /// The world's state now, without its images: `observation.state` and
+    /// `observation.environment_state`.
+    pub fn observe_state(&self, world: &World<'_>) -> (Vec<f64>, Vec<f64>) {
+        let mut state: Vec<f64> = world
+            .actuations()
+            .iter()
+            .flat_map(|actuation| actuation.measured())
+            .collect();
+        let Some(sim) = world.backend::<SimBackend>() else {
+            return (state, Vec::new());
+        };
         let data = sim.data();
+        state.extend(self.joints.iter().map(|joint| data.qpos(*joint)[0]));
         let environment = self
             .free_joints
             .iter()
             .flat_map(|joint| data.qpos(*joint).to_vec())
             .collect();
-        Ok((state, environment))
+        (state, environment)
     }
 
     /// The world now: state and images.
     ///
     /// # Errors
     ///
-    /// When the world is not simulated, or a probe no longer gives an RGB image.
+    /// When a probe no longer gives an RGB image, or a camera cannot be rendered.
     pub fn observe(&mut self, world: &World<'_>) -> Result<Observation, BoxError> {
-        let (state, environment_state) = self.observe_state(world)?;
+        let (state, environment_state) = self.observe_state(world);
         let mut images = Vec::with_capacity(self.images.len());
         for image in &self.images {
             let Some(probe) = image.probe else { break };
@@ -211,7 +258,9 @@ impl Features {
                 }
             }
         }
-        images.extend(self.cameras.render(super::sim_backend(world)?)?);
+        if let Some(sim) = world.backend::<SimBackend>() {
+            images.extend(self.cameras.render(sim)?);
+        }
         Ok(Observation {
             state,
             environment_state,
@@ -219,26 +268,23 @@ impl Features {
         })
     }
 
-    /// The action the world follows now: each actuation's targets, then the raw actuators'
-    /// controls.
-    ///
-    /// # Errors
-    ///
-    /// When the world is not simulated.
-    pub fn action(&self, world: &World<'_>) -> Result<Vec<f64>, BoxError> {
-        let sim = super::sim_backend(world)?;
+    /// The action the world follows now: each actuation's targets, then (`sim`) the raw
+    /// actuators' controls.
+    pub fn action(&self, world: &World<'_>) -> Vec<f64> {
         let mut action: Vec<f64> = world
             .actuations()
             .iter()
             .flat_map(|actuation| actuation.target())
             .collect();
-        let data = sim.data();
-        action.extend(
-            self.raw_actuators
-                .iter()
-                .map(|actuator| data.ctrl()[actuator.index()]),
-        );
-        Ok(action)
+        if let Some(sim) = world.backend::<SimBackend>() {
+            let data = sim.data();
+            action.extend(
+                self.raw_actuators
+                    .iter()
+                    .map(|actuator| data.ctrl()[actuator.index()]),
+            );
+        }
+        action
     }
 
     /// Sets the action: each actuation's share of `action`, then the raw actuators' controls.
@@ -263,10 +309,11 @@ impl Features {
             actuation.set(share)?;
             rest = after;
         }
-        let sim = super::sim_backend(world)?;
-        let mut data = sim.data_mut();
-        for (actuator, value) in self.raw_actuators.iter().zip(rest) {
-            data.set_ctrl(*actuator, *value);
+        if let Some(sim) = world.backend::<SimBackend>() {
+            let mut data = sim.data_mut();
+            for (actuator, value) in self.raw_actuators.iter().zip(rest) {
+                data.set_ctrl(*actuator, *value);
+            }
         }
         Ok(())
     }

@@ -7,11 +7,12 @@ use crate::BoxError;
 /// What sets a component's actuators' targets.
 type SetTargets = Box<dyn Fn(&[f64]) -> Result<(), BoxError>>;
 
-/// What a component's actuators are driven by: their names, the targets they follow now, and
-/// how a new target is set.
+/// What a component's actuators are driven by: their names, where they are and the targets
+/// they follow now, and how a new target is set.
 pub struct Actuators {
     pub(crate) names: Vec<String>,
     pub(crate) ranges: Vec<[f64; 2]>,
+    pub(crate) measured: Box<dyn Fn() -> Vec<f64>>,
     pub(crate) target: Box<dyn Fn() -> Vec<f64>>,
     pub(crate) set: SetTargets,
 }
@@ -38,6 +39,12 @@ impl NamedActuation {
     /// The range of each actuator's target, lowest first (a joint's limits, a gripper's 0–255).
     pub fn ranges(&self) -> &[[f64; 2]] {
         &self.function().ranges
+    }
+
+    /// Where the actuators are now, as measured, in the targets' units (an arm's joint
+    /// positions, a gripper's position): in any environment, what a policy observes of them.
+    pub fn measured(&self) -> Vec<f64> {
+        (self.function().measured)()
     }
 
     /// The targets the actuators follow now (an arm's commanded joint positions, a gripper's

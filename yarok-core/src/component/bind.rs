@@ -390,12 +390,14 @@ impl<E: Environment> Bind<E> {
             ));
     }
 
-    /// Registers how a policy drives the component's `actuators` — each named as the composed
-    /// model names it (`arm/shoulder_pan`), with the range of its target, lowest first (targets
-    /// outside are refused before `set` sees them): `target` reads the targets they follow now (what
-    /// a dataset records as the action), `set` sets new ones (what a policy's action does).
-    /// Listed to plugins by [`World::actuations`](crate::runtime::World::actuations); a
-    /// world's action is every component's, in binding order.
+    /// Registers how a policy observes and drives the component's `actuators` — each named as
+    /// the composed model names it (`arm/shoulder_pan`), with the range of its target, lowest
+    /// first (targets outside are refused before `set` sees them): `measured` reads where they
+    /// are now (what a policy observes of them, in `sim` and on hardware alike), `target` the
+    /// targets they follow now (what a dataset records as the action), `set` sets new ones
+    /// (what a policy's action does). Listed to plugins by
+    /// [`World::actuations`](crate::runtime::World::actuations); a world's action is every
+    /// component's, in binding order.
     ///
     /// # Examples
     ///
@@ -405,10 +407,12 @@ impl<E: Environment> Bind<E> {
     /// use yarok_core::component::{Bind, BindError, Mock};
     ///
     /// fn bind(bind: &mut Bind<Mock>) -> Result<Rc<Cell<f64>>, BindError> {
+    ///     // A mock slide that is where it is told to be at once.
     ///     let target = Rc::new(Cell::new(0.0));
-    ///     let (read, set) = (Rc::clone(&target), Rc::clone(&target));
+    ///     let (at, read, set) = (Rc::clone(&target), Rc::clone(&target), Rc::clone(&target));
     ///     bind.actuation(
     ///         [("slide/motor".to_owned(), [-1.0, 1.0])],
+    ///         move || vec![at.get()],
     ///         move || vec![read.get()],
     ///         move |targets| {
     ///             set.set(targets[0]);
@@ -421,6 +425,7 @@ impl<E: Environment> Bind<E> {
     pub fn actuation(
         &mut self,
         actuators: impl IntoIterator<Item = (String, [f64; 2])>,
+        measured: impl Fn() -> Vec<f64> + 'static,
         target: impl Fn() -> Vec<f64> + 'static,
         set: impl Fn(&[f64]) -> Result<(), BoxError> + 'static,
     ) {
@@ -428,6 +433,7 @@ impl<E: Environment> Bind<E> {
         let actuators = Actuators {
             names,
             ranges,
+            measured: Box::new(measured),
             target: Box::new(target),
             set: Box::new(set),
         };

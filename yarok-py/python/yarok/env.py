@@ -100,6 +100,7 @@ class YarokEnv(gymnasium.Env):
         if render_mode not in (None, "rgb_array"):
             raise ValueError(f"render_mode {render_mode!r}: yarok renders 'rgb_array' only")
         self.render_mode = render_mode
+        self.environment = env
         self.world = World(
             self.task.world,
             env=env,
@@ -127,6 +128,9 @@ class YarokEnv(gymnasium.Env):
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
         super().reset(seed=seed)
         placements = self.task.placements(self.np_random)
+        if self.environment != "sim":
+            # Outside `sim` nothing moves a body by itself: the objects are where they are.
+            placements = []
         observation = self.world.reset(self._episodes, placements)
         self._episodes += 1
         self._start_tick = self.world.ticks

@@ -12,6 +12,9 @@ from .env import Task
 TABLE_HEIGHT = 0.4
 """The table top's height in PickAndPlaceWorld and DigitWorld (metres, world frame)."""
 
+GRIPPER_OPEN = 10
+"""Below this measured position (of 0 open … 255 closed) the gripper counts as open."""
+
 
 def _yaw(angle: float) -> tuple[float, float, float, float]:
     return (float(np.cos(angle / 2)), 0.0, 0.0, float(np.sin(angle / 2)))
@@ -47,9 +50,11 @@ class PickPlace(Task):
 
     def bind(self, features) -> None:
         names = features.environment_names
-        self.block_index = names.index(f"{self.block}/block/x")
-        self.gripper_index = features.action_names.index("arm/gripper/position")
-        self.finger_index = features.state_names.index("arm/gripper/right_driver")
+        # On hardware nothing measures the block: no reward, never won (the time limit ends
+        # each episode).
+        block = f"{self.block}/block/x"
+        self.block_index = names.index(block) if block in names else None
+        self.gripper_index = features.state_names.index("arm/gripper/position")
 
     def placements(self, rng):
         (x_low, x_high), (y_low, y_high) = self.region
@@ -66,12 +71,17 @@ class PickPlace(Task):
         return float(np.hypot(block[0] - self.target[0], block[1] - self.target[1]))
 
     def success(self, observation) -> bool:
+        if self.block_index is None:
+            return False
         block = _pose(observation, self.block_index)
         resting = abs(block[2] - (TABLE_HEIGHT + self.block_size / 2)) < 0.003
-        gripper_open = observation["observation.state"][self.finger_index] < 0.05
+        # The gripper's measured position, 0 (open) to 255 (closed).
+        gripper_open = observation["observation.state"][self.gripper_index] < GRIPPER_OPEN
         return self.distance(observation) < self.tolerance and resting and bool(gripper_open)
 
     def reward(self, observation, action) -> float:
+        if self.block_index is None:
+            return 0.0
         return -self.distance(observation) + (1.0 if self.success(observation) else 0.0)
 
 

@@ -24,6 +24,10 @@ pub enum ArmCommand {
         speed: f64,
         acceleration: f64,
     },
+    /// `servoj`: the joints held at `to`, reached within `seconds` (the client's control
+    /// period); a motion under way ends.
+    #[allow(missing_docs)]
+    Servo { to: [f64; 6], seconds: f64 },
     /// `stopj`/`stopl`, or a protective stop: the motion under way ends.
     Stop,
 }
@@ -115,6 +119,14 @@ impl ArmMotion for Interpolated {
                     to,
                     started: now,
                     seconds: farthest / speed.max(1e-3),
+                };
+            }
+            ArmCommand::Servo { to, seconds } => {
+                *self = Self {
+                    from: self.q(now),
+                    to,
+                    started: now,
+                    seconds: seconds.max(0.0),
                 };
             }
             ArmCommand::Line { .. } => {}

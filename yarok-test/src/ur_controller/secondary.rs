@@ -25,7 +25,8 @@ fn call(line: &str, name: &str) -> Option<Vec<f64>> {
 
 impl Shared {
     /// Runs one line of URScript — `movej([q…], a=…, v=…)`, `set_tcp(p[…])`,
-    /// `movel(p[pose…], a=…, v=…)`, `stopj(…)`, `stopl(…)` — unless a safety stop holds the
+    /// `movel(p[pose…], a=…, v=…)`, `servoj([q…], t=…, lookahead_time=…, gain=…)`, `stopj(…)`,
+    /// `stopl(…)` — unless a safety stop holds the
     /// arm, it is not running (powered off, brakes locked) or the controller is in local
     /// control; other lines (`def`, `end`, …) are kept only.
     pub(super) fn run_script(&self, line: &str) {
@@ -56,6 +57,14 @@ impl Shared {
                 tcp: *self.tcp.lock().unwrap(),
                 acceleration: numbers.get(6).copied().unwrap_or(1.2),
                 speed: numbers.get(7).copied().unwrap_or(0.25),
+            }
+        } else if let Some(numbers) = call(line, "servoj")
+            && numbers.len() >= 7
+        {
+            // `t` is the first keyword: the list's six numbers, then t, lookahead, gain.
+            ArmCommand::Servo {
+                to: six(&numbers),
+                seconds: numbers[6],
             }
         } else if call(line, "stopj").is_some() || call(line, "stopl").is_some() {
             ArmCommand::Stop

@@ -46,9 +46,14 @@ pub(super) fn expose<E: Environment>(bind: &mut Bind<E>, gripper: &ParallelGripp
         run(&commanded, command)
     });
     let name = format!("{}/position", bind.path().trim_start_matches('/'));
-    let (read, requested) = (Rc::clone(&gripper.drive), Rc::clone(&gripper.drive));
+    let (measured, read, requested) = (
+        gripper.clone(),
+        Rc::clone(&gripper.drive),
+        Rc::clone(&gripper.drive),
+    );
     bind.actuation(
         [(name, [0.0, 255.0])],
+        move || vec![f64::from(measured.position())],
         move || vec![read.requested().position],
         move |targets| {
             let position = targets[0].round();

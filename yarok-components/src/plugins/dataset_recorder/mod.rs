@@ -283,7 +283,7 @@ impl DatasetRecorder {
             .as_mut()
             .ok_or("the dataset's features have not been found")?;
         let observation = observed.observe(world)?;
-        let action = observed.action(world)?;
+        let action = observed.action(world);
         let task = match self.task {
             Some(task) => task,
             None => {

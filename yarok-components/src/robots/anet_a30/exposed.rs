@@ -35,17 +35,24 @@ pub(super) fn expose<E: Environment>(bind: &mut Bind<E>, printer: &AnetA30) {
     let target: Rc<Cell<Option<[f64; 3]>>> = Rc::default();
     let forgotten = Rc::clone(&target);
     bind.on_restart(move || forgotten.set(None));
+    // In millimetres, as G-code moves it: named apart from the model's slide joints (metres).
     let prefix = bind.path().trim_start_matches('/').to_owned();
     let axes = std::array::from_fn::<_, 3, _>(|i| {
         (
-            format!("{prefix}/{}", ["x", "y", "z"][i]),
+            format!("{prefix}/{}_mm", ["x", "y", "z"][i]),
             [0.0, WORK_VOLUME_MM[i]],
         )
     });
-    let (read, shown, sent, driven) =
-        (Rc::clone(&target), printer.clone(), target, printer.clone());
+    let (measured, read, shown, sent, driven) = (
+        printer.clone(),
+        Rc::clone(&target),
+        printer.clone(),
+        target,
+        printer.clone(),
+    );
     bind.actuation(
         axes,
+        move || measured.at().to_vec(),
         move || read.get().unwrap_or_else(|| shown.at()).to_vec(),
         move |targets| {
             let to = [targets[0], targets[1], targets[2]];

@@ -50,10 +50,11 @@ pub(super) fn expose<E: Environment>(bind: &mut Bind<E>, arm: &Arm) {
     let actuators = std::array::from_fn::<_, 6, _>(|i| {
         (format!("{prefix}/{}", ACTUATORS[i]), limits[i].into())
     });
-    let (read, streamed, clock) = (arm.clone(), arm.clone(), bind.clock());
+    let (measured, read, streamed, clock) = (arm.clone(), arm.clone(), arm.clone(), bind.clock());
     let last_target = std::cell::Cell::new(f64::NEG_INFINITY);
     bind.actuation(
         actuators,
+        move || measured.q().to_vec(),
         move || read.commanded().to_vec(),
         move |targets| {
             let now = clock.time();

@@ -1,0 +1,92 @@
+"""The same environment on the real robot: ``yarok/PickPlace-v0`` with ``env="real"`` drives a
+UR5e and its 2F-85 through yarok's real drivers, here against the project's fake UR controller
+(``yarok-test``'s ``fake-ur-controller``, a process of its own speaking the controller's
+protocols): each action reaches the arm as a ``servoj`` line at the control rate and the
+gripper as a position request; ``close()`` stops the arm with ``stopj``."""
+
+import os
+import re
+import subprocess
+from pathlib import Path
+
+import gymnasium
+import numpy as np
+import pytest
+
+import yarok  # noqa: F401  (registers the environments)
+
+REPOSITORY = Path(__file__).resolve().parents[2]
+STEPS = 20
+
+
+@pytest.fixture
+def fake_controller():
+    """The fake controller's process, started; its output is read once it has ended."""
+    subprocess.run(
+        ["cargo", "build", "-q", "--locked", "-p", "yarok-test", "--bin", "fake-ur-controller"],
+        cwd=REPOSITORY,
+        check=True,
+    )
+    target = Path(os.environ.get("CARGO_TARGET_DIR", REPOSITORY / "target"))
+    process = subprocess.Popen(
+        [target / "debug/fake-ur-controller"],
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        text=True,
+    )
+    yield process
+    if process.poll() is None:
+        process.kill()
+        process.wait()
+
+
+def joints_of(script: str) -> list[float]:
+    inside = re.search(r"\[([^\]]*)\]", script).group(1)
+    return [float(number) for number in inside.split(",")]
+
+
+def test_actions_reach_the_real_arm_as_servoj_at_the_control_rate_and_close_stops_it(
+    fake_controller,
+):
+    host = fake_controller.stdout.readline().split()[1]
+    env = gymnasium.make(
+        "yarok/PickPlace-v0",
+        env="real",
+        task_kwargs={"world": "pick_and_place_world"},
+        settings=[f'interfaces/arm/host="{host}"', f'interfaces/arm/gripper/host="{host}"'],
+        max_episode_steps=STEPS,
+    )
+    observation, _ = env.reset(seed=0)
+    # Nothing measures the blocks on hardware; the arm's joints are measured.
+    assert observation["observation.environment_state"].shape == (0,)
+    state = observation["observation.state"]
+    start = state[1:7]
+    assert np.allclose(start, [0.0, -np.pi / 2, np.pi / 2, -np.pi / 2, -np.pi / 2, 0.0], atol=1e-3)
+    sent = []
+    for step in range(STEPS):
+        action = np.concatenate([[100.0], start + [0.01 * (step + 1), 0, 0, 0, 0, 0]]).astype(np.float32)
+        observation, reward, terminated, truncated, info = env.step(action)
+        sent.append(action)
+        assert reward == 0.0 and not terminated
+    assert truncated
+    # The arm followed: its pan measured near the last targets (the fake's arm reaches each
+    # servoj target within its period).
+    assert abs(observation["observation.state"][1] - sent[-1][1]) < 0.02
+    env.close()
+    fake_controller.stdin.close()
+    said = fake_controller.stdout.read().splitlines()
+    fake_controller.wait(timeout=10)
+
+    scripts = [line.removeprefix("script ") for line in said if line.startswith("script ")]
+    servos = [line for line in scripts if line.startswith("servoj(")]
+    # One servoj per action, each the action's joint targets, with the control period as t.
+    assert len(servos) == STEPS, scripts
+    for servo, action in zip(servos, sent):
+        assert np.allclose(joints_of(servo), action[1:], atol=1e-5), servo
+    periods = [float(re.search(r"t=([0-9.e-]+)", servo).group(1)) for servo in servos[1:]]
+    assert all(abs(period - 0.05) < 0.005 for period in periods), periods
+    # Closed: stopj after the last servoj.
+    assert any(line.startswith("stopj(") for line in scripts[scripts.index(servos[-1]) :]), scripts
+    # The gripper was asked for position 100 (Robotiq's POS register).
+    gripper = [line for line in said if line.startswith("gripper ")]
+    assert any("POS 100" in line for line in gripper), gripper
