@@ -2,11 +2,14 @@
 UR5e and its 2F-85 through yarok's real drivers, here against the project's fake UR controller
 (``yarok-test``'s ``fake-ur-controller``, a process of its own speaking the controller's
 protocols): each action reaches the arm as a ``servoj`` line at the control rate and the
-gripper as a position request; ``close()`` stops the arm with ``stopj``."""
+gripper as a position request; ``close()`` stops the arm with ``stopj``, and so does Ctrl-C,
+which reaches Python as ``KeyboardInterrupt``."""
 
 import os
 import re
+import signal
 import subprocess
+import sys
 from pathlib import Path
 
 import gymnasium
@@ -90,3 +93,36 @@ def test_actions_reach_the_real_arm_as_servoj_at_the_control_rate_and_close_stop
     # The gripper was asked for position 100 (Robotiq's POS register).
     gripper = [line for line in said if line.startswith("gripper ")]
     assert any("POS 100" in line for line in gripper), gripper
+
+
+CTRL_C_SCRIPT = """
+import sys, gymnasium, numpy as np, yarok
+env = gymnasium.make("yarok/PickPlace-v0", env="real", task_kwargs={"world": "pick_and_place_world"},
+                     settings=[f'interfaces/arm/host="{sys.argv[1]}"',
+                               f'interfaces/arm/gripper/host="{sys.argv[1]}"'])
+observation, _ = env.reset(seed=0)
+action = np.concatenate([[0.0], observation["observation.state"][1:7]]).astype(np.float32)
+env.step(action)
+print("stepping", flush=True)
+env.unwrapped.world.advance(600.0)
+"""
+
+
+def test_ctrl_c_raises_keyboard_interrupt_and_stops_the_real_arm(fake_controller):
+    host = fake_controller.stdout.readline().split()[1]
+    python = subprocess.Popen(
+        [sys.executable, "-c", CTRL_C_SCRIPT, host],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    assert python.stdout.readline().strip() == "stepping"
+    python.send_signal(signal.SIGINT)
+    _, errors = python.communicate(timeout=20)
+    assert python.returncode != 0
+    assert "KeyboardInterrupt" in errors, errors
+    fake_controller.stdin.close()
+    said = fake_controller.stdout.read().splitlines()
+    scripts = [line.removeprefix("script ") for line in said if line.startswith("script ")]
+    last_servo = max(i for i, line in enumerate(scripts) if line.startswith("servoj("))
+    assert any(line.startswith("stopj(") for line in scripts[last_servo:]), scripts
