@@ -60,10 +60,11 @@ enum Request {
         episode: u64,
         placements: Vec<Placement>,
     },
-    /// Set the action (if any), then advance `ticks` ticks.
+    /// Set the action (if any), then `periods` times: advance `ticks` ticks and observe.
     Step {
         action: Option<Vec<f64>>,
         ticks: u64,
+        periods: u64,
     },
     /// Stop the platform: devices left safe, plugins ended.
     Close,
@@ -145,9 +146,25 @@ impl Worker {
         })
     }
 
-    /// Sends a step; its reply is taken with [`Worker::reply`].
+    /// Sends a step of `ticks` ticks, observed after them; its reply is taken with
+    /// [`Worker::reply`].
     pub(crate) fn send_step(&self, action: Option<Vec<f64>>, ticks: u64) -> Result<(), String> {
-        self.send(Request::Step { action, ticks })
+        self.send_steps(action, ticks, 1)
+    }
+
+    /// Sends `periods` steps of `ticks` ticks each, each observed as a step is, the action
+    /// set before the first; the reply (the last observation) is taken with [`Worker::reply`].
+    pub(crate) fn send_steps(
+        &self,
+        action: Option<Vec<f64>>,
+        ticks: u64,
+        periods: u64,
+    ) -> Result<(), String> {
+        self.send(Request::Step {
+            action,
+            ticks,
+            periods,
+        })
     }
 
     fn send(&self, request: Request) -> Result<(), String> {
@@ -296,8 +313,21 @@ fn serve(
                 Ok(()) => advance(&mut platform, &mut features, 1),
                 Err(refused) => (Err(refused), false),
             },
-            Request::Step { action, ticks } => match act(&platform, &features, action) {
-                Ok(()) => advance(&mut platform, &mut features, ticks),
+            Request::Step {
+                action,
+                ticks,
+                periods,
+            } => match act(&platform, &features, action) {
+                Ok(()) => {
+                    let mut reply = advance(&mut platform, &mut features, ticks);
+                    for _ in 1..periods {
+                        if reply.1 {
+                            break;
+                        }
+                        reply = advance(&mut platform, &mut features, ticks);
+                    }
+                    reply
+                }
                 Err(refused) => (Err(refused), false),
             },
             Request::Close => break,

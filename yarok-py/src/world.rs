@@ -147,6 +147,25 @@ impl World {
         self.exchange(py, move |worker| worker.send_step(action, ticks))
     }
 
+    /// Sets `action` (if given), then `periods` times advances `seconds` of platform time and
+    /// observes, without returning to Python in between; the last observation. An action
+    /// repeated over several control periods, and how the cost of stepping from Python is
+    /// measured (the same work as `periods` calls of `advance`).
+    #[pyo3(signature = (periods, seconds, action = None))]
+    fn advance_periods<'py>(
+        &self,
+        py: Python<'py>,
+        periods: u64,
+        seconds: f64,
+        action: Option<Vec<f64>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        if periods == 0 {
+            return Err(error("advance_periods needs at least one period".into()));
+        }
+        let ticks = ticks_for(seconds, self.info.timestep)?;
+        self.exchange(py, move |worker| worker.send_steps(action, ticks, periods))
+    }
+
     /// Stops the world: plugins end, devices are left safe. Raises how the run ended if it
     /// failed. Calling it again does nothing.
     fn close(&self, py: Python<'_>) -> PyResult<()> {
