@@ -1,10 +1,12 @@
 //! A headless OpenGL context through EGL: the device platform first, Mesa's surfaceless
-//! platform as the fallback. Works with Mesa's llvmpipe on machines without a GPU.
+//! platform as the fallback. Works with Mesa's llvmpipe on machines without a GPU, where
+//! threads' contexts are spread over the displays EGL offers: llvmpipe rasterizes the
+//! contexts of one display one at a time.
 
 use std::cell::RefCell;
-use std::ffi::c_void;
+use std::ffi::{CStr, c_char, c_void};
 use std::rc::{Rc, Weak};
-use std::sync::OnceLock;
+use std::sync::{Mutex, OnceLock};
 
 use khronos_egl as egl;
 use libloading::os::unix::{Library, RTLD_GLOBAL, RTLD_NOW};
@@ -16,9 +18,32 @@ pub(super) type Egl = egl::DynamicInstance<egl::EGL1_4>;
 const PLATFORM_DEVICE: egl::Enum = 0x313F;
 const PLATFORM_SURFACELESS_MESA: egl::Enum = 0x31DD;
 const MAX_DEVICES: usize = 16;
+/// `EGL_EXTENSIONS`, as `eglQueryDeviceStringEXT` takes it.
+const EXTENSIONS: egl::Int = 0x3055;
+
+/// How many live contexts each display (by its handle's address) has.
+static DISPLAY_USERS: Mutex<Vec<(usize, usize)>> = Mutex::new(Vec::new());
+
+fn display_users(display: usize) -> usize {
+    let users = DISPLAY_USERS.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+    users
+        .iter()
+        .find(|(known, _)| *known == display)
+        .map_or(0, |(_, count)| *count)
+}
+
+/// Adds `change` (+1 or −1) to `display`'s live contexts.
+fn count_user(display: usize, change: isize) {
+    let mut users = DISPLAY_USERS.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+    match users.iter_mut().find(|(known, _)| *known == display) {
+        Some((_, count)) => *count = count.saturating_add_signed(change),
+        None => users.push((display, change.max(0).unsigned_abs())),
+    }
+}
 
 type QueryDevices =
     unsafe extern "system" fn(egl::Int, *mut *mut c_void, *mut egl::Int) -> egl::Boolean;
+type QueryDeviceString = unsafe extern "system" fn(*mut c_void, egl::Int) -> *const c_char;
 type GetPlatformDisplay =
     unsafe extern "system" fn(egl::Enum, *mut c_void, *const egl::Int) -> egl::EGLDisplay;
 type GetIntegerv = unsafe extern "system" fn(u32, *mut i32);
@@ -170,6 +195,7 @@ impl GlContext {
         let egl = egl_library()?;
         let functions = GlFunctions::load(egl)?;
         let display = open_display(egl)?;
+        count_user(display.as_ptr() as usize, 1);
         let config = egl
             .choose_first_config(display, &CONFIG)
             .map_err(|e| egl_error("choose a config", e))?
@@ -272,6 +298,7 @@ impl Drop for GlContext {
         if self.egl.get_current_context() == Some(self.context) {
             let _released = self.egl.make_current(self.display, None, None, None);
         }
+        count_user(self.display.as_ptr() as usize, -1);
         if let Err(error) = self.egl.destroy_context(self.display, self.context) {
             tracing::warn!(%error, "could not destroy the EGL context");
         }
@@ -336,22 +363,32 @@ pub(super) unsafe fn x11_display(
     Ok((egl, display))
 }
 
-/// Every display worth trying, device platform first, and the first that initialises.
+/// Every display worth trying, device platform first, and the first that initialises. When
+/// every device is a software rasterizer (llvmpipe: no GPU), the least used display first, so
+/// that two threads render in parallel; with a GPU, always the first.
 fn open_display(egl: &Egl) -> Result<egl::Display, RenderError> {
     let get_display = platform_display_function(egl)?;
-    let mut candidates: Vec<(egl::Enum, *mut c_void)> = devices(egl)
+    let devices = devices(egl);
+    let software_only = !devices.is_empty() && devices.iter().all(|d| is_software(egl, *d));
+    let mut candidates: Vec<(egl::Enum, *mut c_void)> = devices
         .into_iter()
         .map(|device| (PLATFORM_DEVICE, device))
         .collect();
     candidates.push((PLATFORM_SURFACELESS_MESA, std::ptr::null_mut()));
-    let mut last_error = String::from("no EGL display");
+    let mut displays = Vec::new();
     for (platform, native) in candidates {
         // SAFETY: `native` is a device handle from eglQueryDevicesEXT or null (the default
         // display), and the attribute list is empty (null).
         let raw = unsafe { get_display(platform, native, std::ptr::null()) };
-        if raw.is_null() {
-            continue;
+        if !raw.is_null() && !displays.contains(&raw) {
+            displays.push(raw);
         }
+    }
+    if software_only {
+        displays.sort_by_key(|raw| display_users(*raw as usize));
+    }
+    let mut last_error = String::from("no EGL display");
+    for raw in displays {
         // SAFETY: `raw` is a non-null display handle just returned by EGL.
         let display = unsafe { egl::Display::from_ptr(raw) };
         match egl.initialize(display) {
@@ -363,6 +400,26 @@ fn open_display(egl: &Egl) -> Result<egl::Display, RenderError> {
         "initialise a device or surfaceless display",
         last_error,
     ))
+}
+
+/// Whether `device` is Mesa's software rasterizer (`EGL_MESA_device_software`).
+fn is_software(egl: &Egl, device: *mut c_void) -> bool {
+    let Some(query) = egl.get_proc_address("eglQueryDeviceStringEXT") else {
+        return false;
+    };
+    // SAFETY: eglQueryDeviceStringEXT has the QueryDeviceString signature (EGL_EXT_device_query).
+    let query = unsafe { std::mem::transmute::<extern "system" fn(), QueryDeviceString>(query) };
+    // SAFETY: `device` is a handle from eglQueryDevicesEXT; EGL_EXTENSIONS is a valid name.
+    let extensions = unsafe { query(device, EXTENSIONS) };
+    if extensions.is_null() {
+        return false;
+    }
+    // SAFETY: EGL returns a NUL-terminated string it owns for the process's life.
+    let extensions = unsafe { CStr::from_ptr(extensions) };
+    extensions
+        .to_string_lossy()
+        .split_whitespace()
+        .any(|extension| extension == "EGL_MESA_device_software")
 }
 
 fn devices(egl: &Egl) -> Vec<*mut c_void> {
