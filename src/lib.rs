@@ -58,8 +58,9 @@ pub const MOCK_TIMESTEP: f64 = 0.002;
 /// backend, 2 ms ticks); plugins `joints_csv` ([`components::plugins::JointRecorder`]), `mcap`
 /// ([`components::plugins::McapRecorder`]) and `video` ([`components::plugins::VideoRecorder`]);
 /// with the feature `viewer`, `viewer` and `inspector` (the windows); with `zenoh`, `zenoh`
-/// ([`components::plugins::ZenohBridge`]); with `dataset`, `dataset`
-/// ([`components::plugins::DatasetRecorder`]).
+/// (`components::plugins::ZenohBridge`); with `dataset`, `dataset`
+/// (`components::plugins::DatasetRecorder`): plain names, as the features that bring them may
+/// be off when these docs are built.
 ///
 /// # Examples
 ///

@@ -7,10 +7,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{RecvTimeoutError, channel};
 
 use pyo3::prelude::*;
-use yarok::components::demos::{self, Demo};
 use yarok::core::suggest::did_you_mean;
 
-use crate::worker::POLL;
+use crate::worker::{POLL, bundled};
 use crate::{error, interrupted};
 
 /// Runs the bundled world `world` with its demo behaviour `behaviour` (its default when
@@ -33,14 +32,7 @@ pub(crate) fn run(
     config: Vec<String>,
     dataset: Option<PathBuf>,
 ) -> PyResult<()> {
-    let demo = demos::find(world).ok_or_else(|| {
-        let tags: Vec<String> = demos::demos().iter().map(Demo::tag).collect();
-        error(format!(
-            "no bundled world {world:?}{} (the worlds: {})",
-            did_you_mean(world, tags.iter().map(String::as_str)),
-            tags.join(", ")
-        ))
-    })?;
+    let demo = bundled(world).map_err(error)?;
     let chosen = demo.behaviour(behaviour).ok_or_else(|| {
         let names: Vec<&str> = demo.behaviours.iter().map(|b| b.name).collect();
         let asked = behaviour.unwrap_or_default();

@@ -8,7 +8,7 @@ use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender, channel};
 use std::thread::JoinHandle;
 use std::time::Duration;
 
-use yarok::components::demos;
+use yarok::components::demos::{self, Demo};
 use yarok::components::plugins::features::{Features, Observation};
 use yarok::core::runtime::Platform;
 use yarok::core::suggest::did_you_mean;
@@ -226,17 +226,21 @@ impl Drop for Worker {
     }
 }
 
-/// The platform of `spec`, built and started (its components bound).
-fn start(spec: &WorldSpec, stop: Arc<AtomicBool>) -> Result<(Platform, Features), String> {
-    let demo = demos::find(&spec.world).ok_or_else(|| {
-        let tags: Vec<String> = demos::demos().iter().map(|demo| demo.tag()).collect();
+/// The bundled world tagged `world`, or an error naming the bundled worlds.
+pub(crate) fn bundled(world: &str) -> Result<Demo, String> {
+    demos::find(world).ok_or_else(|| {
+        let tags: Vec<String> = demos::demos().iter().map(Demo::tag).collect();
         format!(
-            "no bundled world {:?}{} (the worlds: {})",
-            spec.world,
-            did_you_mean(&spec.world, tags.iter().map(String::as_str)),
+            "no bundled world {world:?}{} (the worlds: {})",
+            did_you_mean(world, tags.iter().map(String::as_str)),
             tags.join(", ")
         )
-    })?;
+    })
+}
+
+/// The platform of `spec`, built and started (its components bound).
+fn start(spec: &WorldSpec, stop: Arc<AtomicBool>) -> Result<(Platform, Features), String> {
+    let demo = bundled(&spec.world)?;
     let args = ["--env".to_owned(), spec.environment.clone()]
         .into_iter()
         .chain(

@@ -25,7 +25,9 @@ const EXTENSIONS: egl::Int = 0x3055;
 static DISPLAY_USERS: Mutex<Vec<(usize, usize)>> = Mutex::new(Vec::new());
 
 fn display_users(display: usize) -> usize {
-    let users = DISPLAY_USERS.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+    let users = DISPLAY_USERS
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner());
     users
         .iter()
         .find(|(known, _)| *known == display)
@@ -34,7 +36,9 @@ fn display_users(display: usize) -> usize {
 
 /// Adds `change` (+1 or −1) to `display`'s live contexts.
 fn count_user(display: usize, change: isize) {
-    let mut users = DISPLAY_USERS.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+    let mut users = DISPLAY_USERS
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner());
     match users.iter_mut().find(|(known, _)| *known == display) {
         Some((_, count)) => *count = count.saturating_add_signed(change),
         None => users.push((display, change.max(0).unsigned_abs())),
