@@ -318,3 +318,46 @@ fn depths_and_noise_that_make_no_sense_are_refused() {
     let (code, _, stderr) = yarok(&["tactile", "digit", &path(&good), out]);
     assert_eq!(code, 0, "{stderr}");
 }
+
+#[test]
+fn an_output_that_is_one_of_the_inputs_is_refused_and_the_input_kept() {
+    let copy = tempfile::tempdir().unwrap();
+    let real = format!(
+        "{}/yarok-components/data/tactile-real/digit",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let (untouched, presses) = (
+        copy.path().join("background.png"),
+        copy.path().join("presses.csv"),
+    );
+    std::fs::copy(format!("{real}/background.png"), &untouched).unwrap();
+    std::fs::copy(format!("{real}/presses.csv"), &presses).unwrap();
+    let (untouched, presses) = (untouched.to_str().unwrap(), presses.to_str().unwrap());
+    let kept = [
+        std::fs::read(untouched).unwrap(),
+        std::fs::read(presses).unwrap(),
+    ];
+    for (out, input) in [(presses, presses), (untouched, untouched)] {
+        yarok_binary::yarok_fails(
+            &["tactile", "calibrate", untouched, presses, out],
+            2,
+            &[&format!("the output {out} is the input {input}")],
+        );
+    }
+    // `yarok tactile`: the output image is the background it reads.
+    let depth = golden("digit/sphere_center/input_depth.npy.gz");
+    yarok_binary::yarok_fails(
+        &[
+            "tactile",
+            "digit",
+            depth.to_str().unwrap(),
+            untouched,
+            "--background",
+            untouched,
+        ],
+        2,
+        &[&format!("the output {untouched} is the input {untouched}")],
+    );
+    assert_eq!(std::fs::read(untouched).unwrap(), kept[0]);
+    assert_eq!(std::fs::read(presses).unwrap(), kept[1]);
+}

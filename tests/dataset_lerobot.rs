@@ -308,27 +308,143 @@ fn a_folder_holding_other_files_is_not_overwritten() {
     assert_eq!(std::fs::read_to_string(&precious).unwrap(), "chapter 1");
 }
 
+/// `yarok run tactile_rig_world --dataset DATASET` in `folder` (quick: one press).
+fn presses(folder: &Path, dataset: &str) -> Output {
+    yarok(
+        folder,
+        &[
+            "run",
+            "tactile_rig_world",
+            "--dataset",
+            dataset,
+            "--set",
+            "behaviour/out=\"samples\"",
+        ],
+    )
+}
+
 #[test]
-fn a_dataset_is_replaced_by_the_next_run_into_its_folder() {
+fn a_dataset_is_replaced_whole_by_the_next_run_and_a_users_file_in_it_is_never_removed() {
     let folder = tempfile::tempdir().unwrap();
-    let args = [
-        "run",
-        "tactile_rig_world",
-        "--dataset",
-        "presses",
-        "--set",
-        "behaviour/out=\"samples\"",
-    ];
-    assert_succeeded(&yarok(folder.path(), &args));
-    let stale = folder
-        .path()
-        .join("presses/videos/observation.images.sensor.image/chunk-000/file-999.mp4");
-    std::fs::write(&stale, "from an older run").unwrap();
-    assert_succeeded(&yarok(folder.path(), &args));
-    assert!(!stale.exists(), "the older dataset's files are gone");
+    assert_succeeded(&presses(folder.path(), "presses"));
+    assert_succeeded(&presses(folder.path(), "presses"));
+    let dataset = folder.path().join("presses");
+    let read = peers::run("lerobot_read.py", &[dataset.to_str().unwrap()]);
+    assert_eq!(totals(&read)[0], 1, "{read}");
+    // Written beside, moved into place: nothing of the run is left beside the folder.
+    let beside: Vec<String> = std::fs::read_dir(folder.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|name| name.starts_with('.'))
+        .collect();
+    assert!(beside.is_empty(), "{beside:?}");
+
+    // A file of the user's inside the dataset: the folder is no longer yarok's to replace.
+    let labels = dataset.join("meta/my_labels.csv");
+    std::fs::write(&labels, "episode,label\n0,good\n").unwrap();
+    let before = std::fs::read(dataset.join("data/chunk-000/file-000.parquet")).unwrap();
+    let run = presses(folder.path(), "presses");
+    assert!(!run.status.success());
+    assert_says(
+        &String::from_utf8_lossy(&run.stderr),
+        &["presses holds a dataset yarok wrote, and files it did not (meta/my_labels.csv)"],
+    );
+    assert_eq!(
+        std::fs::read_to_string(&labels).unwrap(),
+        "episode,label\n0,good\n"
+    );
+    assert_eq!(
+        std::fs::read(dataset.join("data/chunk-000/file-000.parquet")).unwrap(),
+        before
+    );
+}
+
+#[test]
+fn folders_that_are_not_yaroks_datasets_are_refused_and_left_byte_for_byte() {
+    let folder = tempfile::tempdir().unwrap();
+    let mine = folder.path().join("data/mine.csv");
+    std::fs::create_dir_all(mine.parent().unwrap()).unwrap();
+    std::fs::write(&mine, "1,2,3\n").unwrap();
+    // The working folder itself.
+    for empty in ["", "."] {
+        let run = presses(folder.path(), empty);
+        assert!(!run.status.success(), "{empty:?}");
+        assert_says(
+            &String::from_utf8_lossy(&run.stderr),
+            &["is no folder of its own"],
+        );
+    }
+    // Anything with a meta/info.json is not yarok's for that.
+    let garbage = folder.path().join("garbage");
+    std::fs::create_dir_all(garbage.join("meta")).unwrap();
+    std::fs::write(garbage.join("meta/info.json"), "garbage").unwrap();
+    let run = presses(folder.path(), "garbage");
+    assert_says(
+        &String::from_utf8_lossy(&run.stderr),
+        &["garbage holds files but no dataset yarok wrote"],
+    );
+    let older = folder.path().join("older");
+    std::fs::create_dir_all(older.join("meta")).unwrap();
+    std::fs::write(
+        older.join("meta/info.json"),
+        r#"{"codebase_version": "v2.1", "fps": 30}"#,
+    )
+    .unwrap();
+    let run = presses(folder.path(), "older");
+    assert_says(
+        &String::from_utf8_lossy(&run.stderr),
+        &["older holds a LeRobot dataset (v2.1) that yarok did not write"],
+    );
+    assert_eq!(std::fs::read_to_string(&mine).unwrap(), "1,2,3\n");
+    assert_eq!(
+        std::fs::read_to_string(garbage.join("meta/info.json")).unwrap(),
+        "garbage"
+    );
+    assert!(
+        std::fs::read_to_string(older.join("meta/info.json"))
+            .unwrap()
+            .contains("v2.1")
+    );
+    let names: Vec<String> = std::fs::read_dir(folder.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(!names.iter().any(|n| n.starts_with('.')), "{names:?}");
+}
+
+#[test]
+fn a_second_run_into_a_folder_being_written_is_refused() {
+    let folder = tempfile::tempdir().unwrap();
+    let mut first = Command::new(env!("CARGO_BIN_EXE_yarok"))
+        .current_dir(folder.path())
+        .args(["run", "digit_world", "--dataset", "shared", "--set"])
+        .arg("behaviour/out=\"shots\"")
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let lock = folder.path().join(".shared.yarok-lock");
+    let started = std::time::Instant::now();
+    while !lock.exists() {
+        assert!(
+            started.elapsed().as_secs() < 120,
+            "the first run never took the folder"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let second = presses(folder.path(), "shared");
+    assert!(!second.status.success());
+    assert_says(
+        &String::from_utf8_lossy(&second.stderr),
+        &[&format!(
+            "another yarok run (process {}) is writing a dataset into shared",
+            first.id()
+        )],
+    );
+    assert!(first.wait().unwrap().success());
     let read = peers::run(
         "lerobot_read.py",
-        &[folder.path().join("presses").to_str().unwrap()],
+        &[folder.path().join("shared").to_str().unwrap()],
     );
     assert_eq!(totals(&read)[0], 1, "{read}");
+    assert!(!lock.exists());
 }

@@ -47,6 +47,7 @@ pub(super) fn run(args: &[String]) -> Result<(), String> {
             other => return Err(format!("unknown option {other}\n{}", super::USAGE)),
         }
     }
+    super::apart_from_inputs(out, &[untouched, presses])?;
     let background = image::open(untouched)
         .map_err(|e| format!("{untouched}: {e}"))?
         .to_rgb8();

@@ -88,6 +88,24 @@ impl From<String> for Failure {
     }
 }
 
+/// Refuses an output file that is one of the command's `inputs` (the same file, by any path):
+/// writing it would destroy what the command reads.
+fn apart_from_inputs(output: &str, inputs: &[&str]) -> Result<(), String> {
+    let Ok(written) = std::fs::canonicalize(output) else {
+        return Ok(());
+    };
+    match inputs
+        .iter()
+        .find(|input| std::fs::canonicalize(input).is_ok_and(|read| read == written))
+    {
+        Some(input) => Err(format!(
+            "the output {output} is the input {input}: writing it would destroy what is read; \
+             give another output file"
+        )),
+        None => Ok(()),
+    }
+}
+
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let result = match args.first().map(String::as_str) {

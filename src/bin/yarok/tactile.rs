@@ -178,6 +178,11 @@ pub(super) fn run(args: &[String]) -> Result<(), String> {
         return super::calibrate::run(&args[1..]);
     }
     let options = options(args)?;
+    let inputs: Vec<&str> = [Some(options.depth), options.background, options.calibration]
+        .into_iter()
+        .flatten()
+        .collect();
+    super::apart_from_inputs(options.out, &inputs)?;
     let (depth, width, metric) = depth(options.depth)?;
     if let Some(path) = options.calibration {
         return calibrated(path, &options, &depth, width);

@@ -3,11 +3,12 @@
 //! that LeRobot trains on.
 
 mod episode;
+mod folder;
 mod meta;
 mod stats;
 mod tables;
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use serde_json::{Value, json};
 use yarok_core::BoxError;
@@ -15,6 +16,7 @@ use yarok_core::runtime::{Episode, Happening, Plugin, World};
 use yarok_mjc::SimBackend;
 
 use self::episode::{EpisodeRecording, Frame};
+use self::folder::DatasetFolder;
 use self::meta::{Feature, INDEX_FEATURES, Info, stats_json, write_json};
 use self::stats::FeatureStats;
 use self::tables::{DataFiles, EpisodeRow, VECTOR_FEATURES, Widths, write_episodes, write_tasks};
@@ -25,8 +27,10 @@ use super::features::Features;
 #[derive(Debug, Clone, PartialEq, serde::Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct DatasetRecorderSettings {
-    /// The dataset's folder: created, or replaced if it holds a dataset; a folder holding
-    /// anything else is refused.
+    /// The dataset's folder: created, or replaced if it holds a dataset yarok wrote and
+    /// nothing else; a folder holding anything else, or one another run writes into, is
+    /// refused. The dataset is written beside it (`.NAME.yarok-partial`) and moved into place
+    /// when the run ends, so the folder holds the old dataset or the new one, whole.
     pub path: PathBuf,
     /// Frames a second of platform time (LeRobot's `fps`).
     pub fps: u32,
@@ -103,8 +107,10 @@ const KEYFRAME_INTERVAL: u32 = 2;
 #[derive(Debug)]
 pub struct DatasetRecorder {
     settings: DatasetRecorderSettings,
-    /// The dataset's folder (the shard's).
+    /// Where the dataset is being written (beside the shard's folder, until the run ends).
     root: PathBuf,
+    /// The shard's folder, claimed when the run starts.
+    folder: Option<DatasetFolder>,
     robot_type: String,
     /// What a frame holds, found when the run starts.
     observed: Option<Features>,
@@ -140,6 +146,7 @@ impl DatasetRecorder {
         }
         Ok(Self {
             root: settings.path.clone(),
+            folder: None,
             settings,
             robot_type: String::new(),
             observed: None,
@@ -325,28 +332,6 @@ impl DatasetRecorder {
     }
 }
 
-/// Makes `root` ready for a new dataset: created, or emptied of the dataset it holds.
-fn prepare_folder(root: &Path) -> Result<(), BoxError> {
-    let holds_dataset = root.join("meta/info.json").is_file();
-    if holds_dataset {
-        for part in ["meta", "data", "videos"] {
-            let folder = root.join(part);
-            if folder.exists() {
-                std::fs::remove_dir_all(&folder)
-                    .map_err(|e| format!("cannot replace {}: {e}", folder.display()))?;
-            }
-        }
-    } else if std::fs::read_dir(root).is_ok_and(|mut entries| entries.next().is_some()) {
-        return Err(format!(
-            "{} holds files but no dataset (no meta/info.json): give a new or empty folder",
-            root.display()
-        )
-        .into());
-    }
-    std::fs::create_dir_all(root)
-        .map_err(|e| format!("cannot create {}: {e}", root.display()).into())
-}
-
 impl Plugin for DatasetRecorder {
     fn writes(&self) -> Vec<PathBuf> {
         vec![self.settings.path.clone()]
@@ -362,22 +347,20 @@ impl Plugin for DatasetRecorder {
 
     fn start(&mut self, world: &World<'_>) -> Result<(), BoxError> {
         let shard = world.pl().shard();
+        let mut destination = self.settings.path.clone();
         if !shard.is_whole() {
-            let mut name = self
-                .settings
-                .path
-                .file_name()
-                .unwrap_or_default()
-                .to_owned();
+            let mut name = destination.file_name().unwrap_or_default().to_owned();
             name.push(format!("_{}_of_{}", shard.index, shard.count));
-            self.root = self.settings.path.with_file_name(name);
+            destination = destination.with_file_name(name);
         }
         self.robot_type = match &self.settings.robot_type {
             Some(robot_type) => robot_type.clone(),
             None => world.composition().instances[0].tag.clone(),
         };
         self.find_features(world)?;
-        prepare_folder(&self.root)?;
+        let folder = DatasetFolder::claim(&destination)?;
+        self.root = folder.partial().to_owned();
+        self.folder = Some(folder);
         self.data = Some(DataFiles::new(&self.root, self.widths));
         self.begin(None)
     }
@@ -409,6 +392,10 @@ impl Plugin for DatasetRecorder {
         if let Some(data) = &mut self.data {
             data.close()?;
         }
-        self.write_meta()
+        self.write_meta()?;
+        match self.folder.take() {
+            Some(folder) => folder.commit(),
+            None => Ok(()),
+        }
     }
 }
