@@ -346,7 +346,7 @@ fn a_dataset_is_replaced_whole_by_the_next_run_and_a_users_file_in_it_is_never_r
     let run = presses(folder.path(), "presses");
     assert!(!run.status.success());
     assert_says(
-        &String::from_utf8_lossy(&run.stderr),
+        String::from_utf8_lossy(&run.stderr),
         &["presses holds a dataset yarok wrote, and files it did not (meta/my_labels.csv)"],
     );
     assert_eq!(
@@ -370,7 +370,7 @@ fn folders_that_are_not_yaroks_datasets_are_refused_and_left_byte_for_byte() {
         let run = presses(folder.path(), empty);
         assert!(!run.status.success(), "{empty:?}");
         assert_says(
-            &String::from_utf8_lossy(&run.stderr),
+            String::from_utf8_lossy(&run.stderr),
             &["is no folder of its own"],
         );
     }
@@ -380,7 +380,7 @@ fn folders_that_are_not_yaroks_datasets_are_refused_and_left_byte_for_byte() {
     std::fs::write(garbage.join("meta/info.json"), "garbage").unwrap();
     let run = presses(folder.path(), "garbage");
     assert_says(
-        &String::from_utf8_lossy(&run.stderr),
+        String::from_utf8_lossy(&run.stderr),
         &["garbage holds files but no dataset yarok wrote"],
     );
     let older = folder.path().join("older");
@@ -392,7 +392,7 @@ fn folders_that_are_not_yaroks_datasets_are_refused_and_left_byte_for_byte() {
     .unwrap();
     let run = presses(folder.path(), "older");
     assert_says(
-        &String::from_utf8_lossy(&run.stderr),
+        String::from_utf8_lossy(&run.stderr),
         &["older holds a LeRobot dataset (v2.1) that yarok did not write"],
     );
     assert_eq!(std::fs::read_to_string(&mine).unwrap(), "1,2,3\n");
@@ -434,7 +434,7 @@ fn a_second_run_into_a_folder_being_written_is_refused() {
     let second = presses(folder.path(), "shared");
     assert!(!second.status.success());
     assert_says(
-        &String::from_utf8_lossy(&second.stderr),
+        String::from_utf8_lossy(&second.stderr),
         &[&format!(
             "another yarok run (process {}) is writing a dataset into shared",
             first.id()
