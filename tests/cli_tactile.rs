@@ -361,3 +361,81 @@ fn an_output_that_is_one_of_the_inputs_is_refused_and_the_input_kept() {
     assert_eq!(std::fs::read(untouched).unwrap(), kept[0]);
     assert_eq!(std::fs::read(presses).unwrap(), kept[1]);
 }
+
+#[test]
+fn calibration_settings_outside_their_physical_range_are_refused_before_fitting() {
+    let real = format!(
+        "{}/yarok-components/data/tactile-real/digit",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let out = tempfile::tempdir().unwrap();
+    let written = out.path().join("c.json");
+    let (untouched, presses) = (
+        format!("{real}/background.png"),
+        format!("{real}/presses.csv"),
+    );
+    for (flag, value, said) in [
+        (
+            "--spread",
+            "1e9",
+            "spread_pixels 1e9 is outside its physical range, 0 to 64",
+        ),
+        (
+            "--pixels-per-mm",
+            "1e9",
+            "pixels_per_mm 1e9 is outside its physical range",
+        ),
+        (
+            "--contact-scale",
+            "0.9,1e300",
+            "contact_scale 1e300 is outside",
+        ),
+        (
+            "--ball-diameter-mm",
+            "0.01",
+            "ball_diameter_mm 0.01 is outside",
+        ),
+    ] {
+        let started = std::time::Instant::now();
+        yarok_binary::yarok_fails(
+            &[
+                "tactile",
+                "calibrate",
+                &untouched,
+                &presses,
+                written.to_str().unwrap(),
+                flag,
+                value,
+            ],
+            2,
+            &[&format!("{flag} {value}: {said}")],
+        );
+        assert!(started.elapsed().as_secs() < 10, "{flag} {value} took long");
+        assert!(!written.exists());
+    }
+    // A calibration file holding such a spread is refused naming it.
+    let bundled = std::fs::read_to_string(format!(
+        "{}/yarok-components/src/tactile/calibration/digit.json",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
+    let file = out.path().join("wide.json");
+    std::fs::write(
+        &file,
+        bundled.replace("\"spread_pixels\": 18.0", "\"spread_pixels\": 1e9"),
+    )
+    .unwrap();
+    let depth = golden("digit/sphere_center/input_depth.npy.gz");
+    yarok_binary::yarok_fails(
+        &[
+            "tactile",
+            "digit",
+            depth.to_str().unwrap(),
+            out.path().join("o.png").to_str().unwrap(),
+            "--calibration",
+            file.to_str().unwrap(),
+        ],
+        2,
+        &["spread_pixels 1e9 is outside its physical range, 0 to 64"],
+    );
+}

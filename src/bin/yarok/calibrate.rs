@@ -1,8 +1,16 @@
 //! `yarok tactile calibrate`: a sensor's optical model fitted to real frames of ball presses.
 
 use yarok::components::tactile::calibration::{
-    Calibration, FitSettings, read_presses, split_held_out,
+    Calibration, FitSettings, check_setting, read_presses, split_held_out,
 };
+
+/// Each option's calibration setting, whose physical range bounds it.
+const SETTINGS: [(&str, &str); 4] = [
+    ("--ball-diameter-mm", "ball_diameter_mm"),
+    ("--pixels-per-mm", "pixels_per_mm"),
+    ("--contact-scale", "contact_scale"),
+    ("--spread", "spread_pixels"),
+];
 
 /// The values of a comma-separated list option.
 fn numbers(flag: &str, value: &str) -> Result<Vec<f64>, String> {
@@ -28,6 +36,11 @@ pub(super) fn run(args: &[String]) -> Result<(), String> {
     let mut rest = rest.iter();
     while let Some(flag) = rest.next() {
         let value = rest.next().ok_or_else(|| format!("{flag} needs a value"))?;
+        if let Some((_, setting)) = SETTINGS.iter().find(|(known, _)| known == flag) {
+            for number in numbers(flag, value)? {
+                check_setting(setting, number).map_err(|e| format!("{flag} {value}: {e}"))?;
+            }
+        }
         let single = |flag: &str| -> Result<f64, String> {
             match numbers(flag, value)?[..] {
                 [v] if v > 0.0 => Ok(v),

@@ -66,7 +66,8 @@ const USAGE: &str = "usage: yarok run WORLD [--behaviour NAME] [--viewer] [--ins
   FILE   a calibration (from calibrate): the image is the calibrated model's, the gel taken to
          be at the depth map's farthest value and PX (default the calibration's) its scale
   PRESSES.csv  rows frame,center_x,center_y,radius_px; frames/FRAME.png beside it; --hold-out N
-         leaves out the frames whose number is one less than a multiple of N";
+         leaves out the frames whose number is one less than a multiple of N; the ball's
+         diameter 0.5-50 mm, pixels per mm 1-200, contact scales 0.05-3, spreads 0-64 px";
 
 /// Writes `text` to standard output; a closed standard output (`yarok … | head`) ends the
 /// output quietly, as Unix tools do.

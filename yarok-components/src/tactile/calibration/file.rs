@@ -133,19 +133,13 @@ pub(super) fn parse(text: &str, path: &str) -> Result<Calibration, CalibrationEr
         contact_scale: file.contact_scale,
         spread: file.spread_pixels,
     };
-    let positive = [
-        geometry.pixels_per_mm,
-        geometry.ball_diameter_mm,
-        geometry.contact_scale,
-    ];
-    if !(positive.iter().all(|v| v.is_finite() && *v > 0.0)
-        && geometry.spread.is_finite()
-        && geometry.spread >= 0.0
-        && geometry.spread <= 1000.0)
-    {
-        return Err(format(format!(
-            "its geometry is not finite and positive: {geometry:?}"
-        )));
+    for (name, value) in [
+        ("pixels_per_mm", geometry.pixels_per_mm),
+        ("ball_diameter_mm", geometry.ball_diameter_mm),
+        ("contact_scale", geometry.contact_scale),
+        ("spread_pixels", geometry.spread),
+    ] {
+        super::fit::check_setting(name, value).map_err(format)?;
     }
     Calibration::new(background, geometry, file.coefficients, file.noise_levels)
         .map_err(|e| format(e.to_string()))

@@ -131,18 +131,55 @@ fn check(
             "press {index} has no finite centre and positive radius"
         ));
     }
-    let positive =
-        |values: &[f64]| !values.is_empty() && values.iter().all(|v| v.is_finite() && *v > 0.0);
-    if !(positive(&[settings.ball_diameter_mm, settings.pixels_per_mm])
-        && positive(&settings.contact_scales)
-        && settings.spreads.iter().all(|s| s.is_finite() && *s >= 0.0)
-        && !settings.spreads.is_empty())
-    {
-        return invalid(format!(
-            "the settings must be finite and positive: {settings:?}"
-        ));
+    let named = [
+        ("ball_diameter_mm", vec![settings.ball_diameter_mm]),
+        ("pixels_per_mm", vec![settings.pixels_per_mm]),
+        ("contact_scale", settings.contact_scales.clone()),
+        ("spread_pixels", settings.spreads.clone()),
+    ];
+    for (name, values) in named {
+        if values.is_empty() {
+            return invalid(format!("no {name} to try"));
+        }
+        for value in values {
+            check_setting(name, value).or_else(invalid)?;
+        }
     }
     Ok(())
+}
+
+/// Each calibration setting's physically meaningful range, by the name a calibration file
+/// gives it: what `calibrate` accepts and a calibration file may hold. The spread's bound also
+/// bounds the fit's cost, which grows with it.
+pub const SETTING_RANGES: [(&str, [f64; 2]); 4] = [
+    ("ball_diameter_mm", [0.5, 50.0]),
+    ("pixels_per_mm", [1.0, 200.0]),
+    ("contact_scale", [0.05, 3.0]),
+    ("spread_pixels", [0.0, 64.0]),
+];
+
+/// Whether calibration setting `name` (one of [`SETTING_RANGES`]) may be `value`; the refusal
+/// names the setting, the value and the range.
+///
+/// # Errors
+///
+/// When `value` is outside the setting's range or not a number.
+pub fn check_setting(name: &str, value: f64) -> Result<(), String> {
+    let Some((_, [lowest, highest])) = SETTING_RANGES.iter().find(|(known, _)| *known == name)
+    else {
+        return Err(format!("{name} is no calibration setting"));
+    };
+    if (*lowest..=*highest).contains(&value) {
+        return Ok(());
+    }
+    let shown = if value.abs() >= 1e6 || (value != 0.0 && value.abs() < 1e-3) {
+        format!("{value:e}")
+    } else {
+        value.to_string()
+    };
+    Err(format!(
+        "{name} {shown} is outside its physical range, {lowest} to {highest}"
+    ))
 }
 
 /// The untouched gel: per pixel, the mean of the untouched frame and of the presses' frames

@@ -36,7 +36,7 @@ use std::sync::Arc;
 
 use image::RgbImage;
 
-pub use fit::FitSettings;
+pub use fit::{FitSettings, SETTING_RANGES, check_setting};
 pub use press::{Press, ball_press, held_out, read_presses, split_held_out};
 pub use surface::{NORMAL_TERMS, POSITION_TERMS};
 
@@ -197,7 +197,7 @@ impl Calibration {
     /// # Errors
     ///
     /// [`CalibrationError::Fit`] if there are no presses, a frame's size differs from the
-    /// untouched frame's, a press or setting is not finite and positive, or the presses do not
+    /// untouched frame's, a press is not finite and positive, a setting is outside its range ([`SETTING_RANGES`]), or the presses do not
     /// determine the model.
     pub fn fit(
         untouched: &RgbImage,
