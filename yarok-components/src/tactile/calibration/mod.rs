@@ -197,8 +197,8 @@ impl Calibration {
     /// # Errors
     ///
     /// [`CalibrationError::Fit`] if there are no presses, a frame's size differs from the
-    /// untouched frame's, a press is not finite and positive, a setting is outside its range ([`SETTING_RANGES`]), or the presses do not
-    /// determine the model.
+    /// untouched frame's, a press is not finite and positive, a setting is outside its range
+    /// ([`SETTING_RANGES`]), or the presses do not determine the model.
     pub fn fit(
         untouched: &RgbImage,
         presses: &[Press],
