@@ -65,6 +65,15 @@ lerobot_python="$(bash scripts/setup-lerobot.sh)"
 "$(dirname "$lerobot_python")/pip" install -q --disable-pip-version-check --force-reinstall --no-deps ./yarok-py
 (cd yarok-py && YAROK_REQUIRE_LEROBOT=1 "$lerobot_python" -m pytest -q -p no:cacheprovider \
   tests/test_lerobot_loop.py)
+echo "== your own crate: examples/own_crate, a crate outside yarok's workspace, as the README sets it up"
+(
+  export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$PWD/target}"
+  cd examples/own_crate
+  cargo fmt --check
+  cargo clippy --locked --all-targets -- -D warnings
+  cargo test --locked
+  cargo run --locked -- --env mock
+)
 echo "== docs"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --features yarok/camera,yarok/viewer,yarok/zenoh,yarok/dataset
 echo "== example binary, started directly"
