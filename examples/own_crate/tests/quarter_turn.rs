@@ -26,7 +26,10 @@ fn turn(environment: &str) -> (f64, f64) {
 #[test]
 fn the_turntable_turns_a_quarter_in_sim_and_in_mock() {
     let (angle, took) = turn("sim");
-    assert!((angle - std::f64::consts::FRAC_PI_2).abs() < 0.01, "{angle}");
+    assert!(
+        (angle - std::f64::consts::FRAC_PI_2).abs() < 0.01,
+        "{angle}"
+    );
     // A servo turning a disc takes time; a mock is there at once.
     assert!(took > 0.1, "{took}");
     let (angle, took) = turn("mock");
