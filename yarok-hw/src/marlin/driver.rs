@@ -120,9 +120,9 @@ impl InFlight {
 
 /// An async driver for a Marlin printer over any byte transport (a serial port, a pseudo-
 /// terminal, an in-memory pipe in tests): numbered, checksummed lines, one command in flight,
-/// `Resend` handled, keep-alives (`busy`, `wait`) tolerated, errors and halts surfaced to the
-/// caller, and every wait bounded by [`MarlinSettings`] (in tokio's time, which is platform
-/// time on hardware).
+/// `Resend` handled, keep-alives (`busy`) tolerated, an idle printer's `wait` taken as a lost
+/// answer, errors and halts surfaced to the caller, and every wait bounded by
+/// [`MarlinSettings`] (in tokio's time, which is platform time on hardware).
 ///
 /// `ok` means a move was *queued*; [`Marlin::finish_moves`] (`M400`) is the arrival barrier.
 ///
