@@ -69,6 +69,14 @@ fn a_ros2_recording_reads_back_in_rosbags_and_mcap_ros2_support() {
         for side in ["left", "right"] {
             let image_topic = format!("/arm/gripper/{side}_digit/image");
             let depth_topic = format!("/arm/gripper/{side}_digit/depth");
+            if reader == "mcap_ros2" {
+                // 32FC1 counts metres, and the channel says so.
+                assert!(
+                    lines(&read, "channel_metadata")
+                        .contains(&format!("{depth_topic} depth_unit_m=1e0").as_str()),
+                    "{read}"
+                );
+            }
             let images = count(&read, &image_topic, "sensor_msgs/msg/CompressedImage");
             assert_eq!(
                 count(&read, &depth_topic, "sensor_msgs/msg/Image"),

@@ -6,6 +6,7 @@ yarok's `ros2` profile opens in the ROS 2 tools.
 Usage: ros2_bag_read.py rosbags|mcap_ros2 FILE
 Prints, a line each:
   `profile NAME` (mcap_ros2: the MCAP header's; rosbags refuses files whose profile is not ros2);
+  `channel_metadata TOPIC KEY=VALUE...` (mcap_ros2) for every channel with metadata;
   `topic NAME TYPE COUNT` for every topic;
   `joint_names NAME...`, then `joint_state TIME POSITION...` for every /joint_states message;
   `image TOPIC TIME WIDTH HEIGHT MODE SPREAD` for every sensor_msgs/msg/CompressedImage, decoded
@@ -44,6 +45,11 @@ def mcap_ros2_messages(path):
     with open(path, "rb") as stream:
         reader = make_reader(stream, decoder_factories=[DecoderFactory()])
         print("profile", reader.get_header().profile)
+        summary = reader.get_summary()
+        for channel in (summary.channels.values() if summary else []):
+            if channel.metadata:
+                print("channel_metadata", channel.topic,
+                      *(f"{key}={value}" for key, value in sorted(channel.metadata.items())))
         for schema, channel, _, message in reader.iter_decoded_messages(log_time_order=True):
             yield channel.topic, schema.name, message
 

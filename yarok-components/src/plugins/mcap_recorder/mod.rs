@@ -223,13 +223,14 @@ impl McapRecorder {
     fn image_channels(&self, world: &World<'_>) -> Vec<ImageChannel> {
         let mut channels = Vec::new();
         for probe in world.probes() {
-            // A depth probe's channel states the unit its PNGs count in (as their text does).
+            // A depth probe's channel states the unit its images count in (a PNG's, as its text
+            // does; metres for ROS 2's 32FC1).
             let mut metadata = BTreeMap::new();
             let mut kind = MessageKind::Image;
             if let Ok(ProbeImage::Depth { unit, .. }) = probe.read() {
                 metadata.insert(
                     probe_images::DEPTH_UNIT_KEYWORD.to_owned(),
-                    format!("{unit:e}"),
+                    format!("{:e}", self.profile.depth_unit_m(unit)),
                 );
                 kind = MessageKind::Depth;
             }

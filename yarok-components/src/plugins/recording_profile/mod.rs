@@ -68,6 +68,12 @@ pub(crate) trait RecordingProfile: Send + Sync {
     /// If the image cannot be encoded.
     fn image(&self, time: f64, frame: &str, image: &ProbeImage) -> Result<Vec<u8>, BoxError>;
 
+    /// The unit (metres) of the numbers this profile writes for a depth image whose probe
+    /// counts in `probe_unit` metres: what a depth channel's metadata states.
+    fn depth_unit_m(&self, probe_unit: f32) -> f32 {
+        probe_unit
+    }
+
     /// A behaviour's log line.
     fn log(&self, time: f64, text: &str) -> Vec<u8>;
 

@@ -182,6 +182,11 @@ impl RecordingProfile for Ros2 {
         Ok(cdr.finish())
     }
 
+    /// Depth is `32FC1` in metres, whatever the probe counts in.
+    fn depth_unit_m(&self, _probe_unit: f32) -> f32 {
+        1.0
+    }
+
     fn log(&self, time: f64, text: &str) -> Vec<u8> {
         let mut cdr = Cdr::new();
         cdr.time(nanoseconds(time))
