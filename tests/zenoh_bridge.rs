@@ -96,3 +96,19 @@ fn a_third_party_client_reads_the_world_and_moves_the_arm() {
     };
     assert!(status.success(), "{status}");
 }
+
+#[test]
+fn a_world_name_that_would_match_other_worlds_keys_is_refused() {
+    for world in ["a/*/b", "**", "lab//arm", "", "what?", "x$y"] {
+        let output = Command::new(env!("CARGO_BIN_EXE_yarok"))
+            .args(["run", "empty_world", "--bridge", "--set"])
+            .arg(format!("plugins/zenoh/world={world:?}"))
+            .output()
+            .unwrap();
+        assert!(!output.status.success(), "{world:?} was accepted");
+        yarok_test::assert_says(
+            String::from_utf8_lossy(&output.stderr),
+            &[&format!("`world` {world:?} is no plain key")],
+        );
+    }
+}

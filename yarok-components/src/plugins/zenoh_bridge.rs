@@ -101,12 +101,22 @@ impl ZenohBridge {
     ///
     /// # Errors
     ///
-    /// When a rate is not a positive number.
+    /// When a rate is not a positive number, or `world` is not a plain key: empty, or with
+    /// an empty chunk or one of Zenoh's wildcard and reserved characters (`*`, `$`, `?`, `#`),
+    /// which would make it match other worlds' keys.
     pub fn new(settings: ZenohBridgeSettings) -> Result<Self, BoxError> {
         for (name, rate) in [("hz", settings.hz), ("image_hz", settings.image_hz)] {
             if !(rate > 0.0 && rate.is_finite()) {
                 return Err(format!("`{name}` {rate} must be above 0").into());
             }
+        }
+        let world = &settings.world;
+        if world.split('/').any(str::is_empty) || world.contains(['*', '$', '?', '#']) {
+            return Err(format!(
+                "`world` {world:?} is no plain key: give chunks of letters, digits, `_` or `-` \
+                 joined by `/`, with no `*`, `$`, `?` or `#`"
+            )
+            .into());
         }
         Ok(Self {
             settings,
