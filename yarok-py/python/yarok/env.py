@@ -116,6 +116,10 @@ class YarokEnv(gymnasium.Env):
         self.observation_space = gymnasium.spaces.Dict(spaces)
         self._observed_keys = set(spaces)
         self.action_space = action_space(self.world.features)
+        # Read once: each read of `World.features` copies every name.
+        self._timestep = self.world.features.timestep
+        self._low = self.action_space.low.astype(np.float64)
+        self._high = self.action_space.high.astype(np.float64)
         self.metadata = {**self.metadata, "render_fps": self.task.control_hz}
         self._episodes = 0
         self._start_tick = 0
@@ -137,13 +141,11 @@ class YarokEnv(gymnasium.Env):
         return self._keep(observation), {"time": 0.0}
 
     def step(self, action):
-        action = np.clip(
-            np.asarray(action, dtype=np.float64), self.action_space.low, self.action_space.high
-        )
+        action = np.clip(np.asarray(action, dtype=np.float64), self._low, self._high)
         observation = self.world.advance(1.0 / self.task.control_hz, action.tolist())
         reward = float(self.task.reward(observation, action))
         success = bool(self.task.success(observation))
-        time = (self.world.ticks - self._start_tick) * self.world.features.timestep
+        time = (self.world.ticks - self._start_tick) * self._timestep
         info = {"is_success": success, "time": time}
         return self._keep(observation), reward, success, False, info
 
