@@ -182,11 +182,12 @@ def recorded_states(mcap_path, names):
 def check_states(mcap_path, info, columns, episode):
     """Every frame's `observation.state` against the positions recorded at its tick, bit for bit
     as 32-bit floats, element by element where the recording has a joint of the element's name
-    (a gripper's measured position is no joint); the number of frames checked."""
+    (a gripper's measured position is no joint); the number of frames checked, and of elements
+    compared in each."""
     names = info["features"]["observation.state"]["names"]
     states, image_times, recorded = recorded_states(mcap_path, names)
     if not recorded:
-        return 0
+        return 0, 0
     elements = [names.index(name) for name in recorded]
     rows = columns["observation.state"][episode["dataset_from_index"]:episode["dataset_to_index"]]
     rows = rows[:, elements]
@@ -199,7 +200,7 @@ def check_states(mcap_path, info, columns, episode):
         expect(np.array_equal(row, want), f"episode {episode['episode_index']}, frame {number}: "
                f"observation.state {row} is not the recorded {want}")
         checked += 1
-    return checked
+    return checked, len(recorded)
 
 
 def psnr(a, b):
@@ -262,8 +263,9 @@ def main():
                           + " ".join(f"{n}={v:.6f}" for n, v in zip(feature["names"], values)))
     if mcaps:
         expect(len(mcaps) == len(episodes), f"{len(mcaps)} recordings for {len(episodes)} episodes")
-        checked = sum(check_states(mcap, info, columns, episode) for mcap, episode in zip(mcaps, episodes))
-        joints = len(recorded_states(mcaps[0], info["features"]["observation.state"]["names"])[2])
+        results = [check_states(mcap, info, columns, episode) for mcap, episode in zip(mcaps, episodes)]
+        checked = sum(frames for frames, _ in results)
+        joints = results[0][1]
         print(f"states {checked} equal to the recording's (joints {joints})")
     stats_json = json.loads((root / "meta/stats.json").read_text())
     all_pixels = {}
