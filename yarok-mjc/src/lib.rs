@@ -96,8 +96,8 @@ pub use pose::Pose;
 pub const MUJOCO_VERSION: &str = locate::MUJOCO_VERSION;
 pub use image;
 pub use model::{
-    ActuatorId, BodyId, CameraId, GeomId, JointId, KeyframeId, Model, ObjectKind, SensorId,
-    ServoGains, SiteId, TendonId,
+    ActuatorId, BodyId, CameraId, GeomId, JointId, JointLosses, KeyframeId, Model, ObjectKind,
+    SensorId, ServoGains, SiteId, TendonId,
 };
 pub use model_cache::ModelSource;
 #[cfg(feature = "viewer")]

@@ -356,6 +356,124 @@ impl Model {
         limited.then(|| [range[2 * index], range[2 * index + 1]])
     }
 
+    /// How a hinge or slide joint's degree of freedom resists motion by itself: its viscous
+    /// damping, dry friction and armature ([`JointLosses`]).
+    ///
+    /// # Panics
+    ///
+    /// When `joint` was resolved in a different model.
+    #[track_caller]
+    pub fn joint_losses(&self, joint: JointId) -> JointLosses {
+        let index = self.index_of(joint);
+        let (njnt, nv) = (self.count(ObjectKind::Joint), self.nv());
+        let (nref, nimp) = (sys::mjNREF as usize, sys::mjNIMP as usize);
+        // SAFETY: jnt_dofadr holds njnt entries, each a degree of freedom below nv (or -1 for
+        // none, filtered out); the dof arrays hold nv entries, dof_solref nv·mjNREF and
+        // dof_solimp nv·mjNIMP.
+        let (damping, frictionloss, armature, solref, solimp, invweight) = unsafe {
+            let m = self.raw();
+            let Ok(dof) = usize::try_from(self.array(m.jnt_dofadr, njnt)[index]) else {
+                return JointLosses::default();
+            };
+            (
+                self.array(m.dof_damping, nv)[dof],
+                self.array(m.dof_frictionloss, nv)[dof],
+                self.array(m.dof_armature, nv)[dof],
+                &self.array(m.dof_solref, nv * nref)[dof * nref..(dof + 1) * nref],
+                &self.array(m.dof_solimp, nv * nimp)[dof * nimp..(dof + 1) * nimp],
+                self.array(m.dof_invweight0, nv)[dof],
+            )
+        };
+        // MuJoCo's soft constraint at zero violation, as mj_makeImpedance sets it up: the
+        // impedance is solimp's dmin, the regularizer (1 - d)/d times the dof's inverse weight,
+        // the reference acceleration -b·v with b = 2/(dmax·timeconst) (the time constant at
+        // least two steps unless refsafe is off), or -solref[1] in the direct form.
+        let d = solimp[0].clamp(sys::mjMINIMP, sys::mjMAXIMP);
+        let dmax = solimp[1].clamp(sys::mjMINIMP, sys::mjMAXIMP);
+        let refsafe = self.raw().opt.disableflags & sys::mjDSBL_REFSAFE as i32 == 0;
+        let timeconst = if refsafe {
+            solref[0].max(2.0 * self.timestep())
+        } else {
+            solref[0]
+        };
+        let friction_damping = if solref[0] > 0.0 {
+            2.0 / (dmax * timeconst)
+        } else {
+            -solref[1]
+        };
+        JointLosses {
+            damping,
+            frictionloss,
+            armature,
+            friction_regularizer: ((1.0 - d) / d * invweight).max(sys::mjMINVAL),
+            friction_damping,
+        }
+    }
+
+    /// The range the force of every actuator on a joint together is clamped to
+    /// (`actuatorfrcrange`), or `None` when it is not limited.
+    ///
+    /// # Panics
+    ///
+    /// When `joint` was resolved in a different model.
+    #[track_caller]
+    pub fn joint_force_range(&self, joint: JointId) -> Option<[f64; 2]> {
+        let index = self.index_of(joint);
+        let njnt = self.count(ObjectKind::Joint);
+        // SAFETY: jnt_actfrclimited holds njnt entries and jnt_actfrcrange 2·njnt.
+        let (limited, range) = unsafe {
+            (
+                self.array(self.raw().jnt_actfrclimited, njnt)[index],
+                self.array(self.raw().jnt_actfrcrange, 2 * njnt),
+            )
+        };
+        limited.then(|| [range[2 * index], range[2 * index + 1]])
+    }
+
+    /// The range an actuator's force is clamped to (`forcerange`), or `None` when it is not
+    /// limited.
+    ///
+    /// # Panics
+    ///
+    /// When `actuator` was resolved in a different model.
+    #[track_caller]
+    pub fn actuator_force_range(&self, actuator: ActuatorId) -> Option<[f64; 2]> {
+        let index = self.index_of(actuator);
+        let nu = self.count(ObjectKind::Actuator);
+        // SAFETY: actuator_forcelimited holds nu entries and actuator_forcerange 2·nu.
+        let (limited, range) = unsafe {
+            (
+                self.array(self.raw().actuator_forcelimited, nu)[index],
+                self.array(self.raw().actuator_forcerange, 2 * nu),
+            )
+        };
+        limited.then(|| [range[2 * index], range[2 * index + 1]])
+    }
+
+    /// The joint an actuator drives directly (its transmission is a joint), or `None` for a
+    /// tendon, site or other transmission.
+    ///
+    /// # Panics
+    ///
+    /// When `actuator` was resolved in a different model.
+    #[track_caller]
+    pub fn actuator_joint(&self, actuator: ActuatorId) -> Option<JointId> {
+        let index = self.index_of(actuator);
+        let nu = self.count(ObjectKind::Actuator);
+        // SAFETY: actuator_trntype holds nu entries and actuator_trnid 2·nu.
+        let (transmission, target) = unsafe {
+            (
+                self.array(self.raw().actuator_trntype, nu)[index],
+                self.array(self.raw().actuator_trnid, 2 * nu)[2 * index],
+            )
+        };
+        let joint = usize::try_from(target).ok()?;
+        (transmission as u32 == sys::mjTRN_JOINT).then(|| JointId {
+            index: joint,
+            signature: self.signature(),
+        })
+    }
+
     /// A body's pose in its parent's frame, as compiled (`body_pos`, `body_quat`).
     ///
     /// # Panics
@@ -718,6 +836,26 @@ object_ids! {
     TendonId, Tendon, tendon;
     /// A keyframe of a model.
     KeyframeId, Keyframe, keyframe;
+}
+
+/// How a joint's degree of freedom resists motion by itself ([`Model::joint_losses`]): MuJoCo's
+/// `damping` (force per unit of velocity), `frictionloss` (dry friction, the force it takes to
+/// move the joint at all) and `armature` (inertia added to its diagonal of the mass matrix).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct JointLosses {
+    /// Viscous damping: N·m·s/rad (hinge) or N·s/m (slide).
+    pub damping: f64,
+    /// Dry friction: N·m (hinge) or N (slide).
+    pub frictionloss: f64,
+    /// Rotor inertia: kg·m² (hinge) or kg (slide).
+    pub armature: f64,
+    /// The regularizer of MuJoCo's soft dry-friction constraint on the joint: while the
+    /// friction holds (its force below `frictionloss`), its force is
+    /// `-(a + friction_damping · v) / friction_regularizer`, `a` the acceleration the joint would
+    /// have without it, so that a light link is not held still but made heavier and damped.
+    pub friction_regularizer: f64,
+    /// The damping of the soft friction constraint's reference acceleration (1/s).
+    pub friction_damping: f64,
 }
 
 /// A position servo's gains and force limits ([`Model::servo_gains`]): its force is

@@ -17,7 +17,7 @@ pub(crate) trait MotionControl {
     /// Why a motion did not arrive.
     type Error: MotionEnding;
     /// Starts a motion, after checking its whole path; its id.
-    fn start(&self, goal: Self::Goal, speed: f64, acceleration: f64) -> Result<u64, Self::Error>;
+    fn start(&self, goal: Self::Goal, limits: Limits) -> Result<u64, Self::Error>;
     /// How motion `id` ended; `None` while it is under way.
     fn outcome(&self, id: u64) -> Option<Result<(), Self::Error>>;
     /// Stops motion `id` (any motion: `None`).
@@ -37,13 +37,21 @@ pub(crate) trait MotionControl {
 #[must_use = "a motion does nothing until awaited or started"]
 pub struct Motion<'a, E> {
     request: Box<dyn Request<E> + 'a>,
-    speed: f64,
-    acceleration: f64,
+    limits: Limits,
+}
+
+/// A motion's speed and acceleration, and whether the user chose them (or they are the
+/// defaults, which a controller may lower to what the arm can follow).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Limits {
+    pub(crate) speed: f64,
+    pub(crate) acceleration: f64,
+    pub(crate) chosen: bool,
 }
 
 /// A controller and the goal of the motion to start on it, with the controller's type erased.
 trait Request<E>: fmt::Debug {
-    fn start(&self, speed: f64, acceleration: f64) -> Result<u64, E>;
+    fn start(&self, limits: Limits) -> Result<u64, E>;
     fn outcome(&self, id: u64) -> Option<Result<(), E>>;
     fn stop(&self, id: u64);
     fn clock(&self) -> &Clock;
@@ -62,9 +70,8 @@ impl<C: MotionControl> fmt::Debug for Bound<'_, C> {
 }
 
 impl<C: MotionControl> Request<C::Error> for Bound<'_, C> {
-    fn start(&self, speed: f64, acceleration: f64) -> Result<u64, C::Error> {
-        self.controller
-            .start(self.goal.clone(), speed, acceleration)
+    fn start(&self, limits: Limits) -> Result<u64, C::Error> {
+        self.controller.start(self.goal.clone(), limits)
     }
 
     fn outcome(&self, id: u64) -> Option<Result<(), C::Error>> {
@@ -88,8 +95,7 @@ impl<E> fmt::Debug for Motion<'_, E> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("Motion")
             .field("goal", &self.request)
-            .field("speed", &self.speed)
-            .field("acceleration", &self.acceleration)
+            .field("limits", &self.limits)
             .finish()
     }
 }
@@ -103,20 +109,25 @@ impl<'a, E> Motion<'a, E> {
     ) -> Self {
         Self {
             request: Box::new(Bound { controller, goal }),
-            speed,
-            acceleration,
+            limits: Limits {
+                speed,
+                acceleration,
+                chosen: false,
+            },
         }
     }
 
     /// The speed: of the leading joint (rad/s) for `move_j`, of the TCP (m/s) for `move_l`.
     pub fn speed(mut self, speed: f64) -> Self {
-        self.speed = speed;
+        self.limits.speed = speed;
+        self.limits.chosen = true;
         self
     }
 
     /// The acceleration: rad/s² for `move_j`, m/s² for `move_l`.
     pub fn acceleration(mut self, acceleration: f64) -> Self {
-        self.acceleration = acceleration;
+        self.limits.acceleration = acceleration;
+        self.limits.chosen = true;
         self
     }
 
@@ -128,7 +139,7 @@ impl<'a, E> Motion<'a, E> {
     /// The arm's error when the target or a point on the way cannot be reached, or the limits
     /// are not positive numbers: nothing moves then.
     pub fn start(self) -> Result<(), E> {
-        self.request.start(self.speed, self.acceleration).map(drop)
+        self.request.start(self.limits).map(drop)
     }
 }
 
@@ -139,7 +150,7 @@ impl<'a, E: From<WaitError> + 'a> IntoFuture for Motion<'a, E> {
     fn into_future(self) -> Self::IntoFuture {
         Box::pin(async move {
             let request = &*self.request;
-            let id = request.start(self.speed, self.acceleration)?;
+            let id = request.start(self.limits)?;
             // Dropped with the future: stops the motion if it is still under way.
             let _stop_if_dropped = StopIfDropped { request, id };
             let mut outcome = None;

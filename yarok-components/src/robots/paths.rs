@@ -25,26 +25,29 @@ fn checked_points(length: f64, line: bool) -> usize {
 /// or a joint move) from the joints `start`: `joints_at(along, near)` gives the joints at each
 /// checked point, found near the previous point's; a line whose joints would jump more than
 /// [`MAX_JOINT_STEP`] between two points (a singularity or a change of branch on the way) is
-/// `singular(along, jump)`. Returns the joints at the end.
+/// `singular(along, jump)`. Returns every checked point, from the start to the end: how far
+/// along, and the joints there.
 pub(crate) fn check<J: AsRef<[f64]>, E>(
     length: f64,
     line: bool,
     start: J,
     mut joints_at: impl FnMut(f64, &J) -> Result<J, E>,
     singular: impl Fn(f64, f64) -> E,
-) -> Result<J, E> {
+) -> Result<Vec<(f64, J)>, E> {
     let steps = checked_points(length, line);
-    let mut q = start;
+    let mut points = Vec::with_capacity(steps + 1);
+    points.push((0.0, start));
     for step in 1..=steps {
         let along = length * step as f64 / steps as f64;
-        let next = joints_at(along, &q)?;
+        let (_, q) = points.last().expect("the start is a point");
+        let next = joints_at(along, q)?;
         let jump = joints_length(q.as_ref(), next.as_ref());
         if line && jump > MAX_JOINT_STEP {
             return Err(singular(along, jump));
         }
-        q = next;
+        points.push((along, next));
     }
-    Ok(q)
+    Ok(points)
 }
 
 /// A joint move's length: the largest joint motion (radians), so that the leading joint
@@ -110,7 +113,14 @@ mod tests {
             },
             |along, jump| (along, jump),
         );
-        assert_eq!(end, Ok(vec![0.01]));
+        assert_eq!(
+            end,
+            Ok(vec![
+                (0.0, vec![0.0]),
+                (0.005, vec![0.005]),
+                (0.01, vec![0.01])
+            ])
+        );
         assert_eq!(asked, [0.005, 0.01]);
         let jumping = |along: f64, _: &Vec<f64>| Ok(vec![if along > 0.006 { 1.0 } else { 0.0 }]);
         assert_eq!(
@@ -118,8 +128,9 @@ mod tests {
             Err((0.01, 1.0))
         );
         assert_eq!(
-            check(0.01, false, vec![0.0], jumping, |along, jump| (along, jump)),
-            Ok(vec![1.0])
+            check(0.01, false, vec![0.0], jumping, |along, jump| (along, jump))
+                .map(|points| points.last().cloned()),
+            Ok(Some((0.01, vec![1.0])))
         );
     }
 

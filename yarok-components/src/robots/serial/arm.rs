@@ -5,9 +5,11 @@ use std::rc::Rc;
 
 use nalgebra::Isometry3;
 use yarok_core::component::{Bind, BindError};
-use yarok_mjc::{Sim, SimBind};
+use yarok_mjc::{BodyId, Model, Sim, SimBind};
 
-use super::controller::{Actuation, Controller, Goal, SimJoints};
+use super::controller::{Controller, Goal};
+use super::drives::drives;
+use super::dynamics::{Dynamics, JointDynamics};
 use super::error::SerialMotionError;
 use super::kinematics::{SerialKinematics, TcpFrame};
 use super::names::SerialNames;
@@ -57,65 +59,54 @@ impl SerialArm {
         start: Option<&[f64]>,
         stiffness: f64,
     ) -> Result<Self, BindError> {
-        if names.joints.len() != names.actuators.len() || names.joints.is_empty() {
-            return Err(bind.error(format!(
-                "{} joints and {} actuators: a serial arm names one actuator per joint",
-                names.joints.len(),
-                names.actuators.len()
-            )));
-        }
         if !(stiffness > 0.0 && stiffness.is_finite()) {
             return Err(bind.error(format!("stiffness {stiffness} must be a positive number")));
         }
-        let mut joints = Vec::with_capacity(names.joints.len());
-        let mut actuators = Vec::with_capacity(names.joints.len());
-        for (joint, actuator) in names.joints.iter().zip(names.actuators) {
-            joints.push(bind.joint(joint)?);
-            let actuator_handle = bind.actuator(actuator)?;
-            let model = bind.backend().model();
-            let actuation = match (
-                model.motor_gear(actuator_handle.id()),
-                actuator_handle.servo_gains(),
-            ) {
-                (Some(gear), _) => Actuation::Motor { gear },
-                (None, Some(gains)) => Actuation::Servo(gains),
-                (None, None) => {
-                    return Err(bind.error(format!(
-                        "actuator {actuator:?} is neither a motor (<motor>) nor a position \
-                         servo on its joint: a serial arm drives one of these"
-                    )));
-                }
-            };
-            actuators.push((actuator_handle, actuation));
-        }
+        let drives = drives(bind, names)?;
         let model = std::sync::Arc::clone(bind.backend().model());
-        let tcp = match bind.site(names.tcp) {
-            Ok(site) => TcpFrame::Site(site.id()),
-            Err(_) => TcpFrame::Body(bind.body(names.tcp)?.id()),
+        let tcp = tcp_frame(bind, names.tcp)?;
+        let last_body = model.joint_body(drives[drives.len() - 1].joint.id());
+        let tcp_body = match tcp {
+            TcpFrame::Site(site) => model.site_body(site),
+            TcpFrame::Body(body) => body,
         };
-        let ids: Vec<_> = joints.iter().map(|joint| joint.id()).collect();
+        if !carried_by(&model, tcp_body, last_body) {
+            return Err(bind.error(format!(
+                "the TCP {:?} is not carried by the arm's last joint {:?}: it must be on the \
+                 body of the last joint or a body below it",
+                names.tcp,
+                drives[drives.len() - 1].name
+            )));
+        }
+        let ids: Vec<_> = drives.iter().map(|drive| drive.joint.id()).collect();
         let kinematics = SerialKinematics::new(&model, &ids, tcp).map_err(|e| bind.error(e))?;
         if let Some(start) = start {
-            if !kinematics.within_limits(start) {
-                return Err(bind.error(format!(
-                    "start {start:?} is not one finite angle per joint within its limits {:?}",
-                    kinematics.limits()
-                )));
+            if let Some(reason) = kinematics.outside_limits(start) {
+                return Err(bind.error(format!("start {start:?}: {reason}")));
             }
-            for (joint, angle) in joints.iter().zip(start) {
-                joint.set_position(*angle);
+            for (drive, angle) in drives.iter().zip(start) {
+                drive.joint.set_position(*angle);
             }
         }
-        let start: Vec<f64> = joints.iter().map(|joint| joint.position()).collect();
-        let sim = SimJoints {
-            joints,
-            actuators,
-            stiffness,
-        };
+        let start: Vec<f64> = drives.iter().map(|drive| drive.joint.position()).collect();
+        let dynamics = Dynamics::new(
+            &model,
+            drives
+                .iter()
+                .map(|drive| JointDynamics {
+                    id: drive.joint.id(),
+                    losses: drive.losses,
+                    force_range: drive.force_range,
+                })
+                .collect(),
+        )
+        .map_err(|e| bind.error(e))?;
         let controller = Rc::new(Controller::new(
             bind.clock(),
             kinematics,
-            sim,
+            dynamics,
+            drives,
+            stiffness,
             start.clone(),
         ));
         controller.command();
@@ -220,3 +211,39 @@ impl SerialArm {
 /// A serial arm's motion about to start ([`SerialArm::move_j`], [`SerialArm::move_l`]):
 /// `.await` it, or [`Motion::start`] it.
 pub type SerialMove<'a> = Motion<'a, SerialMotionError>;
+
+/// The TCP `name` names: a site, or else a body; an error with the sites and bodies the
+/// template has when it is neither.
+fn tcp_frame(bind: &mut Bind<Sim>, name: &str) -> Result<TcpFrame, BindError> {
+    let site_error = match bind.site(name) {
+        Ok(site) => return Ok(TcpFrame::Site(site.id())),
+        Err(error) => error,
+    };
+    let body_error = match bind.body(name) {
+        Ok(body) => return Ok(TcpFrame::Body(body.id())),
+        Err(error) => error,
+    };
+    let hint = |error: BindError| match error {
+        BindError::NoName { hint, .. } => hint.trim_start_matches("; ").to_owned(),
+        other => other.to_string(),
+    };
+    Err(bind.error(format!(
+        "the TCP {name:?} is neither a site nor a body of its template (sites: {}; bodies: {})",
+        hint(site_error),
+        hint(body_error)
+    )))
+}
+
+/// Whether `body` is `carrier` or hangs below it.
+fn carried_by(model: &Model, mut body: BodyId, carrier: BodyId) -> bool {
+    loop {
+        if body == carrier {
+            return true;
+        }
+        let parent = model.body_parent(body);
+        if parent == body {
+            return false;
+        }
+        body = parent;
+    }
+}

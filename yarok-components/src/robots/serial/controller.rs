@@ -7,14 +7,16 @@ use std::cell::RefCell;
 use nalgebra::Isometry3;
 use yarok_core::time::Clock;
 
-use crate::robots::motion::MotionControl;
+use crate::robots::motion::{Limits, MotionControl};
 use crate::robots::motions::Motions;
 use crate::robots::paths;
-use yarok_mjc::{Actuator, Joint, ServoGains};
-
-use super::error::SerialMotionError;
-use super::kinematics::SerialKinematics;
 use crate::robots::profile::Profile;
+use yarok_mjc::{Joint, JointLosses};
+
+use super::drives::{Actuation, Drive, Drives};
+use super::dynamics::Dynamics;
+use super::error::{SerialMotionError, StuckCause};
+use super::kinematics::{SerialIkError, SerialKinematics};
 
 /// Where a motion goes.
 #[derive(Debug, Clone)]
@@ -69,53 +71,75 @@ impl Path {
     }
 
     /// Checks, before anything moves, that the arm can follow the whole path from `start`;
-    /// the joints at its end.
+    /// the joints at each point checked, from the start to the end.
     fn check(
         &self,
         kinematics: &mut SerialKinematics,
         start: &[f64],
-    ) -> Result<Vec<f64>, SerialMotionError> {
+    ) -> Result<Vec<(f64, Vec<f64>)>, SerialMotionError> {
+        let length = self.length();
         paths::check(
-            self.length(),
+            length,
             matches!(self, Path::Line { .. }),
             start.to_vec(),
-            |along, near| self.joints_at(along, kinematics, near),
-            |along, jump| SerialMotionError::Singular { along, jump },
+            |along, near| {
+                self.joints_at(along, kinematics, near)
+                    .map_err(|error| match error {
+                        SerialMotionError::Unreachable(SerialIkError::Unreachable {
+                            metres,
+                            radians,
+                        }) if along < length => SerialMotionError::LeavesReach {
+                            along,
+                            length,
+                            metres,
+                            radians,
+                        },
+                        other => other,
+                    })
+            },
+            |along, jump| SerialMotionError::Singular {
+                along,
+                length,
+                jump,
+            },
         )
     }
 }
 
-/// How an actuator moves its joint.
-#[derive(Debug, Clone, Copy)]
-pub(super) enum Actuation {
-    /// A torque motor: force = gear × control.
-    Motor { gear: f64 },
-    /// A position servo.
-    Servo(ServoGains),
-}
+/// A joint speed (rad/s or m/s) below which the arm counts as still.
+const STILL: f64 = 0.01;
 
-/// The joints and actuators of an arm in `sim`, and how stiffly motors track (rad/s).
-pub(super) struct SimJoints {
-    pub(super) joints: Vec<Joint>,
-    pub(super) actuators: Vec<(Actuator, Actuation)>,
-    pub(super) stiffness: f64,
-}
+/// How much the defaults' speed and acceleration are lowered at a time, when an arm cannot
+/// follow them, and how many times at most.
+const SLOWER: f64 = 0.8;
+const SLOWER_TIMES: usize = 20;
 
 struct State {
     reference: Vec<f64>,
     speed: Vec<f64>,
     acceleration: Vec<f64>,
-    /// Each motor's integrated tracking error (an acceleration): what holds the joint against
-    /// what the model's bias forces do not include (dry friction, damping).
+    /// Each motor's integrated tracking error (an acceleration, given through the inertia):
+    /// what holds the joint against what the model and the feed-forward do not include. Kept
+    /// within what the motor can give.
     integral: Vec<f64>,
+    /// Each motor's saturation in the last command: the force asked beyond its range (0 when
+    /// within).
+    saturation: Vec<f64>,
+    /// The worst saturation of the motion under way: which joint, and the force asked.
+    strain: Option<(usize, f64)>,
     motions: Motions<Path, Vec<f64>, SerialMotionError>,
 }
 
 /// Runs a serial arm's motions.
 pub(super) struct Controller {
     kinematics: RefCell<SerialKinematics>,
+    dynamics: RefCell<Dynamics>,
     clock: Clock,
-    sim: SimJoints,
+    drives: Drives,
+    /// The drives' joints, in their order.
+    joints: Vec<Joint>,
+    /// How stiffly motors track (rad/s, the natural frequency of the tracking error).
+    stiffness: f64,
     state: RefCell<State>,
 }
 
@@ -123,19 +147,26 @@ impl Controller {
     pub(super) fn new(
         clock: Clock,
         kinematics: SerialKinematics,
-        sim: SimJoints,
+        dynamics: Dynamics,
+        drives: Drives,
+        stiffness: f64,
         start: Vec<f64>,
     ) -> Self {
         let zeros = vec![0.0; start.len()];
         Self {
             kinematics: RefCell::new(kinematics),
+            dynamics: RefCell::new(dynamics),
             clock,
-            sim,
+            joints: drives.iter().map(|drive| drive.joint.clone()).collect(),
+            drives,
+            stiffness,
             state: RefCell::new(State {
                 reference: start,
                 speed: zeros.clone(),
                 acceleration: zeros.clone(),
-                integral: zeros,
+                integral: zeros.clone(),
+                saturation: zeros,
+                strain: None,
                 motions: Motions::new(),
             }),
         }
@@ -146,15 +177,22 @@ impl Controller {
     }
 
     pub(super) fn q(&self) -> Vec<f64> {
-        self.sim.joints.iter().map(Joint::position).collect()
+        self.drives
+            .iter()
+            .map(|drive| drive.joint.position())
+            .collect()
     }
 
     pub(super) fn qd(&self) -> Vec<f64> {
-        self.sim.joints.iter().map(Joint::velocity).collect()
+        self.drives
+            .iter()
+            .map(|drive| drive.joint.velocity())
+            .collect()
     }
 
+    /// Whether a motion is under way or a joint still moves.
     pub(super) fn is_moving(&self) -> bool {
-        self.state.borrow().motions.is_moving()
+        self.state.borrow().motions.is_moving() || self.qd().iter().any(|v| v.abs() > STILL)
     }
 
     /// After a step: the reference for the next one, and whether the motion has ended.
@@ -164,13 +202,31 @@ impl Controller {
         self.command();
     }
 
-    /// Adds the step's tracking error to each motor's integral.
+    /// The inertia each joint's feedback is scaled by: the joint's own (the mass matrix's
+    /// diagonal), at least what its damping makes it behave as over the stiffness's time
+    /// scale, and at most what one step of explicit feedback keeps stable.
+    fn feedback_inertia(&self, drive: &Drive) -> f64 {
+        let inertia = drive.joint.inertia();
+        let damping = drive.losses.damping;
+        let dt = self.clock.timestep();
+        let stable = (inertia + damping * dt) / (3.0 * self.stiffness * dt);
+        inertia
+            .max(damping / self.stiffness)
+            .min(stable.max(inertia))
+    }
+
+    /// Adds the step's tracking error to each motor's integral, unless the motor is saturated
+    /// the way the error would push it (anti-windup).
     fn integrate(&self) {
         let mut state = self.state.borrow_mut();
-        let gain = self.sim.stiffness.powi(3) * self.clock.timestep();
-        for (i, joint) in self.sim.joints.iter().enumerate() {
-            let error = state.reference[i] - joint.position();
-            state.integral[i] += gain * error;
+        let gain = self.stiffness.powi(3) * self.clock.timestep();
+        for (i, drive) in self.drives.iter().enumerate() {
+            let error = state.reference[i] - drive.joint.position();
+            if state.saturation[i] * error > 0.0 {
+                continue;
+            }
+            let most = drive.strength() / self.feedback_inertia(drive);
+            state.integral[i] = (state.integral[i] + gain * error).clamp(-most, most);
         }
     }
 
@@ -214,11 +270,64 @@ impl Controller {
         };
         match outcome {
             Some(outcome) => {
+                let outcome = outcome.map_err(|error| self.explained(error, &state));
                 state.speed.fill(0.0);
                 state.acceleration.fill(0.0);
+                state.strain = None;
                 state.motions.end(motion, outcome);
             }
             None => state.motions.keep(motion),
+        }
+    }
+
+    /// A motion that did not arrive, with the joint furthest off and the cause as far as the
+    /// controller can tell.
+    fn explained(&self, error: SerialMotionError, state: &State) -> SerialMotionError {
+        let SerialMotionError::NotArrived {
+            target,
+            at,
+            seconds,
+        } = error
+        else {
+            return error;
+        };
+        let Some(joint) = (0..target.len()).max_by(|&a, &b| {
+            (target[a] - at[a])
+                .abs()
+                .total_cmp(&(target[b] - at[b]).abs())
+        }) else {
+            return SerialMotionError::NotArrived {
+                target,
+                at,
+                seconds,
+            };
+        };
+        let drive = &self.drives[joint];
+        let off = (target[joint] - at[joint]).abs();
+        let kp = 3.0 * self.stiffness * self.stiffness;
+        let pushing = kp * self.feedback_inertia(drive) * off + state.integral[joint].abs();
+        let cause = match state.strain {
+            Some((strained, asked)) => StuckCause::Saturated {
+                joint: self.drives[strained].name.clone(),
+                asked,
+                range: self.drives[strained].force_range,
+            },
+            None if drive.losses.frictionloss > 0.0
+                && pushing < 2.0 * drive.losses.frictionloss =>
+            {
+                StuckCause::Friction {
+                    frictionloss: drive.losses.frictionloss,
+                    inertia: drive.joint.inertia(),
+                }
+            }
+            None => StuckCause::Blocked,
+        };
+        SerialMotionError::Stuck {
+            joint: drive.name.clone(),
+            target: target[joint],
+            at: at[joint],
+            seconds,
+            cause,
         }
     }
 
@@ -231,75 +340,142 @@ impl Controller {
             state.speed.fill(0.0);
             state.acceleration.fill(0.0);
             state.integral.fill(0.0);
+            state.saturation.fill(0.0);
+            state.strain = None;
         }
         self.command();
     }
 
     /// Sets the actuators for the reference, with what a real arm's controller adds: the forces
-    /// the reference's accelerations take (through the whole inertia matrix), and gravity,
-    /// Coriolis and centrifugal forces the model does not compensate itself. Motors track with
-    /// a stiffness of their own (proportional, integral and derivative terms placing the
-    /// error's three poles at the stiffness); servos with the model's gains.
+    /// the reference's accelerations take (through the whole inertia matrix), gravity, Coriolis
+    /// and centrifugal forces the model does not compensate itself, and the joints' own damping
+    /// and dry friction. Motors track with a stiffness of their own (proportional, integral and
+    /// derivative terms placing the error's three poles at the stiffness), within what they can
+    /// give; servos with the model's gains.
     pub(super) fn command(&self) {
-        let state = self.state.borrow();
-        let sim = &self.sim;
-        let (kp, kv) = (3.0 * sim.stiffness * sim.stiffness, 3.0 * sim.stiffness);
-        let wanted: Vec<f64> = sim
-            .joints
+        let mut state = self.state.borrow_mut();
+        let (kp, kv) = (3.0 * self.stiffness * self.stiffness, 3.0 * self.stiffness);
+        let feedback: Vec<f64> = self
+            .drives
             .iter()
-            .zip(&sim.actuators)
             .enumerate()
-            .map(|(i, (joint, (_, actuation)))| match actuation {
+            .map(|(i, drive)| match drive.actuation {
                 Actuation::Motor { .. } => {
-                    state.acceleration[i]
-                        + state.integral[i]
-                        + kp * (state.reference[i] - joint.position())
-                        + kv * (state.speed[i] - joint.velocity())
+                    state.integral[i]
+                        + kp * (state.reference[i] - drive.joint.position())
+                        + kv * (state.speed[i] - drive.joint.velocity())
                 }
-                Actuation::Servo(_) => state.acceleration[i],
+                Actuation::Servo(_) => 0.0,
             })
             .collect();
-        let inertial = Joint::inertial_forces(&sim.joints, &wanted);
-        for (i, (joint, (actuator, actuation))) in sim.joints.iter().zip(&sim.actuators).enumerate()
-        {
-            let force = inertial[i] + joint.bias_force();
-            let control = match actuation {
-                Actuation::Motor { gear } => force / gear,
+        let wanted: Vec<f64> = (0..feedback.len())
+            .map(|i| state.acceleration[i] + feedback[i])
+            .collect();
+        let inertial = Joint::inertial_forces(&self.joints, &wanted);
+        for (i, drive) in self.drives.iter().enumerate() {
+            let friction = friction_compensation(&drive.losses, wanted[i], drive.joint.velocity());
+            let force = inertial[i]
+                + drive.joint.bias_force()
+                + drive.losses.damping * state.speed[i]
+                + friction;
+            let control = match drive.actuation {
+                Actuation::Motor { gear } => {
+                    let extra = self.feedback_inertia(drive) - drive.joint.inertia();
+                    let asked = force + extra * feedback[i];
+                    let [lower, upper] = drive.force_range;
+                    let given = asked.clamp(lower, upper);
+                    state.saturation[i] = asked - given;
+                    if given != asked
+                        && state.motions.is_moving()
+                        && state
+                            .strain
+                            .is_none_or(|(_, worst)| asked.abs() > worst.abs())
+                    {
+                        state.strain = Some((i, asked));
+                    }
+                    given / gear
+                }
                 Actuation::Servo(gains) => {
                     (gains.gear * (gains.kp * state.reference[i] + gains.kv * state.speed[i])
                         + force / gains.gear)
                         / gains.gain
                 }
             };
-            actuator.set(control);
+            drive.actuator.set(control);
         }
     }
+
+    /// The motion's profile at `limits`, or, for the defaults, slower until every joint's
+    /// actuator can give what it takes.
+    fn profile(
+        &self,
+        points: &[(f64, Vec<f64>)],
+        length: f64,
+        limits: Limits,
+    ) -> Result<Profile, SerialMotionError> {
+        let mut dynamics = self.dynamics.borrow_mut();
+        let (mut speed, mut acceleration) = (limits.speed, limits.acceleration);
+        let mut tries = if limits.chosen { 1 } else { SLOWER_TIMES };
+        loop {
+            let profile = Profile::rest_to_rest(length, speed, acceleration);
+            let Some(overload) = dynamics.overload(points, &profile) else {
+                return Ok(profile);
+            };
+            tries -= 1;
+            if tries == 0 {
+                return Err(SerialMotionError::Overloaded {
+                    joint: self.drives[overload.joint].name.clone(),
+                    needed: overload.needed,
+                    available: overload.available,
+                    speed: overload.speed,
+                    chosen: limits.chosen,
+                });
+            }
+            speed *= SLOWER;
+            acceleration *= SLOWER;
+        }
+    }
+}
+
+/// The force that cancels a joint's dry friction as MuJoCo models it, for the joint to
+/// accelerate at `acceleration` from `velocity` as if it had none: while the friction holds, its
+/// soft constraint's force (it makes a light link heavier and damped rather than holding it
+/// still); once the joint slides, the friction loss itself.
+fn friction_compensation(losses: &JointLosses, acceleration: f64, velocity: f64) -> f64 {
+    if losses.frictionloss <= 0.0 {
+        return 0.0;
+    }
+    ((acceleration + losses.friction_damping * velocity) / losses.friction_regularizer)
+        .clamp(-losses.frictionloss, losses.frictionloss)
 }
 
 impl MotionControl for Controller {
     type Goal = Goal;
     type Error = SerialMotionError;
 
-    /// Starts a motion after checking its whole path; its id.
-    fn start(
-        &self,
-        goal: Self::Goal,
-        speed: f64,
-        acceleration: f64,
-    ) -> Result<u64, SerialMotionError> {
+    /// Starts a motion after checking its whole path, and that every joint's actuator can give
+    /// what the motion takes (the defaults are lowered until it can); its id.
+    fn start(&self, goal: Self::Goal, limits: Limits) -> Result<u64, SerialMotionError> {
+        let Limits {
+            speed,
+            acceleration,
+            ..
+        } = limits;
         if !(speed > 0.0 && acceleration > 0.0 && speed.is_finite() && acceleration.is_finite()) {
             return Err(SerialMotionError::InvalidLimits {
                 speed,
                 acceleration,
             });
         }
-        let mut state = self.state.borrow_mut();
-        let from = state.reference.clone();
+        let from = self.state.borrow().reference.clone();
         let mut kinematics = self.kinematics.borrow_mut();
         let path = match goal {
             Goal::Joints(target) => {
-                if !kinematics.within_limits(&target) {
-                    return Err(SerialMotionError::InvalidTarget { target });
+                if let Some(error) = kinematics.outside_limits(&target) {
+                    return Err(SerialMotionError::InvalidTarget {
+                        target,
+                        reason: error,
+                    });
                 }
                 Path::Joints { from, to: target }
             }
@@ -307,19 +483,26 @@ impl MotionControl for Controller {
                 let target = kinematics.solve(&pose, &from)?;
                 Path::Joints { from, to: target }
             }
-            Goal::Line(pose) => Path::Line {
-                from: kinematics.forward(&from),
-                to: pose,
-                posture: from,
-            },
+            Goal::Line(pose) => {
+                kinematics.solve(&pose, &from)?;
+                Path::Line {
+                    from: kinematics.forward(&from),
+                    to: pose,
+                    posture: from,
+                }
+            }
         };
-        let target = path.check(&mut kinematics, &state.reference)?;
+        let start = self.state.borrow().reference.clone();
+        let points = path.check(&mut kinematics, &start)?;
         drop(kinematics);
-        let profile = Profile::rest_to_rest(path.length(), speed, acceleration);
-        let id = state
+        let target = points.last().map_or(start, |(_, end)| end.clone());
+        let profile = self.profile(&points, path.length(), limits)?;
+        let id = self
+            .state
+            .borrow_mut()
             .motions
             .start(path, profile, self.clock.time(), target);
-        drop(state);
+        self.state.borrow_mut().strain = None;
         self.advance(self.clock.time());
         self.command();
         Ok(id)

@@ -16,20 +16,64 @@ pub enum SerialMotionError {
     /// A point of the line, this far along it (metres or radians), is reached only by a joint
     /// jumping: the line passes a singularity or a limit; nothing moved.
     #[error(
-        "the line passes a singularity {along:.3} along its length (a joint would jump {jump:.2} rad)"
+        "the line passes a singularity or a joint limit at {percent:.0} % of its length: a joint would jump {jump:.2} rad there",
+        percent = 100.0 * along / length
     )]
     Singular {
-        /// How far along the line.
+        /// How far along the line (metres, or radians for a line that turns more than it
+        /// moves).
         along: f64,
+        /// The line's length (the longer of its distance and its turn).
+        length: f64,
         /// The jump (radians or metres).
         jump: f64,
     },
+    /// The line's end is within reach, but a point on the way, this far along it, is not (or
+    /// is one the solver cannot reach from the point before: a singularity); nothing moved.
+    #[error(
+        "the line leaves the arm's reach at {percent:.0} % of its length, though its end is within reach: the nearest the arm gets there is {metres:.4} m and {radians:.4} rad from it (a singularity or a joint limit on the way)",
+        percent = 100.0 * along / length
+    )]
+    LeavesReach {
+        /// How far along the line (metres, or radians for a line that turns more than it
+        /// moves).
+        along: f64,
+        /// The line's length (the longer of its distance and its turn).
+        length: f64,
+        /// The distance left there (metres).
+        metres: f64,
+        /// The rotation left there (radians).
+        radians: f64,
+    },
     /// Target joints of the wrong number, not finite, or outside the joint limits; nothing
     /// moved.
-    #[error("target joints {target:?} are not one finite angle per joint within its limits")]
+    #[error("target joints {target:?} cannot be reached: {reason}")]
     InvalidTarget {
         /// The joints asked for.
         target: Vec<f64>,
+        /// Which joint, and its limits.
+        reason: String,
+    },
+    /// A joint would need more force than its actuator can give to follow the motion (its
+    /// damping at speed, gravity, the inertia accelerated); nothing moved. Only at a speed or
+    /// acceleration the user chose: the defaults are lowered until the arm can follow them.
+    #[error(
+        "joint {joint:?} would need {needed:.1} N·m at {speed:.2} rad/s to follow the motion, more than the {share:.0} % of the {available:.1} N·m its actuator gives that a motion may plan on: {advice}",
+        share = 100.0 * super::dynamics::PLANNED_SHARE,
+        advice = if *chosen { "ask a lower speed or acceleration, or give the joint a stronger actuator" } else { "the arm cannot hold or move this way at any speed; give the joint a stronger actuator or a lighter load" }
+    )]
+    Overloaded {
+        /// The joint's name.
+        joint: String,
+        /// The force it would need.
+        needed: f64,
+        /// What its actuator gives that way.
+        available: f64,
+        /// The joint's speed then.
+        speed: f64,
+        /// Whether the user chose the speed and acceleration (or the defaults, lowered as far
+        /// as they go, were used).
+        chosen: bool,
     },
     /// A speed or acceleration is not a positive number.
     #[error("speed {speed} and acceleration {acceleration} must be positive numbers")]
@@ -57,6 +101,23 @@ pub enum SerialMotionError {
         /// How long after the motion's end it was given to settle.
         seconds: f64,
     },
+    /// Its profile ended but joint `joint` did not settle at its target; `cause` tells why, as
+    /// far as the controller can.
+    #[error(
+        "joint {joint:?} did not reach {target:.4} within {seconds} s of the motion's end (it is at {at:.4}): {cause}"
+    )]
+    Stuck {
+        /// The joint furthest from its target.
+        joint: String,
+        /// Its target.
+        target: f64,
+        /// Where it is.
+        at: f64,
+        /// How long after the motion's end it was given to settle.
+        seconds: f64,
+        /// Why, as far as the controller can tell.
+        cause: StuckCause,
+    },
     /// The platform stopped, or a timeout passed.
     #[error(transparent)]
     Wait(#[from] WaitError),
@@ -80,4 +141,37 @@ impl MotionEnding for SerialMotionError {
             seconds,
         }
     }
+}
+
+/// Why a joint did not settle at its target ([`SerialMotionError::Stuck`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum StuckCause {
+    /// An actuator was saturated during the motion: it was asked more than it gives.
+    #[error(
+        "the actuator of joint {joint:?} was saturated, asked {asked:.1} N·m of its range [{}, {}]: ask a lower speed or acceleration, or give the joint a stronger actuator",
+        range[0], range[1]
+    )]
+    Saturated {
+        /// The joint whose actuator was asked the most beyond its range.
+        joint: String,
+        /// The force asked.
+        asked: f64,
+        /// What the actuator gives.
+        range: [f64; 2],
+    },
+    /// The joint's dry friction holds it against what the controller gives so close to the
+    /// target: a light link (little inertia to push against) on a joint with friction.
+    #[error(
+        "its dry friction (frictionloss {frictionloss} N·m) holds it against what the controller gives so near the target, its link being light (inertia {inertia:.2e} kg·m²): mount the tool it is made to carry, or raise the stiffness"
+    )]
+    Friction {
+        /// The joint's `frictionloss`.
+        frictionloss: f64,
+        /// The inertia the joint moves.
+        inertia: f64,
+    },
+    /// Nothing the controller knows of: a contact, a load heavier than the model's.
+    #[error("something blocks it (a contact, or a load the model does not have)")]
+    Blocked,
 }

@@ -174,10 +174,32 @@ impl SerialKinematics {
 
     /// Whether every joint of `q` is finite and within its limits.
     pub fn within_limits(&self, q: &[f64]) -> bool {
-        q.len() == self.limits.len()
-            && q.iter()
-                .zip(&self.limits)
-                .all(|(q, [lower, upper])| q.is_finite() && (lower..=upper).contains(&q))
+        self.outside_limits(q).is_none()
+    }
+
+    /// Why `q` is not one finite number per joint within its limits (naming the joint and its
+    /// limits), or `None` when it is.
+    pub fn outside_limits(&self, q: &[f64]) -> Option<String> {
+        if q.len() != self.limits.len() {
+            return Some(format!(
+                "{} numbers for {} joints",
+                q.len(),
+                self.limits.len()
+            ));
+        }
+        let (i, (value, [lower, upper])) = q
+            .iter()
+            .zip(&self.limits)
+            .enumerate()
+            .find(|(_, (q, [lower, upper]))| !(q.is_finite() && (lower..=upper).contains(q)))?;
+        let name = self
+            .data
+            .model()
+            .joint_name(self.joints[i])
+            .unwrap_or_else(|| format!("number {}", i + 1));
+        Some(format!(
+            "joint {name:?} at {value} is outside its limits [{lower}, {upper}]"
+        ))
     }
 
     /// The TCP's pose in the base frame with the joints at `q`.

@@ -6,11 +6,13 @@
 
 mod arm;
 mod controller;
+mod drives;
+mod dynamics;
 mod error;
 mod kinematics;
 mod names;
 
 pub use arm::{DEFAULT_STIFFNESS, SerialArm, SerialMove};
-pub use error::SerialMotionError;
+pub use error::{SerialMotionError, StuckCause};
 pub use kinematics::{SOLVED, SerialIkError, SerialKinematics, TcpFrame};
 pub use names::SerialNames;

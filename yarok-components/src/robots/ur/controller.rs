@@ -8,7 +8,7 @@ use std::rc::Rc;
 use nalgebra::Isometry3;
 use yarok_core::time::Clock;
 
-use crate::robots::motion::MotionControl;
+use crate::robots::motion::{Limits, MotionControl};
 use crate::robots::motions::{Motions, Running};
 
 use super::drive::{ArmDrive, Order, Setpoint};
@@ -215,7 +215,12 @@ impl MotionControl for Controller {
     type Error = MotionError;
 
     /// Starts a motion to `to`, after checking the whole path; its id.
-    fn start(&self, goal: Self::Goal, speed: f64, acceleration: f64) -> Result<u64, MotionError> {
+    fn start(&self, goal: Self::Goal, limits: Limits) -> Result<u64, MotionError> {
+        let Limits {
+            speed,
+            acceleration,
+            ..
+        } = limits;
         if !(speed > 0.0 && acceleration > 0.0 && speed.is_finite() && acceleration.is_finite()) {
             return Err(MotionError::InvalidLimits {
                 speed,

@@ -72,6 +72,7 @@ impl Path {
             |along, near| Ok(Self::joints_at(self.point(along), kinematics, near)?),
             |along, jump| PathError::Singular { along, jump },
         )
+        .map(|points| points.last().map_or(*start, |&(_, end)| end))
     }
 }
 

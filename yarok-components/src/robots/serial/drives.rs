@@ -1,0 +1,138 @@
+//! [`Drives`]: what drives each joint of a serial arm in `sim` — its actuator, what the joint
+//! resists with by itself, and the most force the actuator can give it — found from a mapping
+//! ([`SerialNames`]) and checked against the model before anything moves.
+
+use yarok_core::component::{Bind, BindError};
+use yarok_mjc::{Actuator, Joint, JointLosses, Model, ServoGains, Sim, SimBind};
+
+use super::names::SerialNames;
+
+/// How an actuator moves its joint.
+#[derive(Debug, Clone, Copy)]
+pub(super) enum Actuation {
+    /// A torque motor: force = gear × control.
+    Motor { gear: f64 },
+    /// A position servo.
+    Servo(ServoGains),
+}
+
+/// One joint of the arm and what drives it.
+pub(super) struct Drive {
+    pub(super) name: String,
+    pub(super) joint: Joint,
+    pub(super) actuator: Actuator,
+    pub(super) actuation: Actuation,
+    pub(super) losses: JointLosses,
+    /// The least and most force (N·m, or N for a slide) the actuator can put on the joint.
+    pub(super) force_range: [f64; 2],
+}
+
+impl Drive {
+    /// The most force the actuator gives either way.
+    pub(super) fn strength(&self) -> f64 {
+        self.force_range[0].abs().min(self.force_range[1].abs())
+    }
+}
+
+/// The arm's joints base to tip, each with its drive.
+pub(super) type Drives = Vec<Drive>;
+
+/// The drives `names` maps, each checked: the joint exists and is a hinge or slide, its actuator
+/// is a torque motor or a position servo on that very joint, no joint or actuator is named
+/// twice.
+pub(super) fn drives(bind: &mut Bind<Sim>, names: &SerialNames) -> Result<Drives, BindError> {
+    if names.joints.len() != names.actuators.len() || names.joints.is_empty() {
+        return Err(bind.error(format!(
+            "{} joints and {} actuators: a serial arm names one actuator per joint",
+            names.joints.len(),
+            names.actuators.len()
+        )));
+    }
+    for list in [names.joints, names.actuators] {
+        if let Some(repeated) = list
+            .iter()
+            .enumerate()
+            .find(|(i, name)| list[..*i].contains(name))
+        {
+            return Err(bind.error(format!(
+                "{:?} is named twice in the mapping: each joint of a serial arm, and each \
+                 actuator, is named once",
+                repeated.1
+            )));
+        }
+    }
+    let joints = names
+        .joints
+        .iter()
+        .map(|name| bind.joint(name))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut drives = Vec::with_capacity(names.joints.len());
+    for ((&name, &actuator_name), joint) in names.joints.iter().zip(names.actuators).zip(&joints) {
+        let actuator = bind.actuator(actuator_name)?;
+        let model = std::sync::Arc::clone(bind.backend().model());
+        if let Some(driven) = model.actuator_joint(actuator.id())
+            && driven != joint.id()
+        {
+            let driven = joints
+                .iter()
+                .position(|joint| joint.id() == driven)
+                .map(|i| names.joints[i].to_owned())
+                .or_else(|| model.joint_name(driven))
+                .unwrap_or_default();
+            return Err(bind.error(format!(
+                "actuator {actuator_name:?} drives joint {driven:?}, not {name:?}: the \
+                 mapping's actuators are in the order of its joints (are two swapped?)"
+            )));
+        }
+        let actuation = match (model.motor_gear(actuator.id()), actuator.servo_gains()) {
+            (Some(gear), _) => Actuation::Motor { gear },
+            (None, Some(gains)) => Actuation::Servo(gains),
+            (None, None) => {
+                return Err(bind.error(format!(
+                    "actuator {actuator_name:?} is neither a motor (<motor>) nor a position \
+                     servo on its joint: a serial arm drives one of these"
+                )));
+            }
+        };
+        let force_range = force_range(&model, &actuator, actuation, joint);
+        drives.push(Drive {
+            name: name.to_owned(),
+            losses: model.joint_losses(joint.id()),
+            joint: joint.clone(),
+            actuator,
+            actuation,
+            force_range,
+        });
+    }
+    Ok(drives)
+}
+
+/// The force range an actuator puts on its joint: its control range (a motor's) and force
+/// range through its gear, within the joint's own limit on actuator force.
+fn force_range(
+    model: &Model,
+    actuator: &Actuator,
+    actuation: Actuation,
+    joint: &Joint,
+) -> [f64; 2] {
+    let unlimited = [f64::NEG_INFINITY, f64::INFINITY];
+    let intersect = |[a, b]: [f64; 2], [c, d]: [f64; 2]| [a.max(c), b.min(d)];
+    let through = |[a, b]: [f64; 2], gear: f64| {
+        let (a, b) = (a * gear, b * gear);
+        [a.min(b), a.max(b)]
+    };
+    let gear = match actuation {
+        Actuation::Motor { gear } => gear,
+        Actuation::Servo(gains) => gains.gear,
+    };
+    let mut range = model
+        .actuator_force_range(actuator.id())
+        .map_or(unlimited, |range| through(range, gear));
+    if let (Actuation::Motor { .. }, Some(control)) = (actuation, actuator.ctrl_range()) {
+        range = intersect(range, through(control, gear));
+    }
+    if let Some(joint_range) = model.joint_force_range(joint.id()) {
+        range = intersect(range, joint_range);
+    }
+    range
+}
