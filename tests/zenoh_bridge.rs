@@ -1,7 +1,7 @@
 //! The Zenoh bridge (feature `zenoh`) on loopback, talked to by the Zenoh project's own Python
 //! client (eclipse-zenoh, a separate process): it reads a DigitWorld's joint states, its arm's
-//! state and a DIGIT's image, commands the arm to joints and sees it arrive; a stop command
-//! ends the run cleanly.
+//! state and a DIGIT's image, commands the arm to joints and sees it arrive, has gripper
+//! positions outside 0–255 refused; a stop command ends the run cleanly.
 #![cfg(feature = "zenoh")]
 
 use std::process::{Command, Stdio};
@@ -82,6 +82,17 @@ fn a_third_party_client_reads_the_world_and_moves_the_arm() {
             .all(|(a, b)| (a - b).abs() < 0.01),
         "{reached:?}"
     );
+    // A gripper position outside its register is refused, not obeyed.
+    for position in ["256", "-1", "1.5"] {
+        let reply = peers::field(&printed, &format!("gripper_reply_{position}"));
+        assert!(
+            reply.contains(r#""ok": false"#)
+                && reply.contains(&format!(
+                    "move_to {position} is not a whole number from 0 to 255"
+                )),
+            "{reply}"
+        );
+    }
     // The client's stop command ends the run.
     let started = Instant::now();
     let status = loop {

@@ -1,11 +1,12 @@
 """Talks to a yarok world's Zenoh bridge with eclipse-zenoh (the Zenoh project's Python client,
 a third-party peer run as a separate process): reads the world's joint states, its arm's state
 and a probe image (decoded with Pillow), then commands the arm to joints and waits until it is
-there.
+there, and sends its gripper positions outside 0-255.
 
 Usage: zenoh_client.py ENDPOINT WORLD TARGET_JOINTS_JSON
 Prints, a line each: `joint_states COUNT NAMES`, `arm_q Q...`, `image KEY WIDTH HEIGHT`,
-`reply JSON`, `reached SECONDS Q...` (or exits non-zero saying what did not come).
+`reply JSON`, `reached SECONDS Q...`, `gripper_reply_POSITION JSON` for positions 256, -1
+and 1.5 (or exits non-zero saying what did not come).
 """
 
 import io
@@ -62,6 +63,17 @@ def main():
         if reached is None:
             sys.exit(f"the arm did not reach {target} (reply {reply})")
         print("reached", f"{reached[0]:.2f}", *reached[1])
+        for position in (256, -1, 1.5):
+            session.put(f"yarok/{world}/arm/gripper/command", json.dumps({"move_to": position}))
+            reply, deadline = None, time.monotonic() + 10
+            while reply is None and time.monotonic() < deadline:
+                try:
+                    key, payload = samples.get(timeout=0.5)
+                except queue.Empty:
+                    continue
+                if key == f"yarok/{world}/arm/gripper/reply":
+                    reply = json.loads(payload)
+            print(f"gripper_reply_{position}", json.dumps(reply), flush=True)
         session.put(f"yarok/{world}/command", json.dumps({"stop": True}))
 
 

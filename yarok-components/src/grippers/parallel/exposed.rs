@@ -28,9 +28,13 @@ struct GripperCommand {
     force: Option<f64>,
 }
 
-/// A 0–255 register value.
-fn byte(value: f64) -> u8 {
-    value.clamp(0.0, 255.0) as u8
+/// A 0–255 register value, or an error naming the field when `value` is not one.
+fn byte(field: &str, value: f64) -> Result<u8, BoxError> {
+    if value.fract() == 0.0 && (0.0..=255.0).contains(&value) {
+        Ok(value as u8)
+    } else {
+        Err(format!("{field} {value} is not a whole number from 0 to 255").into())
+    }
 }
 
 /// Publishes the gripper's `state` and takes its `command`s.
@@ -74,17 +78,17 @@ fn run(gripper: &ParallelGripper, command: GripperCommand) -> Result<(), BoxErro
         GripperCommand {
             move_to: Some(position),
             ..
-        } => gripper.move_to(byte(position)),
+        } => gripper.move_to(byte("move_to", position)?),
         GripperCommand { open: Some(_), .. } => gripper.open(),
         GripperCommand { close: Some(_), .. } => gripper.close(),
         _ => return Err("a gripper takes move_to, open or close".into()),
     };
     let grip = match command.speed {
-        Some(speed) => grip.speed(byte(speed)),
+        Some(speed) => grip.speed(byte("speed", speed)?),
         None => grip,
     };
     match command.force {
-        Some(force) => grip.force(byte(force)),
+        Some(force) => grip.force(byte("force", force)?),
         None => grip,
     }
     .start();
