@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use crate::error::ModelError;
 use crate::model::{
-    ActuatorId, BodyId, CameraId, JointId, KeyframeId, Model, SensorId, SiteId, to_usize,
+    ActuatorId, BodyId, CameraId, GeomId, JointId, KeyframeId, Model, SensorId, SiteId, to_usize,
 };
 use crate::pose::Pose;
 use crate::sys;
@@ -562,6 +562,31 @@ impl Data {
             )
         };
         self.pose_of_frame(xpos, xmat, index)
+    }
+
+    /// The distance between the surfaces of two geoms (negative when they overlap), up to
+    /// `most` (beyond which `most` is returned), as of the last [`Data::step`],
+    /// [`Data::forward`] or [`Data::kinematics`].
+    ///
+    /// # Panics
+    ///
+    /// When a geom was resolved in a different model.
+    #[track_caller]
+    pub fn geom_distance(&mut self, first: GeomId, second: GeomId, most: f64) -> f64 {
+        let (a, b) = (self.model.index_of(first), self.model.index_of(second));
+        let mut from_to = [0.0; 6];
+        // SAFETY: model and data belong together; both indices are below ngeom; `from_to`
+        // holds the 6 numbers MuJoCo writes.
+        unsafe {
+            self.model.mj().mj_geomDistance(
+                self.model.raw(),
+                self.raw.as_ptr(),
+                a as std::os::raw::c_int,
+                b as std::os::raw::c_int,
+                most,
+                from_to.as_mut_ptr(),
+            )
+        }
     }
 
     /// The pose of a camera in world coordinates, as computed by the last [`Data::step`] or

@@ -223,6 +223,83 @@ impl Model {
         self.body_at(body)
     }
 
+    /// The geoms a body carries.
+    ///
+    /// # Panics
+    ///
+    /// When `body` was resolved in a different model.
+    #[track_caller]
+    pub fn body_geoms(&self, body: BodyId) -> Vec<GeomId> {
+        let index = self.index_of(body);
+        let nbody = self.count(ObjectKind::Body);
+        // SAFETY: body_geomadr and body_geomnum hold nbody entries.
+        let (first, count) = unsafe {
+            (
+                self.array(self.raw().body_geomadr, nbody)[index],
+                self.array(self.raw().body_geomnum, nbody)[index],
+            )
+        };
+        (0..count.max(0))
+            .map(|offset| GeomId {
+                index: to_usize(first + offset),
+                signature: self.signature(),
+            })
+            .collect()
+    }
+
+    /// Whether a geom takes part in collisions (its `contype` or `conaffinity` is not 0), as
+    /// a finger's pad does and a purely visual mesh does not.
+    ///
+    /// # Panics
+    ///
+    /// When `geom` was resolved in a different model.
+    #[track_caller]
+    pub fn geom_collides(&self, geom: GeomId) -> bool {
+        let index = self.index_of(geom);
+        let ngeom = self.count(ObjectKind::Geom);
+        // SAFETY: geom_contype and geom_conaffinity hold ngeom entries.
+        unsafe {
+            self.array(self.raw().geom_contype, ngeom)[index] != 0
+                || self.array(self.raw().geom_conaffinity, ngeom)[index] != 0
+        }
+    }
+
+    /// A copy of the model in which only the geoms of `bodies` collide (with each other), to
+    /// study a mechanism's own motion — a gripper's stroke, its fingers meeting — apart from
+    /// the objects around it. Ids resolved in this model are valid in the copy.
+    ///
+    /// # Errors
+    ///
+    /// [`ModelError::Compile`] when MuJoCo cannot allocate the copy.
+    pub fn colliding_only(&self, bodies: &[BodyId]) -> Result<Model, ModelError> {
+        let kept: Vec<usize> = bodies.iter().map(|&body| self.index_of(body)).collect();
+        // SAFETY: with a null destination, mj_copyModel allocates a deep copy of the live model.
+        let raw = unsafe {
+            self.mj
+                .mj_copyModel(std::ptr::null_mut(), self.raw.as_ptr())
+        };
+        let raw = NonNull::new(raw).ok_or_else(|| ModelError::Compile {
+            origin: "a copy of a model".into(),
+            message: "MuJoCo could not allocate it".into(),
+        })?;
+        let ngeom = self.count(ObjectKind::Geom);
+        // SAFETY: the copy is owned here alone, not yet shared, so writing it races with
+        // nothing; its geom arrays hold ngeom entries, as the original's.
+        unsafe {
+            let copy = &mut *raw.as_ptr();
+            let bodies = std::slice::from_raw_parts(copy.geom_bodyid, ngeom);
+            let types = std::slice::from_raw_parts_mut(copy.geom_contype, ngeom);
+            let affinities = std::slice::from_raw_parts_mut(copy.geom_conaffinity, ngeom);
+            for geom in 0..ngeom {
+                if !kept.contains(&to_usize(bodies[geom])) {
+                    types[geom] = 0;
+                    affinities[geom] = 0;
+                }
+            }
+        }
+        Ok(Model { raw, mj: self.mj })
+    }
+
     /// The id of the body at `index` in this model's arrays (as its `*_bodyid` arrays hold).
     fn body_at(&self, index: std::os::raw::c_int) -> BodyId {
         BodyId {

@@ -3,5 +3,7 @@
 pub mod parallel;
 mod robotiq_2f85;
 
-pub use parallel::{Grip, Gripped, GripperNames, ParallelGripper, REACHED_COUNTS};
+pub use parallel::{
+    FingerServo, Grip, Gripped, GripperNames, GripperParts, ParallelGripper, REACHED_COUNTS, Stroke,
+};
 pub use robotiq_2f85::Robotiq2f85;

@@ -2,6 +2,8 @@
 
 use yarok_mjc::{Body, Site};
 
+use super::names::Stroke;
+
 /// A gripper request: position (0 open to 255 closed), speed and force, each 0–255.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Request {
@@ -49,6 +51,12 @@ pub trait FingerDrive {
     fn object_detected(&self) -> bool {
         !self.is_moving()
             && (self.position().round() - self.requested().position).abs() > self.reach_tolerance()
+    }
+
+    /// The opening between the pad faces (millimetres) over `stroke`. By default read from the
+    /// stroke's table at [`FingerDrive::position`]; a simulation may measure it.
+    fn opening_mm(&self, stroke: &Stroke) -> f64 {
+        stroke.opening_at(self.position())
     }
 
     /// Runs after each step of the platform, `timestep` seconds long.

@@ -12,12 +12,14 @@ use yarok_mjc::{Body, Sim, Site};
 
 mod drive;
 mod exposed;
+mod measure;
 mod mock;
 mod names;
 mod ramp;
 mod sim;
 
 pub use drive::{FingerDrive, Request};
+pub use measure::GripperParts;
 pub use mock::MockFingers;
 pub use names::{FingerServo, GripperNames, Stroke};
 pub use sim::ServoFingers;
@@ -113,7 +115,7 @@ impl ParallelGripper {
 
     /// A gripper with no physics behind it ([`MockFingers`]), moving over `stroke`.
     pub fn mock<E: Environment>(bind: &mut Bind<E>, stroke: Stroke) -> Self {
-        Self::with_drive(bind, Rc::new(MockFingers::new(stroke)), stroke)
+        Self::with_drive(bind, Rc::new(MockFingers::new(stroke.clone())), stroke)
     }
 
     /// Binds a gripper model in `sim` given its parts' `names`: each servo's gains, force
@@ -125,7 +127,49 @@ impl ParallelGripper {
     /// is not a position servo.
     pub fn bind_sim(bind: &mut Bind<Sim>, names: &GripperNames) -> Result<Self, BindError> {
         let fingers = ServoFingers::bind(bind, names)?;
-        Ok(Self::with_drive(bind, Rc::new(fingers), names.stroke))
+        Ok(Self::with_drive(
+            bind,
+            Rc::new(fingers),
+            names.stroke.clone(),
+        ))
+    }
+
+    /// Binds a gripper model in `sim` named by its servos and pads alone ([`GripperParts`]):
+    /// yarok measures the rest, sweeping the stroke in a copy of the model where nothing
+    /// collides and nothing falls — each servo's controls fully open and where the pads meet,
+    /// the opening between the pads' surfaces over the stroke, how fast the fingers move, and
+    /// how close the servos come to a request (the reach tolerance their friction needs).
+    ///
+    /// # Errors
+    ///
+    /// [`BindError`] when a part is missing, an actuator is not a position servo with a
+    /// control range, the gripper has an actuator the mapping leaves out (a hand of more than
+    /// two fingers), or a servo moves neither pad (naming the likely cause: a third finger, or
+    /// a file in radians read as degrees).
+    pub fn bind_sim_measured(
+        bind: &mut Bind<Sim>,
+        parts: &GripperParts,
+    ) -> Result<Self, BindError> {
+        let measured = measure::measure(bind, parts)?;
+        tracing::info!(
+            "{}: measured the stroke, {:.1} to {:.1} mm between the pads, up to {:.0} mm/s, \
+             requests reached within {:.1} positions",
+            bind.path(),
+            measured.stroke.opening_mm[0],
+            measured.stroke.opening_mm[measured.stroke.opening_mm.len() - 1],
+            measured.stroke.speed_mm_s[1],
+            measured.reached
+        );
+        let fingers = ServoFingers::new(
+            bind,
+            &measured.servos,
+            Some(&measured.lengths),
+            parts.pads,
+            parts.pad_sites,
+            measured.stroke.clone(),
+            measured.reached,
+        )?;
+        Ok(Self::with_drive(bind, Rc::new(fingers), measured.stroke))
     }
 
     /// A request for `position` (0 open to 255 closed) at full speed and half force; set them
@@ -161,9 +205,11 @@ impl ParallelGripper {
         self.drive.position().round().clamp(0.0, 255.0) as u8
     }
 
-    /// The opening between the pad faces in millimetres.
+    /// The opening between the pad faces in millimetres: measured between the pads' surfaces
+    /// for a gripper yarok measured ([`ParallelGripper::bind_sim_measured`]), else read from
+    /// the stroke's table at the fingers' position.
     pub fn opening_mm(&self) -> f64 {
-        self.stroke.opening_at(self.drive.position())
+        self.drive.opening_mm(&self.stroke)
     }
 
     /// The gripper's stroke: its openings and speeds.
@@ -240,9 +286,8 @@ impl<'a> IntoFuture for Grip<'a> {
 
     fn into_future(self) -> Self::IntoFuture {
         let gripper = self.gripper;
-        let stroke = gripper.stroke;
         // The whole stroke at the requested speed, and a second more to settle.
-        let bound = 255.0 / stroke.positions_per_second(self.request.speed) + 1.0;
+        let bound = 255.0 / gripper.stroke.positions_per_second(self.request.speed) + 1.0;
         self.start();
         Box::pin(async move {
             gripper

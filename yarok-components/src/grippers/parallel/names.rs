@@ -1,6 +1,8 @@
 //! [`GripperNames`]: which servos of a model close a parallel gripper, where its pads are, and
 //! its stroke.
 
+use std::borrow::Cow;
+
 /// One position servo of a gripper and its controls at the two ends of the stroke.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FingerServo {
@@ -13,11 +15,11 @@ pub struct FingerServo {
 }
 
 /// A gripper's opening over its stroke and how fast its fingers move.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Stroke {
     /// The opening between the pad faces (millimetres) at evenly spaced positions from 0
     /// (open) to 255 (closed): at least two, widest first.
-    pub opening_mm: &'static [f64],
+    pub opening_mm: Cow<'static, [f64]>,
     /// The speed of the opening (mm/s) at speed requests 0 and 255.
     pub speed_mm_s: [f64; 2],
 }
@@ -26,21 +28,21 @@ impl Stroke {
     /// The Robotiq 2F-85's: its linkage's table (driver angles 0, 0.2, 0.4, 0.6 and 0.8 rad,
     /// as yarok's and Menagerie's models close) at 20 to 150 mm/s.
     pub const ROBOTIQ_2F85: Self = Self {
-        opening_mm: &[85.4, 66.6, 45.6, 23.1, 0.2],
+        opening_mm: Cow::Borrowed(&[85.4, 66.6, 45.6, 23.1, 0.2]),
         speed_mm_s: [20.0, 150.0],
     };
 
     /// MuJoCo Menagerie's 2F-85 model's: its pad faces' gap measured at controls 0, 62.25,
     /// 124.5, 186.75 and 249 (where they meet), at the real gripper's 20 to 150 mm/s.
     pub const MENAGERIE_2F85: Self = Self {
-        opening_mm: &[85.2, 66.0, 44.8, 22.2, 0.0],
+        opening_mm: Cow::Borrowed(&[85.2, 66.0, 44.8, 22.2, 0.0]),
         speed_mm_s: [20.0, 150.0],
     };
 
     /// The Franka hand's: 79 mm between robosuite's pad faces when open, closing evenly, at the
     /// real hand's 0.05 m/s per finger at most.
     pub const FRANKA_HAND: Self = Self {
-        opening_mm: &[79.0, 0.0],
+        opening_mm: Cow::Borrowed(&[79.0, 0.0]),
         speed_mm_s: [10.0, 100.0],
     };
 
@@ -60,7 +62,7 @@ impl Stroke {
 
     /// The position (0 to 255) at an opening of `millimetres`, by the table.
     pub fn position_for(&self, millimetres: f64) -> u8 {
-        let table = self.opening_mm;
+        let table = &self.opening_mm;
         let segments = table.len() - 1;
         let gap = millimetres.clamp(table[segments], table[0]);
         let segment = table
@@ -82,7 +84,7 @@ impl Stroke {
 /// The names of a parallel gripper's parts in its model: the position servos that close it
 /// (one, or one per finger), the pads' bodies `[left, right]` and the sites on their faces if
 /// it has them; and its stroke. Mappings for the common files are constants.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct GripperNames {
     /// The servos closing the fingers, all driven to the same position.
     pub servos: &'static [FingerServo],

@@ -9,9 +9,14 @@ use super::drive::{FingerDrive, Request};
 use super::names::{FingerServo, GripperNames, Stroke};
 use super::ramp::Ramp;
 
-/// Positions a second below which the fingers count as stopped (0.02 rad/s of the 2F-85's
-/// 0.8 rad driver stroke).
-const STOPPED_POSITIONS_PER_S: f64 = 6.375;
+/// How far (millimetres) a measured gripper's pads may stand off the opening its stroke has at
+/// a request and not count as holding an object: the sinking of soft pads into what they
+/// touch (1.5–1.9 mm measured on the 2F-85).
+const OBJECT_MM: f64 = 2.5;
+
+/// The share of its fastest speed below which a gripper's fingers count as stopped (0.02 rad/s
+/// of the 2F-85's 0.8 rad driver stroke, at its 1.4 rad/s).
+const STOPPED_SHARE: f64 = 0.014;
 
 /// A simulated gripper's fingers: its servos, driven together to a position command that
 /// moves toward each request at its speed, their squeeze capped by the request's force (10 %
@@ -24,6 +29,9 @@ pub struct ServoFingers {
     pads: [Body; 2],
     pad_sites: Option<[Site; 2]>,
     reached: f64,
+    /// Whether the stroke was measured: the opening is then the pads' gap, measured, and an
+    /// object is found by it.
+    measured: bool,
     ramp: RefCell<Ramp>,
 }
 
@@ -34,11 +42,18 @@ struct Servo {
     gains: ServoGains,
     /// Its controls at the open and closed ends.
     ends: [f64; 2],
+    /// Its lengths there: where the servo settles at those controls (measured), or, by
+    /// default, where its gains put it.
+    lengths: [f64; 2],
     max_force: f64,
 }
 
 impl Servo {
-    fn bind(bind: &Bind<Sim>, names: &FingerServo) -> Result<Self, BindError> {
+    fn bind(
+        bind: &Bind<Sim>,
+        names: &FingerServo,
+        lengths: Option<[f64; 2]>,
+    ) -> Result<Self, BindError> {
         let actuator = bind.actuator(names.actuator)?;
         let gains = actuator
             .servo_gains()
@@ -50,11 +65,23 @@ impl Servo {
                     names.actuator
                 ))
             })?;
-        if names.open == names.closed {
+        if !(names.open.is_finite() && names.closed.is_finite()) || names.open == names.closed {
             return Err(bind.error(format!(
-                "actuator {:?}: its controls open ({}) and closed ({}) must differ",
+                "actuator {:?}: its controls open ({}) and closed ({}) must be two different \
+                 numbers",
                 names.actuator, names.open, names.closed
             )));
+        }
+        if let Some([lowest, highest]) = actuator.ctrl_range() {
+            for (end, control) in [("open", names.open), ("closed", names.closed)] {
+                if !(lowest..=highest).contains(&control) {
+                    return Err(bind.error(format!(
+                        "actuator {:?}: its control {end} ({control}) is outside its control \
+                         range [{lowest}, {highest}]",
+                        names.actuator
+                    )));
+                }
+            }
         }
         let stroke_force = gains.gain * (names.closed - names.open).abs();
         let max_force = gains.force_range.map_or(stroke_force, |[_, most]| most);
@@ -65,10 +92,12 @@ impl Servo {
                 names.actuator
             )));
         }
+        let ends = [names.open, names.closed];
         Ok(Self {
             actuator,
+            lengths: lengths.unwrap_or(ends.map(|control| gains.gain * control / gains.kp)),
             gains,
-            ends: [names.open, names.closed],
+            ends,
             max_force,
         })
     }
@@ -77,8 +106,7 @@ impl Servo {
     /// second).
     fn position(&self) -> (f64, f64) {
         let (length, rate) = self.actuator.length();
-        let ServoGains { gain, kp, .. } = self.gains;
-        let [open, closed] = self.ends.map(|control| gain * control / kp);
+        let [open, closed] = self.lengths;
         let per_length = 255.0 / (closed - open);
         ((length - open) * per_length, rate * per_length)
     }
@@ -109,26 +137,74 @@ impl ServoFingers {
     /// [`BindError`] when a part is missing, an actuator is not a position servo or its
     /// controls at the ends are the same.
     pub fn bind(bind: &Bind<Sim>, names: &GripperNames) -> Result<Self, BindError> {
-        if names.servos.is_empty() {
+        Self::new(
+            bind,
+            names.servos,
+            None,
+            names.pads,
+            names.pad_sites,
+            names.stroke.clone(),
+            names.reached,
+        )
+    }
+
+    /// The fingers of a gripper closed by `servos` (each servo's lengths at its open and
+    /// closed controls, when its stroke was measured: the opening is then measured between the
+    /// pads, and an object found by it), with its pads' bodies (and the sites on their faces,
+    /// if given), its stroke and reach tolerance (positions).
+    pub(super) fn new(
+        bind: &Bind<Sim>,
+        servos: &[FingerServo],
+        lengths: Option<&[[f64; 2]]>,
+        pads: [&str; 2],
+        pad_sites: Option<[&str; 2]>,
+        stroke: Stroke,
+        reached: f64,
+    ) -> Result<Self, BindError> {
+        if servos.is_empty() {
             return Err(bind.error("a gripper needs at least one servo"));
         }
-        let servos = names
-            .servos
+        if pads[0] == pads[1] {
+            return Err(bind.error(format!(
+                "the pads are both {:?}: a parallel gripper has a left and a right pad",
+                pads[0]
+            )));
+        }
+        if !(reached.is_finite() && reached > 0.0) {
+            return Err(bind.error(format!(
+                "reached {reached} must be a positive number of positions"
+            )));
+        }
+        let servos = servos
             .iter()
-            .map(|servo| Servo::bind(bind, servo))
+            .enumerate()
+            .map(|(i, servo)| Servo::bind(bind, servo, lengths.map(|lengths| lengths[i])))
             .collect::<Result<_, _>>()?;
-        let pad_sites = match names.pad_sites {
+        let pad_sites = match pad_sites {
             Some([left, right]) => Some([bind.site(left)?, bind.site(right)?]),
             None => None,
         };
         Ok(Self {
             servos,
-            stroke: names.stroke,
-            pads: [bind.body(names.pads[0])?, bind.body(names.pads[1])?],
+            stroke,
+            pads: [bind.body(pads[0])?, bind.body(pads[1])?],
             pad_sites,
-            reached: names.reached,
+            reached,
+            measured: lengths.is_some(),
             ramp: RefCell::new(Ramp::START),
         })
+    }
+
+    /// The gap between the pads' surfaces (millimetres, 0 where they touch).
+    fn gap_mm(&self) -> f64 {
+        self.pads[0]
+            .gap_to(&self.pads[1])
+            .map_or(0.0, |gap| gap.max(0.0) * 1e3)
+    }
+
+    /// Positions a second below which the fingers count as stopped.
+    fn stopped(&self) -> f64 {
+        STOPPED_SHARE * self.stroke.positions_per_second(255.0)
     }
 
     /// The servos' mean position and speed (positions, positions a second).
@@ -155,7 +231,7 @@ impl FingerDrive for ServoFingers {
             || self
                 .servos
                 .iter()
-                .any(|servo| servo.position().1.abs() > STOPPED_POSITIONS_PER_S)
+                .any(|servo| servo.position().1.abs() > self.stopped())
     }
 
     fn requested(&self) -> Request {
@@ -164,6 +240,32 @@ impl FingerDrive for ServoFingers {
 
     fn reach_tolerance(&self) -> f64 {
         self.reached
+    }
+
+    fn opening_mm(&self, stroke: &Stroke) -> f64 {
+        if self.measured {
+            self.gap_mm()
+        } else {
+            stroke.opening_at(self.position())
+        }
+    }
+
+    fn object_detected(&self) -> bool {
+        if self.is_moving() {
+            return false;
+        }
+        let request = self.requested().position;
+        if !self.measured {
+            return (self.position().round() - request).abs() > self.reached;
+        }
+        // The pads stand wider than the sweep saw them at the request, by more than the
+        // servos' reach tolerance and the pads' sinking into what they hold allow (an object
+        // between them; closing narrower than the sweep is the servos squeezing harder).
+        let stroke = &self.stroke;
+        let per_position =
+            (stroke.opening_at(request - 1.0) - stroke.opening_at(request + 1.0)).abs() / 2.0;
+        let tolerance = (per_position * self.reached).max(OBJECT_MM);
+        self.gap_mm() - stroke.opening_at(request) > tolerance
     }
 
     fn request(&self, request: Request) {
@@ -184,7 +286,7 @@ impl FingerDrive for ServoFingers {
             .filter(|capped| !capped)
             .count();
         let capped = uncapped == 0;
-        let still = self.position_and_speed().1.abs() < STOPPED_POSITIONS_PER_S;
+        let still = self.position_and_speed().1.abs() < self.stopped();
         ramp.note_blocked(capped && still);
     }
 
