@@ -654,3 +654,95 @@ fn spots_gripper_file_would_switch_gravity_off_and_is_refused_naming_it() {
         "{error}"
     );
 }
+
+/// dm_control's Kinova Jaco arm file, as it is (it declares no actuators: dm_control adds them
+/// in Python).
+struct DmControlJacoFile;
+
+impl Component for DmControlJacoFile {
+    fn declaration() -> Declaration {
+        Declaration::new("dm_jaco_file")
+            .mjcf_file(peers::package("dm_control").join("third_party/kinova/jaco_arm.xml"))
+    }
+}
+
+/// The file unmodified, with torque motors of the strengths dm_control gives its actuators
+/// (Kinova's datasheet peaks: 30.5 N·m for the three large joints, 6.8 for the small ones).
+#[derive(Clone, Debug)]
+struct DmControlJaco(SerialArm);
+
+const DM_CONTROL_JACO: SerialNames = SerialNames {
+    joints: &[
+        "joint_1", "joint_2", "joint_3", "joint_4", "joint_5", "joint_6",
+    ],
+    actuators: &[
+        "motor_1", "motor_2", "motor_3", "motor_4", "motor_5", "motor_6",
+    ],
+    tcp: "wristsite",
+};
+
+impl Component for DmControlJaco {
+    fn declaration() -> Declaration {
+        Declaration::new("dm_jaco")
+            .extends::<DmControlJacoFile>()
+            .template(
+                r#"<mujoco><actuator>
+                     <motor name="motor_1" joint="joint_1" ctrlrange="-30.5 30.5"/>
+                     <motor name="motor_2" joint="joint_2" ctrlrange="-30.5 30.5"/>
+                     <motor name="motor_3" joint="joint_3" ctrlrange="-30.5 30.5"/>
+                     <motor name="motor_4" joint="joint_4" ctrlrange="-6.8 6.8"/>
+                     <motor name="motor_5" joint="joint_5" ctrlrange="-6.8 6.8"/>
+                     <motor name="motor_6" joint="joint_6" ctrlrange="-6.8 6.8"/>
+                   </actuator></mujoco>"#,
+            )
+    }
+
+    fn interfaces(interfaces: &mut Interfaces<Self>) {
+        interfaces.add::<Sim>();
+    }
+}
+
+impl Interface<Sim> for DmControlJaco {
+    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
+        let start = [0.0, 2.5, 4.0, 0.5, 0.5, 0.0];
+        SerialArm::bind_sim(bind, &DM_CONTROL_JACO, Some(&start), DEFAULT_STIFFNESS).map(Self)
+    }
+}
+
+/// dm_control's Jaco (heavy armatures, 1–2 N·m of dry friction a joint, weak wrist motors)
+/// makes the motions, and after a stop stays where it stopped.
+#[test]
+fn dm_controls_jaco_drives_and_stays_where_it_stops() {
+    let drift = std::rc::Rc::new(std::cell::Cell::new(f64::NAN));
+    let seen = std::rc::Rc::clone(&drift);
+    yarok::platform()
+        .world::<DmControlJaco>()
+        .behaviour(move |pl| {
+            let seen = std::rc::Rc::clone(&seen);
+            async move {
+                let DmControlJaco(arm) = pl.get("/")?;
+                let run = motions(&pl, &arm).await?;
+                println!(
+                    "{} ticks, TCP at most {:.3} mm off the line",
+                    run.trajectory.len(),
+                    run.off_line * 1e3
+                );
+                let away: Vec<f64> = arm.q().iter().map(|q| q + 0.3).collect();
+                arm.move_j(away).start()?;
+                pl.wait_seconds(0.4).await?;
+                arm.stop();
+                pl.wait(|| !arm.is_moving()).timeout(2.0).await?;
+                let stopped = arm.q();
+                pl.wait_seconds(1.0).await?;
+                seen.set(furthest(&arm.q(), &stopped));
+                Ok(())
+            }
+        })
+        .run()
+        .unwrap();
+    assert!(
+        drift.get() <= 1e-3,
+        "drifted {} rad after stopping",
+        drift.get()
+    );
+}
