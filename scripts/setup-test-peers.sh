@@ -20,8 +20,8 @@
 #    files are used, so it is installed without its dependencies; and dm-control (Apache-2.0),
 #    whose Kinova Jaco arm file the arm tests wrap (files only, without dependencies); and
 #    rosbags (Apache-2.0) and mcap-ros2-support (MIT), the ROS 2 readers the `ros2` recording
-#    profile is read back with; and jsonschema (MIT), the validator the `foxglove` profile's messages are checked
-#    with; and pyarrow (Apache-2.0), PyAV (BSD-3-Clause; its wheels bundle FFmpeg, LGPL) and
+#    profile is read back with; and jsonschema (MIT), the validator the `foxglove` profile's
+#    messages are checked with; and pyarrow (Apache-2.0), PyAV (BSD-3-Clause; its wheels bundle FFmpeg, LGPL) and
 #    pandas (BSD-3-Clause), with which the dataset recorder's LeRobot datasets are read back
 #    as LeRobot reads them;
 #  - from the npm registry, into $peers/node: @foxglove/schemas (MIT), Foxglove's own JSON
