@@ -122,11 +122,31 @@ async fn motions(pl: &Pl, arm: &SerialArm) -> Result<Run, BoxError> {
 
 /// An arm of robosuite's as a case of the every-arm test: its file, mapping, start, and the
 /// default gripper robosuite mounts on it (its file and the body it hangs from).
+/// A gripper file of robosuite's mounted on an arm's hand body, with what the component that
+/// wraps it states over the file (nothing, or a setting the file gets wrong).
+#[derive(Clone, Copy)]
+struct Mounted {
+    file: &'static str,
+    hand: &'static str,
+    stated: &'static str,
+}
+
+impl Mounted {
+    #[allow(non_snake_case)]
+    const fn AS_IT_IS(file: &'static str, hand: &'static str) -> Self {
+        Self {
+            file,
+            hand,
+            stated: "",
+        }
+    }
+}
+
 struct Case {
     robot: &'static str,
     names: SerialNames,
     start: &'static [f64],
-    gripper: Option<(&'static str, &'static str)>,
+    gripper: Option<Mounted>,
     /// A bimanual robot's other arm, which holds its start meanwhile.
     other: Option<(SerialNames, &'static [f64])>,
 }
@@ -150,28 +170,28 @@ const CASES: [Case; 12] = [
         robot: "panda",
         names: SerialNames::ROBOSUITE_PANDA,
         start: &[0.0, 0.196, 0.0, -2.618, 0.0, 2.942, 0.785],
-        gripper: Some(("panda_gripper", "right_hand")),
+        gripper: Some(Mounted::AS_IT_IS("panda_gripper", "right_hand")),
         other: None,
     },
     Case {
         robot: "sawyer",
         names: SerialNames::ROBOSUITE_SAWYER,
         start: &[0.0, -1.18, 0.0, 2.18, 0.0, 0.57, -1.57],
-        gripper: Some(("rethink_gripper", "right_hand")),
+        gripper: Some(Mounted::AS_IT_IS("rethink_gripper", "right_hand")),
         other: None,
     },
     Case {
         robot: "iiwa",
         names: SerialNames::ROBOSUITE_IIWA,
         start: &[0.0, 0.35, 0.0, -1.75, 0.0, 1.05, 0.0],
-        gripper: Some(("robotiq_gripper_140", "right_hand")),
+        gripper: Some(Mounted::AS_IT_IS("robotiq_gripper_140", "right_hand")),
         other: None,
     },
     Case {
         robot: "jaco",
         names: SerialNames::ROBOSUITE_JACO,
         start: &[3.192, 3.68, 0.0, 1.17, 0.05, 3.76, std::f64::consts::PI],
-        gripper: Some(("jaco_three_finger_gripper", "right_hand")),
+        gripper: Some(Mounted::AS_IT_IS("jaco_three_finger_gripper", "right_hand")),
         other: None,
     },
     Case {
@@ -199,14 +219,14 @@ const CASES: [Case; 12] = [
         robot: "baxter",
         names: SerialNames::ROBOSUITE_BAXTER_RIGHT,
         start: BAXTER_RIGHT_START,
-        gripper: Some(("rethink_gripper", "right_hand")),
+        gripper: Some(Mounted::AS_IT_IS("rethink_gripper", "right_hand")),
         other: Some((SerialNames::ROBOSUITE_BAXTER_LEFT, BAXTER_LEFT_START)),
     },
     Case {
         robot: "baxter",
         names: SerialNames::ROBOSUITE_BAXTER_LEFT,
         start: BAXTER_LEFT_START,
-        gripper: Some(("rethink_gripper", "left_hand")),
+        gripper: Some(Mounted::AS_IT_IS("rethink_gripper", "left_hand")),
         other: Some((SerialNames::ROBOSUITE_BAXTER_RIGHT, BAXTER_RIGHT_START)),
     },
     Case {
@@ -229,8 +249,13 @@ const CASES: [Case; 12] = [
         start: &[0.0, -1.2, 1.85, 0.0, 0.862, 0.0],
         // robosuite's `bd_gripper.xml` sets the world's gravity to zero (`<option
         // gravity="0 0 0"/>`), which a component may not (see
-        // `spots_gripper_file_would_switch_gravity_off_and_is_refused_naming_it`).
-        gripper: None,
+        // `spots_gripper_file_would_switch_gravity_off_and_is_refused_naming_it`): it is
+        // mounted with the world's gravity stated over it, as a file's angle unit is.
+        gripper: Some(Mounted {
+            file: "bd_gripper",
+            hand: "right_hand",
+            stated: r#"<option gravity="0 0 -9.81"/>"#,
+        }),
         other: None,
     },
 ];
@@ -268,17 +293,30 @@ impl<const I: usize> Interface<Sim> for CaseArm<I> {
     }
 }
 
-/// Case `I`'s default gripper, as its file is (nothing drives it).
-struct CaseGripper<const I: usize>;
+/// Case `I`'s default gripper's file, as it is.
+struct CaseGripperFile<const I: usize>;
 
-impl<const I: usize> Component for CaseGripper<I> {
+impl<const I: usize> Component for CaseGripperFile<I> {
     fn declaration() -> Declaration {
-        let (gripper, _) = CASES[I].gripper.expect("the case has a gripper");
-        Declaration::new(gripper).mjcf_file(
+        let gripper = CASES[I].gripper.expect("the case has a gripper").file;
+        Declaration::new(format!("{gripper}_file")).mjcf_file(
             peers::package("robosuite")
                 .join("models/assets/grippers")
                 .join(format!("{gripper}.xml")),
         )
+    }
+}
+
+/// Case `I`'s default gripper: its file with what the case states over it (nothing drives
+/// it).
+struct CaseGripper<const I: usize>;
+
+impl<const I: usize> Component for CaseGripper<I> {
+    fn declaration() -> Declaration {
+        let mounted = CASES[I].gripper.expect("the case has a gripper");
+        Declaration::new(mounted.file)
+            .extends::<CaseGripperFile<I>>()
+            .template(format!("<mujoco>{}</mujoco>", mounted.stated))
     }
 }
 
@@ -292,11 +330,13 @@ impl<const I: usize, const GRIPPER: bool> Component for CaseWorld<I, GRIPPER> {
         let mut mounted = String::new();
         if GRIPPER {
             declaration = declaration.uses::<CaseGripper<I>>();
-            let (gripper, hand) = CASES[I].gripper.expect("the case has a gripper");
-            mounted = format!(r#"<{gripper} name="gripper" parent="{hand}"/>"#);
+            let Mounted { file, hand, .. } = CASES[I].gripper.expect("the case has a gripper");
+            mounted = format!(r#"<{file} name="gripper" parent="{hand}"/>"#);
         }
+        // MuJoCo's gravity, stated: a component may then state it too (Spot's gripper does).
         declaration.template(format!(
-            r#"<mujoco><worldbody><{arm} name="arm">{mounted}</{arm}></worldbody></mujoco>"#
+            r#"<mujoco><option gravity="0 0 -9.81"/>
+                 <worldbody><{arm} name="arm">{mounted}</{arm}></worldbody></mujoco>"#
         ))
     }
 }

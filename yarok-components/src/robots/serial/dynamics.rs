@@ -11,7 +11,7 @@ use crate::robots::profile::Profile;
 
 /// The share of each actuator's strength a motion may plan to use; the rest is left to the
 /// feedback that corrects what the plan did not foresee.
-pub(super) const PLANNED_SHARE: f64 = 0.8;
+pub(super) const PLANNED_SHARE: f64 = 0.9;
 
 /// How many instants of a motion's profile are checked.
 const CHECKED_INSTANTS: usize = 60;
