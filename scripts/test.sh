@@ -74,7 +74,8 @@ echo "== your own crate: examples/own_crate, a crate outside yarok's workspace, 
   cargo test --locked
   cargo run --locked -- --env mock
 )
-echo "== docs"
+echo "== docs, with the default features and with every feature"
+RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --features yarok/camera,yarok/viewer,yarok/zenoh,yarok/dataset
 echo "== example binary, started directly"
 cargo build --examples --locked

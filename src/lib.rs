@@ -83,7 +83,10 @@ pub fn platform() -> PlatformBuilder {
     let builder = Platform::builder()
         .backend::<mjc::Sim>(mjc::SimBackend::from_settings)
         .backend::<hw::Real>(hw::HardwareBackend::from_settings)
-        .backend::<Mock>(|_, _| Ok(MockBackend::new(MOCK_TIMESTEP, false)))
+        .backend::<Mock>(|composition, settings| {
+            let declared = mjc::DeclaredWorld::new(composition, settings)?;
+            Ok(MockBackend::new(MOCK_TIMESTEP, false).with_world(std::rc::Rc::new(declared)))
+        })
         .plugin_factory("joints_csv", components::plugins::JointRecorder::new)
         .plugin_factory("mcap", components::plugins::McapRecorder::new)
         .plugin_factory("video", components::plugins::VideoRecorder::new);

@@ -61,7 +61,7 @@ impl SimBackend {
         )
     }
 
-    fn with_model(model: Arc<Model>, source: ModelSource) -> Result<Self, ModelError> {
+    pub(crate) fn with_model(model: Arc<Model>, source: ModelSource) -> Result<Self, ModelError> {
         let mut data = Data::new(&model)?;
         data.forward();
         Ok(Self {

@@ -18,8 +18,8 @@ macro_rules! handle {
         $(#[$doc])*
         #[derive(Clone)]
         pub struct $name {
-            data: Rc<RefCell<Data>>,
-            id: $id,
+            pub(crate) data: Rc<RefCell<Data>>,
+            pub(crate) id: $id,
         }
 
         impl $name {
@@ -301,6 +301,22 @@ impl std::fmt::Debug for Camera {
 
 #[cfg(feature = "render")]
 impl Camera {
+    /// A camera `id` of the state `data`, drawn by `renderer`, seeing every geom group.
+    pub(crate) fn new(
+        data: Rc<RefCell<Data>>,
+        renderer: SharedRenderer,
+        id: crate::CameraId,
+    ) -> Self {
+        Self {
+            data,
+            renderer,
+            id,
+            visible: [true; 6],
+            reach: None,
+            touching: None,
+        }
+    }
+
     /// The same camera, not drawing geoms of the `hidden` groups (0–5, MJCF's `group`).
     #[must_use]
     pub fn hiding_groups(mut self, hidden: &[usize]) -> Self {
@@ -529,13 +545,6 @@ impl SimBind for Bind<Sim> {
         let renderer = backend
             .renderer(width, height, preset)
             .map_err(|e| self.error(e))?;
-        Ok(Camera {
-            data: backend.shared_data(),
-            renderer,
-            id,
-            visible: [true; 6],
-            reach: None,
-            touching: None,
-        })
+        Ok(Camera::new(backend.shared_data(), renderer, id))
     }
 }

@@ -38,10 +38,10 @@
 //!
 //! # Cargo features
 //!
-//! - `render` (default): [`Renderer`], offscreen rendering through EGL (libEGL is opened at run
+//! - `render` (default): `Renderer`, offscreen rendering through EGL (libEGL is opened at run
 //!   time; Mesa's llvmpipe serves machines without a GPU).
-//! - `viewer`: [`View`], a model's scene drawn live into an X11 [`Window`] (libX11 is opened at
-//!   run time).
+//! - `viewer`: `View`, a model's scene drawn live into an X11 `Window` (libX11 is opened at run
+//!   time).
 //!
 //! # Logging
 //!
@@ -56,6 +56,7 @@ mod compile_notice;
 mod composition;
 mod contacts;
 mod data;
+mod declared;
 mod depth;
 mod error;
 mod guard;
@@ -85,6 +86,7 @@ pub mod sys;
 pub use backend::{Sim, SimBackend};
 pub use contacts::ContactPoint;
 pub use data::{Data, SavedState};
+pub use declared::{DeclaredWorld, MockBind};
 pub use depth::{DepthImage, depth_to_millimetres};
 pub use error::{LibraryError, ModelError};
 #[cfg(feature = "render")]

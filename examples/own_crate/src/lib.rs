@@ -2,6 +2,8 @@
 //! (MuJoCo) and a `mock` drive (no physics: it is where it is told to be), composed beside
 //! yarok's bundled components.
 
+pub mod pan_tilt;
+
 use std::cell::Cell;
 use std::rc::Rc;
 

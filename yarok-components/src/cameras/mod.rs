@@ -24,17 +24,20 @@ pub use mock::BlackFrames;
 
 /// A camera: `read()` gives a colour image, `read_depth()` distances in metres.
 ///
-/// Tag `cam`; config `width`, `height` (pixels, default 640×480), `fovy` (degrees, default 45)
-/// and `preset` (`"quality"`, the default: shadows, reflections, multisampling; `"fast"`: none
-/// of those, several times faster on a CPU renderer). The camera looks down its body's −z axis
-/// with +y up; place it with a `<body>` around the tag or `parent=` on a robot's body. Its
-/// probes `rgb` and `depth` render when read.
+/// Tag `cam`; config `width`, `height` (pixels, default 640×480), `fovy` (degrees, default 45),
+/// `preset` (`"quality"`, the default: shadows, reflections, multisampling; `"fast"`: none of
+/// those, several times faster on a CPU renderer) and `look`, the axis of its parent's frame it
+/// looks along (`"-z"`, the default, as MuJoCo's cameras, +y up in the image; `"+x"`, `"-x"`,
+/// `"+y"`, `"-y"`, +z up; `"+z"`: [`LOOK_DIRECTIONS`]), so that a camera on a link looks along
+/// it with no hand-derived `xyaxes`. Place it with a `<body>` around the tag or `parent=` on a
+/// robot's body or site. Its probes `rgb` and `depth` render when read.
 ///
 /// Environments: `sim` renders offscreen with MuJoCo; `real` (feature `camera`) shows the
 /// newest frame of a Video4Linux2 camera (interface setting `device`, e.g. `/dev/video0`, at
 /// `fps`, default 30), of the MJPEG stream of a program it runs (`command`, e.g. ffmpeg or
-/// GStreamer) or of a file or FIFO (`file`), and has no depth; `mock` returns black images of
-/// the configured size.
+/// GStreamer) or of a file or FIFO (`file`), and has no depth; `mock` renders the world as its
+/// templates placed it and as mock drives have set its joints since (yarok's platform attaches
+/// that declared world; with none, black images of the configured size).
 #[derive(Clone)]
 pub struct Cam {
     feed: Rc<dyn CameraFeed>,
@@ -116,7 +119,20 @@ struct CamConfig {
     height: u32,
     fovy: f64,
     preset: Preset,
+    look: String,
 }
+
+/// The directions a camera may look along in its parent's frame (its `look` setting), each
+/// with the camera frame's x and y axes (`xyaxes`) that point it there, image up toward +z (or
+/// +y, looking along z).
+pub const LOOK_DIRECTIONS: [(&str, &str); 6] = [
+    ("-z", "1 0 0 0 1 0"),
+    ("+z", "-1 0 0 0 1 0"),
+    ("+x", "0 -1 0 0 0 1"),
+    ("-x", "0 1 0 0 0 1"),
+    ("+y", "1 0 0 0 0 1"),
+    ("-y", "-1 0 0 0 0 1"),
+];
 
 /// How a simulated camera renders.
 #[derive(Clone, Copy, serde::Serialize, serde::Deserialize)]
@@ -134,17 +150,19 @@ impl Component for Cam {
                 height: 480,
                 fovy: 45.0,
                 preset: Preset::Quality,
+                look: "-z".to_owned(),
             })
             .template(
-            r#"<mujoco>
+                r#"<mujoco>
                  <worldbody>
                    <body name="body">
-                     <camera name="camera" fovy="{fovy}"/>
+                     <camera name="camera" fovy="{fovy}" xyaxes='{LOOK}'/>
                      <geom type="box" size="0.012 0.012 0.008" pos="0 0 0.009" rgba="0.15 0.15 0.15 1" contype="0" conaffinity="0"/>
                    </body>
                  </worldbody>
-               </mujoco>"#,
-        )
+               </mujoco>"#
+                    .replace("LOOK", &look_expression()),
+            )
     }
 
     fn interfaces(interfaces: &mut Interfaces<Self>) {
@@ -160,13 +178,48 @@ impl Component for Cam {
     }
 }
 
-/// The configured image size, each side at least one pixel.
+/// The template expression giving the camera's `xyaxes` for its `look` setting.
+fn look_expression() -> String {
+    LOOK_DIRECTIONS
+        .iter()
+        .rev()
+        .fold(String::from("\"\""), |otherwise, (direction, axes)| {
+            format!(r#""{axes}" if look == "{direction}" else {otherwise}"#)
+        })
+}
+
+/// The configured image size, each side at least one pixel (and the direction it looks
+/// along, one of [`LOOK_DIRECTIONS`]).
 fn size<E: Environment>(bind: &Bind<E>) -> Result<(u32, u32), BindError> {
-    let CamConfig { width, height, .. } = bind.config()?;
+    let CamConfig {
+        width,
+        height,
+        look,
+        ..
+    } = bind.config()?;
+    if !LOOK_DIRECTIONS
+        .iter()
+        .any(|(direction, _)| *direction == look)
+    {
+        return Err(bind.error(format!(
+            "look {look:?} is not a direction: one of {}",
+            LOOK_DIRECTIONS.map(|(direction, _)| direction).join(", ")
+        )));
+    }
     for (key, pixels) in [("width", width), ("height", height)] {
         if pixels == 0 {
             return Err(bind.error(format!("{key} must be at least one pixel")));
         }
     }
     Ok((width, height))
+}
+
+/// The configured render preset.
+#[cfg(feature = "render")]
+fn render_preset<E: Environment>(bind: &Bind<E>) -> Result<yarok_mjc::RenderPreset, BindError> {
+    let CamConfig { preset, .. } = bind.config()?;
+    Ok(match preset {
+        Preset::Quality => yarok_mjc::RenderPreset::Quality,
+        Preset::Fast => yarok_mjc::RenderPreset::Fast,
+    })
 }

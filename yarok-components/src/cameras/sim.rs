@@ -2,9 +2,9 @@
 
 use image::RgbImage;
 use yarok_core::component::{Bind, BindError, Interface};
-use yarok_mjc::{Camera, DepthImage, RenderPreset, Sim, SimBind};
+use yarok_mjc::{Camera, DepthImage, Sim, SimBind};
 
-use super::{Cam, CamConfig, CamError, CameraFeed, Preset, size};
+use super::{Cam, CamError, CameraFeed, render_preset, size};
 
 impl CameraFeed for Camera {
     fn rgb(&self) -> Result<RgbImage, CamError> {
@@ -24,11 +24,7 @@ impl CameraFeed for Camera {
 impl Interface<Sim> for Cam {
     async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
         let (width, height) = size(bind)?;
-        let CamConfig { preset, .. } = bind.config()?;
-        let preset = match preset {
-            Preset::Quality => RenderPreset::Quality,
-            Preset::Fast => RenderPreset::Fast,
-        };
+        let preset = render_preset(bind)?;
         let camera = bind.camera_with("camera", width, height, preset)?;
         Ok(Cam::with_feed(bind, std::rc::Rc::new(camera)))
     }

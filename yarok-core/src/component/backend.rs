@@ -52,11 +52,27 @@ pub trait Backend: Any {
 
 /// A backend with nothing behind it: time advances by a fixed timestep per tick. For tests of
 /// behaviours and plugins, and for components' `mock` interfaces.
-#[derive(Debug, Clone)]
+///
+/// It may carry a view of the world as it was declared ([`MockBackend::with_world`]), which
+/// components' mock drives read: in yarok, the composed model at its initial state, with no
+/// physics (`yarok_mjc::DeclaredWorld`).
+#[derive(Clone)]
 pub struct MockBackend {
     time: Cell<f64>,
     timestep: f64,
     paced: bool,
+    world: Option<std::rc::Rc<dyn std::any::Any>>,
+}
+
+impl std::fmt::Debug for MockBackend {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("MockBackend")
+            .field("time", &self.time)
+            .field("timestep", &self.timestep)
+            .field("paced", &self.paced)
+            .field("world", &self.world.is_some())
+            .finish()
+    }
 }
 
 impl MockBackend {
@@ -66,7 +82,20 @@ impl MockBackend {
             time: Cell::new(0.0),
             timestep,
             paced,
+            world: None,
         }
+    }
+
+    /// The mock with a view of the declared world attached, for components' mock drives to
+    /// read ([`MockBackend::world`]).
+    pub fn with_world(mut self, world: std::rc::Rc<dyn std::any::Any>) -> Self {
+        self.world = Some(world);
+        self
+    }
+
+    /// The view of the declared world attached, if it is a `T`.
+    pub fn world<T: std::any::Any>(&self) -> Option<&T> {
+        self.world.as_deref()?.downcast_ref()
     }
 }
 
