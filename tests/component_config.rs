@@ -201,3 +201,25 @@ fn a_config_field_templates_cannot_hold_is_refused_at_compose() {
         "{error}"
     );
 }
+
+/// A room with the fan placed by `pos=`, a key the fan's config does not have.
+struct PlacedFanRoom;
+impl Component for PlacedFanRoom {
+    fn declaration() -> Declaration {
+        Declaration::new("placed_fan_room")
+            .uses::<Fan>()
+            .template(r#"<mujoco><worldbody><fan name="fan" pos="0 0 1"/></worldbody></mujoco>"#)
+    }
+}
+
+#[test]
+fn placing_a_component_by_a_key_it_lacks_says_how_components_are_placed() {
+    let error = yarok::core::compose::compose::<PlacedFanRoom>()
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("no config key `pos` (it has blades, speed, mode)")
+            && error.contains("a component is placed by a `<body>` around its tag, by `parent=`"),
+        "{error}"
+    );
+}

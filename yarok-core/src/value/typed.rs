@@ -14,8 +14,14 @@ pub(crate) fn typed(defaults: &Config, key: &str, value: Value) -> Result<Value,
         } else {
             format!("it has {}", keys.join(", "))
         };
+        let placing = if ["pos", "quat", "euler", "axisangle", "xyaxes", "zaxis"].contains(&key) {
+            "; a component is placed by a `<body>` around its tag, by `parent=` (a body or site), \
+             or by a config key of its own that its template uses"
+        } else {
+            ""
+        };
         return Err(format!(
-            "no config key `{key}` ({known}){}",
+            "no config key `{key}` ({known}){}{placing}",
             did_you_mean(key, keys.iter().copied())
         ));
     };
