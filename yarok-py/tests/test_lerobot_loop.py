@@ -116,3 +116,18 @@ def test_demonstrations_train_a_policy_that_lerobot_evaluates_in_the_environment
     assert not episode["success"]
     assert -1.0 < episode["max_reward"] < 0
     assert episode["sum_reward"] <= 399 * episode["max_reward"]
+
+
+def test_the_readmes_install_line_is_what_the_loop_is_tested_with():
+    """The README's LeRobot lines name the extras and Python this venv was made with (by
+    ``scripts/setup-lerobot.sh``), so that following them gives what this test ran."""
+    root = Path(__file__).resolve().parents[2]
+    readme = (root / "README.md").read_text()
+    setup = (root / "scripts" / "setup-lerobot.sh").read_text()
+    line = next(line for line in readme.splitlines() if "pip install 'lerobot[" in line)
+    assert line.startswith("python3.12 -m venv "), line
+    extras = line.split("'lerobot[", 1)[1].split("]", 1)[0]
+    assert f'"lerobot[{extras}]==' in setup, (extras, setup)
+    assert sys.version_info >= (3, 12)
+    for command in ["lerobot-train", "lerobot-eval"]:
+        assert shutil.which(command, path=str(Path(sys.executable).parent)), command
