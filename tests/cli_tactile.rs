@@ -439,3 +439,112 @@ fn calibration_settings_outside_their_physical_range_are_refused_before_fitting(
         &["spread_pixels 1e9 is outside its physical range, 0 to 64"],
     );
 }
+
+/// A press list read by its header: columns in another order read the same presses; a list
+/// without a header, a frame named twice, a radius or centre that no frame has, and a grey
+/// frame among colour ones are refused naming the file and line (and the CLI exits 2 on them,
+/// writing nothing).
+#[test]
+fn press_lists_are_read_by_their_header_and_checked() {
+    use yarok::components::tactile::calibration::read_presses;
+
+    let real = format!(
+        "{}/yarok-components/data/tactile-real/digit",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let original = std::fs::read_to_string(format!("{real}/presses.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = original
+        .lines()
+        .map(|line| line.split(',').collect())
+        .collect();
+    let folder = tempfile::tempdir().unwrap();
+    std::fs::create_dir(folder.path().join("frames")).unwrap();
+    for entry in std::fs::read_dir(format!("{real}/frames")).unwrap() {
+        let entry = entry.unwrap();
+        std::fs::copy(
+            entry.path(),
+            folder.path().join("frames").join(entry.file_name()),
+        )
+        .unwrap();
+    }
+    let list = |name: &str, text: String| {
+        let path = folder.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        path.to_str().unwrap().to_owned()
+    };
+    let reordered = list(
+        "reordered.csv",
+        rows.iter()
+            .map(|r| format!("{},{},{},{}\n", r[3], r[0], r[2], r[1]))
+            .collect(),
+    );
+    let read = |path: &str| -> Vec<(String, [f64; 2], f64)> {
+        read_presses(path)
+            .unwrap()
+            .into_iter()
+            .map(|(name, press)| (name, press.centre, press.radius))
+            .collect()
+    };
+    assert_eq!(read(&reordered), read(&format!("{real}/presses.csv")));
+    let lines: Vec<&str> = original.lines().collect();
+    let first_frame = rows[1][0];
+    // A grey copy of the second frame, under a name of its own.
+    let second = image::open(format!("{real}/frames/{}.png", rows[2][0])).unwrap();
+    second
+        .to_luma8()
+        .save(folder.path().join("frames/grey.png"))
+        .unwrap();
+    let cases = [
+        (
+            "headless.csv",
+            lines[1..].join("\n"),
+            "headless.csv:1: the header must name the columns frame, center_x, center_y, \
+             radius_px (in any order)",
+        ),
+        (
+            "twice.csv",
+            format!("{}\n{}\n{}\n", lines[0], lines[1], lines[1]),
+            &*format!("twice.csv:3: frame \"{first_frame}\" is on line 2 already"),
+        ),
+        (
+            "huge.csv",
+            format!("{}\n{first_frame},140,148,1e30\n", lines[0]),
+            "huge.csv:2: radius_px 1000000000000000000000000000000 is not between 1 and 160",
+        ),
+        (
+            "off.csv",
+            format!("{}\n{first_frame},-5,148,40\n", lines[0]),
+            "off.csv:2: centre (-5, 148) is off its 240×320 frame",
+        ),
+        (
+            "grey.csv",
+            format!("{}\n{}\ngrey,140,148,40\n", lines[0], lines[1]),
+            "grey.csv:3: frame",
+        ),
+    ];
+    let out = folder.path().join("out.json");
+    for (name, text, said) in cases {
+        let path = list(name, text);
+        let error = read_presses(&path).unwrap_err().to_string();
+        assert!(error.contains(said), "{error}");
+        yarok_binary::yarok_fails(
+            &[
+                "tactile",
+                "calibrate",
+                &format!("{real}/background.png"),
+                &path,
+                out.to_str().unwrap(),
+            ],
+            2,
+            &[said],
+        );
+        assert!(!out.exists());
+    }
+    let grey = read_presses(&folder.path().join("grey.csv").to_string_lossy())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        grey.contains("is 240×320 grey where the first frame is 240×320 colour"),
+        "{grey}"
+    );
+}

@@ -65,7 +65,9 @@ const USAGE: &str = "usage: yarok run WORLD [--behaviour NAME] [--viewer] [--ins
          LEDs on a 12.6 mm ring at the membrane's nearest depth
   FILE   a calibration (from calibrate): the image is the calibrated model's, the gel taken to
          be at the depth map's farthest value and PX (default the calibration's) its scale
-  PRESSES.csv  rows frame,center_x,center_y,radius_px; frames/FRAME.png beside it; --hold-out N
+  PRESSES.csv  a header naming frame,center_x,center_y,radius_px (any order), a row a press
+               (each frame once, its centre on the frame, 1 px <= radius <= half the frame);
+               frames/FRAME.png beside it, all of one size and kind; --hold-out N
          leaves out the frames whose number is one less than a multiple of N; the ball's
          diameter 0.5-50 mm, pixels per mm 1-200, contact scales 0.05-3, spreads 0-64 px";
 

@@ -63,15 +63,21 @@ pub(super) fn within(press: &Press, x: usize, y: usize, scale: f64) -> bool {
     dx * dx + dy * dy < (scale * press.radius).powi(2)
 }
 
-/// Reads a set of presses: a CSV file with a header and rows `frame, center_x, center_y,
-/// radius_px` (the frame's name without `.png`, the imprint's centre column and row and its
-/// radius in pixels), the frames being `frames/FRAME.png` beside it. Returns each press with
-/// its frame's name.
+/// The columns a press list names in its header, in any order (others are ignored).
+const COLUMNS: [&str; 4] = ["frame", "center_x", "center_y", "radius_px"];
+
+/// Reads a set of presses: a CSV file whose header names the columns `frame`, `center_x`,
+/// `center_y` and `radius_px` (in any order; others are ignored) — the frame's name without
+/// `.png`, the imprint's centre column and row and its radius in pixels — the frames being
+/// `frames/FRAME.png` beside it. Returns each press with its frame's name.
 ///
 /// # Errors
 ///
 /// [`CalibrationError::Io`] if a file cannot be read, [`CalibrationError::Format`] naming the
-/// file and line if a row or frame is not one.
+/// file and line if the header does not name the columns, a row or frame is not one, a frame is
+/// named twice, a centre is off its frame or a radius is not between a pixel and half the
+/// frame's larger side, or the frames are not all of one size and kind (all colour, or all
+/// grey).
 pub fn read_presses(csv: &str) -> Result<Vec<(String, Press)>, CalibrationError> {
     let io = |path: &str| {
         let path = path.to_owned();
@@ -82,46 +88,116 @@ pub fn read_presses(csv: &str) -> Result<Vec<(String, Press)>, CalibrationError>
         .parent()
         .unwrap_or(std::path::Path::new("."))
         .join("frames");
-    let mut presses = Vec::new();
-    for (number, line) in text.lines().enumerate().skip(1) {
-        if line.trim().is_empty() {
-            continue;
-        }
-        let format = |reason: String| CalibrationError::Format {
-            path: format!("{csv}:{}", number + 1),
-            reason,
-        };
+    let format = |number: usize, reason: String| CalibrationError::Format {
+        path: format!("{csv}:{}", number + 1),
+        reason,
+    };
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .filter(|(_, line)| !line.trim().is_empty());
+    let (header_number, header) = lines
+        .next()
+        .ok_or_else(|| format(0, "no header and no presses".to_owned()))?;
+    let names: Vec<&str> = header.split(',').map(str::trim).collect();
+    let column = |wanted: &str| names.iter().position(|name| *name == wanted);
+    let [frame_at, x_at, y_at, radius_at] = COLUMNS.map(column);
+    let (Some(frame_at), Some(x_at), Some(y_at), Some(radius_at)) =
+        (frame_at, x_at, y_at, radius_at)
+    else {
+        return Err(format(
+            header_number,
+            format!(
+                "the header must name the columns {} (in any order); it is {header:?}{}",
+                COLUMNS.join(", "),
+                if names.iter().any(|name| name.parse::<f64>().is_ok()) {
+                    " (a row of numbers: a file without a header would lose its first press)"
+                } else {
+                    ""
+                }
+            ),
+        ));
+    };
+    let mut presses: Vec<(String, Press)> = Vec::new();
+    let mut first_lines: Vec<usize> = Vec::new();
+    let mut kind = None;
+    for (number, line) in lines {
         let fields: Vec<&str> = line.split(',').map(str::trim).collect();
-        let [name, x, y, radius] = fields[..] else {
-            return Err(format(format!(
-                "expected 4 fields (frame, center_x, center_y, radius_px), found {}",
-                fields.len()
-            )));
-        };
-        let number_of = |field: &str, what: &str| {
-            field
+        if fields.len() != names.len() {
+            return Err(format(
+                number,
+                format!(
+                    "{} fields where the header names {}",
+                    fields.len(),
+                    names.len()
+                ),
+            ));
+        }
+        let name = fields[frame_at];
+        let number_of = |at: usize| {
+            fields[at]
                 .parse::<f64>()
                 .ok()
                 .filter(|v| v.is_finite())
-                .ok_or_else(|| format(format!("{what} {field:?} is not a finite number")))
+                .ok_or_else(|| {
+                    format(
+                        number,
+                        format!("{} {:?} is not a finite number", names[at], fields[at]),
+                    )
+                })
         };
-        let (x, y, radius) = (
-            number_of(x, "center_x")?,
-            number_of(y, "center_y")?,
-            number_of(radius, "radius_px")?,
-        );
+        let (x, y, radius) = (number_of(x_at)?, number_of(y_at)?, number_of(radius_at)?);
         if name.is_empty() || name.contains(['/', '\\']) || name.starts_with('.') {
-            return Err(format(format!("frame {name:?} is not a file name")));
+            return Err(format(number, format!("frame {name:?} is not a file name")));
+        }
+        if let Some(earlier) = presses.iter().position(|(earlier, _)| earlier == name) {
+            return Err(format(
+                number,
+                format!(
+                    "frame {name:?} is on line {} already: each frame is one press",
+                    first_lines[earlier] + 1
+                ),
+            ));
         }
         let path = folder.join(format!("{name}.png"));
         let shown = path.display().to_string();
-        let frame = image::open(&path)
-            .map_err(|e| format(format!("frame {shown}: {e}")))?
-            .to_rgb8();
+        let image =
+            image::open(&path).map_err(|e| format(number, format!("frame {shown}: {e}")))?;
+        let this_kind = (image.width(), image.height(), image.color().has_color());
+        let (width, height, colour) = *kind.get_or_insert(this_kind);
+        if this_kind != (width, height, colour) {
+            let describe = |(w, h, colour): (u32, u32, bool)| {
+                format!("{w}×{h} {}", if colour { "colour" } else { "grey" })
+            };
+            return Err(format(
+                number,
+                format!(
+                    "frame {shown} is {} where the first frame is {}: the frames of a press \
+                     list come from one sensor",
+                    describe(this_kind),
+                    describe((width, height, colour))
+                ),
+            ));
+        }
+        let (w, h) = (f64::from(width), f64::from(height));
+        if !((0.0..=w).contains(&x) && (0.0..=h).contains(&y)) {
+            return Err(format(
+                number,
+                format!("centre ({x}, {y}) is off its {width}×{height} frame"),
+            ));
+        }
+        let largest = w.max(h) / 2.0;
+        if !(1.0..=largest).contains(&radius) {
+            return Err(format(
+                number,
+                format!("radius_px {radius} is not between 1 and {largest} (half the frame)"),
+            ));
+        }
+        first_lines.push(number);
         presses.push((
             name.to_owned(),
             Press {
-                frame,
+                frame: image.to_rgb8(),
                 centre: [x, y],
                 radius,
             },
