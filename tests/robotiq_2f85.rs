@@ -124,3 +124,71 @@ fn a_mock_gripper_follows_its_requests() {
         .run()
         .unwrap();
 }
+
+/// Fingers that never come to rest (a gripper gone mute mid-grasp, as far as the request can
+/// tell).
+struct NeverStopping;
+
+impl yarok::components::grippers::parallel::FingerDrive for NeverStopping {
+    fn position(&self) -> f64 {
+        0.0
+    }
+
+    fn is_moving(&self) -> bool {
+        true
+    }
+
+    fn requested(&self) -> yarok::components::grippers::parallel::Request {
+        yarok::components::grippers::parallel::Request::POWER_ON
+    }
+
+    fn request(&self, _: yarok::components::grippers::parallel::Request) {}
+}
+
+/// A gripper over [`NeverStopping`] fingers.
+#[derive(Clone)]
+struct StuckGripper(yarok::components::grippers::ParallelGripper);
+
+impl Component for StuckGripper {
+    fn declaration() -> Declaration {
+        Declaration::new("stuck_gripper").template("<mujoco/>")
+    }
+
+    fn interfaces(interfaces: &mut Interfaces<Self>) {
+        interfaces.add::<Mock>();
+    }
+}
+
+impl Interface<Mock> for StuckGripper {
+    async fn bind(bind: &mut Bind<Mock>) -> Result<Self, BindError> {
+        let stroke = yarok::components::grippers::Stroke::ROBOTIQ_2F85;
+        let gripper = yarok::components::grippers::ParallelGripper::with_drive(
+            bind,
+            std::rc::Rc::new(NeverStopping),
+            stroke,
+        );
+        Ok(Self(gripper))
+    }
+}
+
+/// A grasp that does not finish in time is reported where the behaviour awaited it, not
+/// inside yarok.
+#[test]
+fn a_grasp_that_times_out_is_reported_at_the_users_await() {
+    let error = yarok::platform()
+        .world::<StuckGripper>()
+        .environment("mock")
+        .behaviour(|pl| async move {
+            let StuckGripper(gripper) = pl.get("/")?;
+            gripper.close().await?;
+            Ok(())
+        })
+        .run()
+        .unwrap_err()
+        .to_string();
+    let awaited = format!("tests/robotiq_2f85.rs:{}:", line!() - 6);
+    assert!(
+        error.contains(&awaited) && error.contains("timed out"),
+        "{error}"
+    );
+}

@@ -284,17 +284,16 @@ impl<'a> IntoFuture for Grip<'a> {
     type Output = Result<Gripped, WaitError>;
     type IntoFuture = Pin<Box<dyn Future<Output = Self::Output> + 'a>>;
 
+    /// A request that times out is reported at the `.await` that made it.
+    #[track_caller]
     fn into_future(self) -> Self::IntoFuture {
         let gripper = self.gripper;
         // The whole stroke at the requested speed, and a second more to settle.
         let bound = 255.0 / gripper.stroke.positions_per_second(self.request.speed) + 1.0;
+        let stopped = gripper.clock.wait(|| !gripper.is_moving()).timeout(bound);
         self.start();
         Box::pin(async move {
-            gripper
-                .clock
-                .wait(|| !gripper.is_moving())
-                .timeout(bound)
-                .await?;
+            stopped.await?;
             Ok(Gripped {
                 position: gripper.position(),
                 object_detected: gripper.object_detected(),
