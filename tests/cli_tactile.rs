@@ -339,7 +339,15 @@ fn an_output_that_is_one_of_the_inputs_is_refused_and_the_input_kept() {
     ];
     for (out, input) in [(presses, presses), (untouched, untouched)] {
         yarok_binary::yarok_fails(
-            &["tactile", "calibrate", untouched, presses, out],
+            &[
+                "tactile",
+                "calibrate",
+                untouched,
+                presses,
+                out,
+                "--sensor",
+                "digit",
+            ],
             2,
             &[&format!("the output {out} is the input {input}")],
         );
@@ -404,6 +412,8 @@ fn calibration_settings_outside_their_physical_range_are_refused_before_fitting(
                 &untouched,
                 &presses,
                 written.to_str().unwrap(),
+                "--sensor",
+                "digit",
                 flag,
                 value,
             ],
@@ -534,6 +544,8 @@ fn press_lists_are_read_by_their_header_and_checked() {
                 &format!("{real}/background.png"),
                 &path,
                 out.to_str().unwrap(),
+                "--sensor",
+                "digit",
             ],
             2,
             &[said],
@@ -547,4 +559,50 @@ fn press_lists_are_read_by_their_header_and_checked() {
         grey.contains("is 240×320 grey where the first frame is 240×320 colour"),
         "{grey}"
     );
+}
+
+/// A calibration states the sensor it is of: `calibrate` asks for it, and a DIGIT's calibration
+/// given to `yarok tactile gelsight` is refused naming both.
+#[test]
+fn a_calibration_is_of_one_sensor() {
+    let real = format!(
+        "{}/yarok-components/data/tactile-real/digit",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let out = tempfile::tempdir().unwrap();
+    let written = out.path().join("c.json");
+    yarok_binary::yarok_fails(
+        &[
+            "tactile",
+            "calibrate",
+            &format!("{real}/background.png"),
+            &format!("{real}/presses.csv"),
+            written.to_str().unwrap(),
+        ],
+        2,
+        &["calibrate needs --sensor NAME (digit, gelsight, or your sensor's own name)"],
+    );
+    assert!(!written.exists());
+    let digit = format!(
+        "{}/yarok-components/src/tactile/calibration/digit.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let depth = golden("digit/sphere_center/input_depth.npy.gz");
+    let image = out.path().join("gelsight.png");
+    yarok_binary::yarok_fails(
+        &[
+            "tactile",
+            "gelsight",
+            depth.to_str().unwrap(),
+            image.to_str().unwrap(),
+            "--calibration",
+            &digit,
+        ],
+        2,
+        &[&format!(
+            "{digit}: a calibration of a digit sensor, not of a gelsight: calibrate the \
+             gelsight (yarok tactile calibrate … --sensor gelsight)"
+        )],
+    );
+    assert!(!image.exists());
 }

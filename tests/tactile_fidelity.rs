@@ -47,6 +47,8 @@ fn the_bundled_digit_calibration_is_what_calibrate_makes_of_the_shipped_frames()
         &format!("{digit}/background.png"),
         &format!("{digit}/presses.csv"),
         written.to_str().unwrap(),
+        "--sensor",
+        "digit",
         "--hold-out",
         "3",
         "--contact-scale",

@@ -1,7 +1,7 @@
 //! `yarok tactile calibrate`: a sensor's optical model fitted to real frames of ball presses.
 
 use yarok::components::tactile::calibration::{
-    Calibration, FitSettings, check_setting, read_presses, split_held_out,
+    Calibration, FitSettings, check_sensor_name, check_setting, read_presses, split_held_out,
 };
 
 /// Each option's calibration setting, whose physical range bounds it.
@@ -33,6 +33,7 @@ pub(super) fn run(args: &[String]) -> Result<(), String> {
     };
     let mut settings = FitSettings::default();
     let mut hold_out = 0;
+    let mut sensor = None;
     let mut rest = rest.iter();
     while let Some(flag) = rest.next() {
         let value = rest.next().ok_or_else(|| format!("{flag} needs a value"))?;
@@ -52,6 +53,7 @@ pub(super) fn run(args: &[String]) -> Result<(), String> {
             "--pixels-per-mm" => settings.pixels_per_mm = single(flag)?,
             "--contact-scale" => settings.contact_scales = numbers(flag, value)?,
             "--spread" => settings.spreads = numbers(flag, value)?,
+            "--sensor" => sensor = Some(value.as_str()),
             "--hold-out" => {
                 hold_out = value
                     .parse()
@@ -60,12 +62,19 @@ pub(super) fn run(args: &[String]) -> Result<(), String> {
             other => return Err(format!("unknown option {other}\n{}", super::USAGE)),
         }
     }
+    let sensor = sensor.ok_or(
+        "calibrate needs --sensor NAME (digit, gelsight, or your sensor's own name): a \
+         calibration states the sensor it is of, and what loads it checks",
+    )?;
+    check_sensor_name(sensor).map_err(|e| format!("--sensor {sensor}: {e}"))?;
     super::apart_from_inputs(out, &[untouched, presses])?;
     let background = image::open(untouched)
         .map_err(|e| format!("{untouched}: {e}"))?
         .to_rgb8();
     let (used, held) = split_held_out(read_presses(presses).map_err(|e| e.to_string())?, hold_out);
-    let calibration = Calibration::fit(&background, &used, &settings).map_err(|e| e.to_string())?;
+    let calibration = Calibration::fit(&background, &used, &settings)
+        .and_then(|calibration| calibration.for_sensor(sensor))
+        .map_err(|e| e.to_string())?;
     calibration.save(out).map_err(|e| e.to_string())?;
     let geometry = calibration.geometry();
     super::print(&format!(

@@ -10,8 +10,9 @@
 //! yarok compose WORLD [--set [/PATH/]KEY=VALUE]... [--out FILE]
 //! yarok tactile digit|gelsight|geltip DEPTH OUT.png [--background PNG] [--geltip-params DIR]
 //!               [--noise SIGMA] [--seed N] [--calibration FILE.json] [--pixels-per-mm PX]
-//! yarok tactile calibrate UNTOUCHED.png PRESSES.csv OUT.json [--ball-diameter-mm MM]
-//!               [--pixels-per-mm PX] [--contact-scale S,…] [--spread SIGMA,…] [--hold-out N]
+//! yarok tactile calibrate UNTOUCHED.png PRESSES.csv OUT.json --sensor NAME
+//!               [--ball-diameter-mm MM] [--pixels-per-mm PX] [--contact-scale S,…]
+//!               [--spread SIGMA,…] [--hold-out N]
 //! ```
 //!
 //! `run` runs a bundled world (`pick_and_place_world`, …; `--list` lists them) with one of its
@@ -53,9 +54,9 @@ const USAGE: &str = "usage: yarok run WORLD [--behaviour NAME] [--viewer] [--ins
        yarok tactile digit|gelsight|geltip DEPTH OUT.png [--background PNG] [--noise SIGMA] [--seed N]
                      [--geltip-params DIR] [--light-fields files|linear|plane]
                      [--calibration FILE.json] [--pixels-per-mm PX]
-       yarok tactile calibrate UNTOUCHED.png PRESSES.csv OUT.json [--ball-diameter-mm 4.7]
-                     [--pixels-per-mm 19.58] [--contact-scale 0.6,0.9,1.2] [--spread 6,10,14,18]
-                     [--hold-out N]
+       yarok tactile calibrate UNTOUCHED.png PRESSES.csv OUT.json --sensor NAME
+                     [--ball-diameter-mm 4.7] [--pixels-per-mm 19.58]
+                     [--contact-scale 0.6,0.9,1.2] [--spread 6,10,14,18] [--hold-out N]
   WORLD  run: a bundled world's tag (see --list); compose: a bundled component's tag, or an
          MJCF template file
   DEPTH  a 16-bit grey PNG in the unit its depth_unit_m text states (millimetres without one),
@@ -65,6 +66,8 @@ const USAGE: &str = "usage: yarok run WORLD [--behaviour NAME] [--viewer] [--ins
          LEDs on a 12.6 mm ring at the membrane's nearest depth
   FILE   a calibration (from calibrate): the image is the calibrated model's, the gel taken to
          be at the depth map's farthest value and PX (default the calibration's) its scale
+  NAME   the sensor calibrated (digit, gelsight, or your own: letters, digits, _ and -), which
+         the calibration states and what loads it checks
   PRESSES.csv  a header naming frame,center_x,center_y,radius_px (any order), a row a press
                (each frame once, its centre on the frame, 1 px <= radius <= half the frame);
                frames/FRAME.png beside it, all of one size and kind; --hold-out N

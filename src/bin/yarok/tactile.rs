@@ -247,6 +247,9 @@ fn calibrated(
     width: usize,
 ) -> Result<(), String> {
     let calibration = Calibration::load(path).map_err(|e| e.to_string())?;
+    calibration
+        .check_sensor(options.sensor)
+        .map_err(|e| format!("{path}: {e}"))?;
     let height = depth.len() / width.max(1);
     if calibration.size() != (width, height) {
         let (w, h) = calibration.size();

@@ -85,9 +85,14 @@ impl SensorConfig {
             "bundled" => kind.bundled_calibration().map(Some).ok_or_else(|| {
                 bind.error("calibration = \"bundled\", but this sensor has no bundled calibration")
             }),
-            path => Calibration::load(path)
-                .map(Some)
-                .map_err(|e| bind.error(format!("calibration = {path:?}: {e}"))),
+            path => {
+                let calibration = Calibration::load(path)
+                    .map_err(|e| bind.error(format!("calibration = {path:?}: {e}")))?;
+                calibration
+                    .check_sensor(kind.declaration().tag())
+                    .map_err(|e| bind.error(format!("calibration = {path:?}: {e}")))?;
+                Ok(Some(calibration))
+            }
         }
     }
 

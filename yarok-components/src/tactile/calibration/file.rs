@@ -15,6 +15,9 @@ const FORMAT: &str = "yarok tactile calibration 1";
 #[serde(deny_unknown_fields)]
 struct CalibrationFile {
     format: String,
+    /// The sensor it is of; files before sensors were stated have none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    sensor: Option<String>,
     width: u32,
     height: u32,
     pixels_per_mm: f64,
@@ -44,6 +47,7 @@ impl Calibration {
             .expect("an RGB image encodes as PNG");
         let file = CalibrationFile {
             format: FORMAT.to_owned(),
+            sensor: self.sensor.clone(),
             width: self.background.width(),
             height: self.background.height(),
             pixels_per_mm: self.geometry.pixels_per_mm,
@@ -141,6 +145,12 @@ pub(super) fn parse(text: &str, path: &str) -> Result<Calibration, CalibrationEr
     ] {
         super::fit::check_setting(name, value).map_err(format)?;
     }
-    Calibration::new(background, geometry, file.coefficients, file.noise_levels)
-        .map_err(|e| format(e.to_string()))
+    let calibration = Calibration::new(background, geometry, file.coefficients, file.noise_levels)
+        .map_err(|e| format(e.to_string()))?;
+    match file.sensor {
+        Some(sensor) => calibration
+            .for_sensor(&sensor)
+            .map_err(|e| format(e.to_string())),
+        None => Ok(calibration),
+    }
 }

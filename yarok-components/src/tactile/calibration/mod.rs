@@ -131,6 +131,8 @@ pub struct RenderBuffers {
 /// are shared).
 #[derive(Debug, Clone)]
 pub struct Calibration {
+    /// The sensor it is of (`digit`, `gelsight`, a user's name), when its file states one.
+    sensor: Option<String>,
     background: RgbImage,
     geometry: Geometry,
     coefficients: Vec<[f64; 3]>,
@@ -180,12 +182,47 @@ impl Calibration {
             }
         }
         Ok(Self {
+            sensor: None,
             background,
             geometry,
             coefficients,
             noise,
             weights: Arc::new(weights),
         })
+    }
+
+    /// The calibration stating that it is of the sensor `sensor` (`digit`, `gelsight`, or a
+    /// sensor of your own: letters, digits, `_` and `-`), as its file then says and as what
+    /// loads it checks.
+    ///
+    /// # Errors
+    ///
+    /// [`CalibrationError::Fit`] when `sensor` is not such a name.
+    pub fn for_sensor(mut self, sensor: &str) -> Result<Self, CalibrationError> {
+        check_sensor_name(sensor).map_err(CalibrationError::Fit)?;
+        self.sensor = Some(sensor.to_owned());
+        Ok(self)
+    }
+
+    /// The sensor the calibration states it is of, if it states one.
+    pub fn sensor(&self) -> Option<&str> {
+        self.sensor.as_deref()
+    }
+
+    /// Checks that the calibration is of the sensor `kind` (a calibration that states no
+    /// sensor is taken to be of any).
+    ///
+    /// # Errors
+    ///
+    /// A message naming both sensors.
+    pub fn check_sensor(&self, kind: &str) -> Result<(), String> {
+        match self.sensor() {
+            Some(sensor) if sensor != kind => Err(format!(
+                "a calibration of a {sensor} sensor, not of a {kind}: calibrate the {kind} \
+                 (yarok tactile calibrate … --sensor {kind})"
+            )),
+            _ => Ok(()),
+        }
     }
 
     /// Fits a calibration to a sensor's `untouched` frame and frames of a ball pressed into it
@@ -372,5 +409,31 @@ impl Calibration {
                 }
             }
         }
+    }
+}
+
+/// Whether `sensor` is a sensor's name a calibration may state: letters, digits, `_` and `-`.
+///
+/// ```
+/// use yarok_components::tactile::calibration::check_sensor_name;
+///
+/// assert!(check_sensor_name("digit").is_ok() && check_sensor_name("../x").is_err());
+/// ```
+///
+/// # Errors
+///
+/// A message naming the name, when it is not one.
+pub fn check_sensor_name(sensor: &str) -> Result<(), String> {
+    if !sensor.is_empty()
+        && sensor.len() <= 64
+        && sensor
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+    {
+        Ok(())
+    } else {
+        Err(format!(
+            "sensor {sensor:?} is not a sensor's name (letters, digits, _ and -, at most 64)"
+        ))
     }
 }
