@@ -28,6 +28,8 @@ fn the_digit_model_from_the_command_line_matches_the_reference() {
         background.to_str().unwrap(),
         "--noise",
         "0",
+        "--depth-unit",
+        "zbuffer",
     ]);
     assert_eq!(code, 0, "{stderr}");
     let ours = image::open(&out).unwrap().to_rgb8();
@@ -605,4 +607,52 @@ fn a_calibration_is_of_one_sensor() {
         )],
     );
     assert!(!image.exists());
+}
+
+/// A `.npy` depth map is in metres for every sensor, as `--help` says: a flat DIGIT gel at
+/// 0.030 m (untouched) renders as its background, not near-black; the reference model's raw
+/// z-buffer values are read with `--depth-unit zbuffer`.
+#[test]
+fn a_npy_depth_map_is_in_metres_for_the_digit_too() {
+    let dir = tempfile::tempdir().unwrap();
+    let npy = dir.path().join("flat.npy");
+    write_npy(&npy, 320, 240, &vec![0.030; 320 * 240]);
+    let background = golden("digit/background.png");
+    let out = dir.path().join("flat.png");
+    let (code, _, stderr) = yarok(&[
+        "tactile",
+        "digit",
+        npy.to_str().unwrap(),
+        out.to_str().unwrap(),
+        "--background",
+        background.to_str().unwrap(),
+        "--noise",
+        "0",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let image = image::open(&out).unwrap().to_rgb8();
+    let reference = image::open(&background).unwrap().to_rgb8();
+    let mean_difference = image
+        .as_raw()
+        .iter()
+        .zip(reference.as_raw())
+        .map(|(a, b)| f64::from(a.abs_diff(*b)))
+        .sum::<f64>()
+        / image.as_raw().len() as f64;
+    assert!(
+        mean_difference < 5.0,
+        "{mean_difference} levels from the background"
+    );
+    yarok_binary::yarok_fails(
+        &[
+            "tactile",
+            "gelsight",
+            npy.to_str().unwrap(),
+            out.to_str().unwrap(),
+            "--depth-unit",
+            "zbuffer",
+        ],
+        2,
+        &["--depth-unit zbuffer is for a .npy map given to the reference DIGIT model"],
+    );
 }

@@ -10,6 +10,7 @@
 //! yarok compose WORLD [--set [/PATH/]KEY=VALUE]... [--out FILE]
 //! yarok tactile digit|gelsight|geltip DEPTH OUT.png [--background PNG] [--geltip-params DIR]
 //!               [--noise SIGMA] [--seed N] [--calibration FILE.json] [--pixels-per-mm PX]
+//!               [--depth-unit m|zbuffer]
 //! yarok tactile calibrate UNTOUCHED.png PRESSES.csv OUT.json --sensor NAME
 //!               [--ball-diameter-mm MM] [--pixels-per-mm PX] [--contact-scale S,…]
 //!               [--spread SIGMA,…] [--hold-out N]
@@ -32,8 +33,8 @@
 //! component at a path (`/tower/rows=4`).
 //!
 //! `tactile` turns a depth map into a tactile image with a sensor's optical model. DEPTH is a
-//! 16-bit PNG in millimetres or a `.npy`/`.npy.gz` float array in the model's unit (DIGIT: the raw
-//! z-buffer, as the reference; a PNG selects DIGIT's metric mode). GelTip needs its geometry:
+//! 16-bit PNG in millimetres or a `.npy`/`.npy.gz` float array in metres (`--depth-unit zbuffer`:
+//! the reference DIGIT model's raw z-buffer values). GelTip needs its geometry:
 //! `--geltip-params DIR` with `bkg_depth_m.npy.gz` and `light_field_{0,1,2}.npy.gz`. With
 //! `--calibration FILE` the image is that calibrated model's instead (the gel at the depth map's
 //! farthest value). `tactile calibrate` fits a calibration to real frames of ball presses
@@ -53,14 +54,15 @@ const USAGE: &str = "usage: yarok run WORLD [--behaviour NAME] [--viewer] [--ins
        yarok compose WORLD [--set [/PATH/]KEY=VALUE]... [--out FILE]
        yarok tactile digit|gelsight|geltip DEPTH OUT.png [--background PNG] [--noise SIGMA] [--seed N]
                      [--geltip-params DIR] [--light-fields files|linear|plane]
-                     [--calibration FILE.json] [--pixels-per-mm PX]
+                     [--calibration FILE.json] [--pixels-per-mm PX] [--depth-unit m|zbuffer]
        yarok tactile calibrate UNTOUCHED.png PRESSES.csv OUT.json --sensor NAME
                      [--ball-diameter-mm 4.7] [--pixels-per-mm 19.58]
                      [--contact-scale 0.6,0.9,1.2] [--spread 6,10,14,18] [--hold-out N]
   WORLD  run: a bundled world's tag (see --list); compose: a bundled component's tag, or an
          MJCF template file
   DEPTH  a 16-bit grey PNG in the unit its depth_unit_m text states (millimetres without one),
-         or a .npy/.npy.gz float32/float64 array in metres
+         or a .npy/.npy.gz float32/float64 array in metres (--depth-unit zbuffer: the reference
+         DIGIT model's raw z-buffer values, as its test data hold)
   DIR    GelTip geometry: bkg_depth_m.npy.gz (the membrane's depth) and, for --light-fields files
          (the default), light_field_{0,1,2}.npy.gz; linear and plane compute the fields for three
          LEDs on a 12.6 mm ring at the membrane's nearest depth

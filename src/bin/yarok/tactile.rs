@@ -16,6 +16,8 @@ struct Options<'a> {
     light_fields: Option<LightFieldMethod>,
     noise: Option<f64>,
     seed: u64,
+    /// A `.npy` map holds the reference DIGIT model's raw z-buffer values, not metres.
+    zbuffer: bool,
     calibration: Option<&'a str>,
     pixels_per_mm: Option<f64>,
 }
@@ -45,6 +47,7 @@ fn options(args: &[String]) -> Result<Options<'_>, String> {
         light_fields: None,
         noise: None,
         seed: 0,
+        zbuffer: false,
         calibration: None,
         pixels_per_mm: None,
     };
@@ -53,6 +56,18 @@ fn options(args: &[String]) -> Result<Options<'_>, String> {
         let value = rest.next().ok_or_else(|| format!("{flag} needs a value"))?;
         match flag.as_str() {
             "--background" => options.background = Some(value),
+            "--depth-unit" => {
+                options.zbuffer = match value.as_str() {
+                    "m" => false,
+                    "zbuffer" => true,
+                    other => {
+                        return Err(format!(
+                            "--depth-unit {other}: expected m (metres) or zbuffer (the \
+                             reference DIGIT model's raw values)"
+                        ));
+                    }
+                }
+            }
             "--calibration" => options.calibration = Some(value),
             "--pixels-per-mm" => {
                 options.pixels_per_mm = Some(
@@ -104,10 +119,10 @@ fn options(args: &[String]) -> Result<Options<'_>, String> {
 /// The most texture noise `--noise` takes: 1 mm (the models' own are 2–10 µm).
 const MAX_NOISE: f64 = 1e-3;
 
-/// The depth map and its width, checked: PNGs as yarok writes them (16-bit grey, their unit
-/// stated, millimetres without), converted to metres.
+/// The depth map, its width and whether it was a PNG, checked: PNGs as yarok writes them
+/// (16-bit grey, their unit stated, millimetres without), converted to metres.
 fn depth(path: &str) -> Result<(Vec<f32>, usize, bool), String> {
-    let (depth, width, metric) = if path.ends_with(".png") {
+    let (depth, width, png) = if path.ends_with(".png") {
         let bytes = std::fs::read(path).map_err(|e| format!("{path}: {e}"))?;
         let (width, _, metres) = depth_from_png(&bytes).map_err(|e| format!("{path}: {e}"))?;
         // A pixel without depth sees nothing: as far as the map's farthest.
@@ -134,7 +149,7 @@ fn depth(path: &str) -> Result<(Vec<f32>, usize, bool), String> {
         }
     };
     check_depth(path, &depth, width)?;
-    Ok((depth, width, metric))
+    Ok((depth, width, png))
 }
 
 /// The largest depth a map may hold: 1 km (a z-buffer's values are at most 1).
@@ -183,7 +198,15 @@ pub(super) fn run(args: &[String]) -> Result<(), String> {
         .flatten()
         .collect();
     super::apart_from_inputs(options.out, &inputs)?;
-    let (depth, width, metric) = depth(options.depth)?;
+    let (depth, width, png) = depth(options.depth)?;
+    if options.zbuffer && (png || options.sensor != "digit" || options.calibration.is_some()) {
+        return Err(
+            "--depth-unit zbuffer is for a .npy map given to the reference DIGIT model (digit, \
+             no --calibration)"
+                .to_owned(),
+        );
+    }
+    let metric = !options.zbuffer;
     if let Some(path) = options.calibration {
         return calibrated(path, &options, &depth, width);
     }
