@@ -1,7 +1,8 @@
 //! The Zenoh bridge (feature `zenoh`) on loopback, talked to by the Zenoh project's own Python
 //! client (eclipse-zenoh, a separate process): it reads a DigitWorld's joint states, its arm's
 //! state and a DIGIT's image, commands the arm to joints and sees it arrive, has gripper
-//! positions outside 0–255 refused; a stop command ends the run cleanly.
+//! positions outside 0–255 and a command of a megabyte refused with a reply; a stop command ends
+//! the run cleanly.
 #![cfg(feature = "zenoh")]
 
 use std::process::{Command, Stdio};
@@ -93,6 +94,13 @@ fn a_third_party_client_reads_the_world_and_moves_the_arm() {
             "{reply}"
         );
     }
+    // A command of a megabyte is answered, refused unread.
+    let huge = peers::field(&printed, "huge_reply");
+    assert!(
+        huge.contains(r#""ok": false"#)
+            && huge.contains("bytes, more than the 65536 a command may be"),
+        "{huge}"
+    );
     // The client's stop command ends the run.
     let started = Instant::now();
     let status = loop {

@@ -6,7 +6,7 @@ there, and sends its gripper positions outside 0-255.
 Usage: zenoh_client.py ENDPOINT WORLD TARGET_JOINTS_JSON
 Prints, a line each: `joint_states COUNT NAMES`, `arm_q Q...`, `image KEY WIDTH HEIGHT`,
 `reply JSON`, `reached SECONDS Q...`, `gripper_reply_POSITION JSON` for positions 256, -1
-and 1.5 (or exits non-zero saying what did not come).
+and 1.5, `huge_reply JSON` for a command of a megabyte (or exits non-zero saying what did not come).
 """
 
 import io
@@ -74,6 +74,18 @@ def main():
                 if key == f"yarok/{world}/arm/gripper/reply":
                     reply = json.loads(payload)
             print(f"gripper_reply_{position}", json.dumps(reply), flush=True)
+        # A command of a megabyte: refused unread, but answered.
+        huge = json.dumps({"move_to": 1, "padding": "x" * 1_000_000})
+        session.put(f"yarok/{world}/arm/gripper/command", huge)
+        reply, deadline = None, time.monotonic() + 10
+        while reply is None and time.monotonic() < deadline:
+            try:
+                key, payload = samples.get(timeout=0.5)
+            except queue.Empty:
+                continue
+            if key == f"yarok/{world}/arm/gripper/reply":
+                reply = json.loads(payload)
+        print("huge_reply", json.dumps(reply), flush=True)
         session.put(f"yarok/{world}/command", json.dumps({"stop": True}))
 
 

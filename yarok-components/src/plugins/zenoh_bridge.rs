@@ -80,7 +80,7 @@ struct Command {
 ///   `{"open": true}`, `{"close": true}`), a printer's (`{"move_to": [x, y, z]}`, mm); the world
 ///   (`yarok/{world}/command`) `{"stop": true}` ends the run, `{"ping": n}` is answered at once.
 ///   Each is answered on `…{path}/reply`: `{"ok": true}` or `{"ok": false, "error": …}`
-///   (`{"pong": n}` for a ping).
+///   (`{"pong": n}` for a ping); one larger than 64 KiB is refused unread, and logged.
 ///
 /// Zenoh runs on a thread of its own (its API needs a multi-threaded tokio runtime; the
 /// platform's is single-threaded). Registered by `yarok::platform()` (feature `zenoh`) as
@@ -235,6 +235,10 @@ fn command_keys(world: &World<'_>, prefix: &str) -> Vec<String> {
     keys
 }
 
+/// The most bytes a command may hold: a command names a motion or a grip, never data; a larger
+/// one is refused (answered, and logged) unread.
+const MAX_COMMAND_BYTES: usize = 64 * 1024;
+
 /// The Zenoh session on a thread of its own: puts what the plugin sends, hands commands back.
 fn serve(
     config: zenoh::Config,
@@ -263,8 +267,18 @@ fn serve(
                     .unwrap_or_default()
                     .rsplit_once('/')
                     .unwrap_or(("", "command"));
-                let body = serde_json::from_slice(&sample.payload().to_bytes())
-                    .map_err(|e| format!("{key}: the body is not JSON: {e}"));
+                let size = sample.payload().len();
+                let body = if size > MAX_COMMAND_BYTES {
+                    let error = format!(
+                        "{key}: the command is {size} bytes, more than the {MAX_COMMAND_BYTES} \
+                         a command may be"
+                    );
+                    tracing::warn!("{error}");
+                    Err(error)
+                } else {
+                    serde_json::from_slice(&sample.payload().to_bytes())
+                        .map_err(|e| format!("{key}: the body is not JSON: {e}"))
+                };
                 let _ = commands.send(Command {
                     path: path.to_owned(),
                     name: name.to_owned(),
