@@ -368,3 +368,37 @@ fn a_mute_rtde_is_named_without_a_tight_loop_of_reconnections() {
     }
     assert!(stopped(&fake.scripts()), "no stopj: {:?}", fake.scripts());
 }
+
+/// Connecting that runs out of `connect_seconds` names the controller's address, the step it
+/// was at and the setting (here the secondary interface accepts but sends no robot state).
+#[test]
+fn a_connection_that_runs_out_of_time_names_the_address_the_step_and_the_setting() {
+    let fake = fake_ur5e();
+    fake.mute_secondary();
+    let error = yarok::platform()
+        .world::<Ur5eAlone>()
+        .args([
+            "--env".to_owned(),
+            "real".to_owned(),
+            "--set".to_owned(),
+            format!("interfaces/arm/host=\"{}\"", fake.host),
+            "--set".to_owned(),
+            "interfaces/arm/connect_seconds=0.5".to_owned(),
+        ])
+        .unwrap()
+        .behaviour(|_| async { panic!("the arm connected") })
+        .run()
+        .unwrap_err()
+        .to_string();
+    assert_says(
+        &error,
+        &[
+            &format!(
+                "controller {}: connecting did not finish within 0.5 s",
+                fake.host
+            ),
+            "(the interface setting connect_seconds)",
+            "it was opening its secondary interface (port 30002) and reading a robot state",
+        ],
+    );
+}

@@ -383,16 +383,31 @@ pub(super) async fn connect(
     let CheckedSettings { settings, payload } = settings(bind)?;
     let host = settings.host.clone();
     let reply = Duration::try_from_secs_f64(settings.reply_seconds).unwrap_or_default();
+    // Where connecting is, for a timeout to name.
+    let step = Cell::new("");
     let connecting = async {
+        step.set("opening its secondary interface (port 30002) and reading a robot state");
         let secondary = secondary_stream(&host, reply).await?;
+        step.set("starting RTDE (port 30004) and reading the first joints");
         let rtde = rtde_stream(&host, settings.rtde_hz, reply).await?;
+        step.set("asking its dashboard (port 29999) whether the robot is ready");
         check_ready(&host, reply).await?;
         Ok::<_, yarok_core::BoxError>((secondary, rtde))
     };
-    let (mut secondary, (rtde, first)) = bind
-        .within(settings.connect_seconds, "the arm's controller", connecting)
-        .await?
-        .map_err(|e| bind.error(format!("controller {host}: {e}")))?;
+    let seconds = settings.connect_seconds;
+    let (mut secondary, (rtde, first)) = tokio::time::timeout(
+        Duration::try_from_secs_f64(seconds).unwrap_or_default(),
+        connecting,
+    )
+    .await
+    .map_err(|_| {
+        bind.error(format!(
+            "controller {host}: connecting did not finish within {seconds} s (the interface \
+             setting connect_seconds); it was {}",
+            step.get()
+        ))
+    })?
+    .map_err(|e| bind.error(format!("controller {host}: {e}")))?;
     let reported = secondary
         .latest()
         .kinematics
