@@ -402,3 +402,19 @@ fn a_connection_that_runs_out_of_time_names_the_address_the_step_and_the_setting
         ],
     );
 }
+
+/// A controller whose secondary interface sends no robot state is named once, not twice
+/// ("controller X: controller X: …").
+#[test]
+fn a_silent_controller_is_named_once() {
+    let fake = fake_ur5e();
+    fake.mute_secondary();
+    let error = real::<Ur5eAlone>(&fake)
+        .behaviour(|_| async { panic!("the arm connected") })
+        .run()
+        .unwrap_err()
+        .to_string();
+    let named = format!("controller {}", fake.host);
+    assert_eq!(error.matches(&named).count(), 1, "{error}");
+    assert_says(&error, &["no robot state within"]);
+}

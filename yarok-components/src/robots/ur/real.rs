@@ -407,7 +407,16 @@ pub(super) async fn connect(
             step.get()
         ))
     })?
-    .map_err(|e| bind.error(format!("controller {host}: {e}")))?;
+    .map_err(|e| {
+        // The drivers' errors name the controller already; the checks' do not.
+        let said = e.to_string();
+        let named = format!("controller {host}");
+        bind.error(if said.starts_with(&named) {
+            said
+        } else {
+            format!("{named}: {said}")
+        })
+    })?;
     let reported = secondary
         .latest()
         .kinematics
