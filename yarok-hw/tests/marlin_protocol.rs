@@ -486,3 +486,25 @@ async fn a_boot_time_shorter_than_the_quiet_still_gives_m110_its_window() {
     assert_eq!(started.elapsed(), Duration::from_millis(3500));
     printer.abort();
 }
+
+/// Garbage that never ends a line (a wrong baud rate at its worst), then nothing: the error
+/// quotes the bytes heard rather than saying the printer sent nothing.
+#[tokio::test(start_paused = true)]
+async fn garbage_without_a_line_end_is_quoted_not_called_nothing() {
+    let (ours, theirs) = tokio::io::duplex(4096);
+    let printer = tokio::spawn(printer(
+        theirs,
+        vec![Bytes(b"\xf0~\x8f\x1a~x\x80"), Sleep(100.0)],
+    ));
+    let error = Marlin::connect(ours, MarlinSettings::new("/dev/ttyTEST"))
+        .await
+        .err()
+        .unwrap();
+    let message = error.to_string();
+    let heard = format!("{:?}", "\u{fffd}~\u{fffd}\u{1a}~x\u{fffd}");
+    assert!(
+        message.contains(&format!("last heard: {heard}")) && !message.contains("sent nothing"),
+        "{message}"
+    );
+    printer.abort();
+}

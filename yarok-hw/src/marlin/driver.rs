@@ -450,10 +450,13 @@ impl<T: AsyncRead + AsyncWrite + Unpin> Marlin<T> {
         loop {
             let now = Instant::now();
             if now >= until {
+                // Garbage with no line end (a wrong baud rate) is what was heard, too.
+                let unended = (!self.partial.is_empty())
+                    .then(|| String::from_utf8_lossy(&self.partial).into_owned());
                 return Err(MarlinError::NoHandshake {
                     printer: self.settings.name.clone(),
                     seconds: self.settings.boot_timeout.as_secs_f64(),
-                    last_heard,
+                    last_heard: last_heard.or(unended),
                 });
             }
             self.write(&numbered_line(0, HANDSHAKE)?).await?;
