@@ -5,7 +5,7 @@
 //! where it starts.
 
 use std::borrow::Cow;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, PoisonError, Weak};
 
 use yarok_core::component::{Bind, BindError};
 use yarok_mjc::{ActuatorId, BodyId, Data, GeomId, JointId, Model, ServoGains, Sim, SimBind};
@@ -142,10 +142,40 @@ impl Bench {
     }
 }
 
-/// Measures the gripper `parts` names: refuses a mapping that leaves out an actuator of the
-/// gripper (a third finger) or names a servo that moves neither pad, then sweeps the stroke.
+/// What was measured of each gripper in each live model (worlds compiled from the same
+/// composition share one model): the model, the gripper's path and parts, what was found.
+type Measurements = Vec<(Weak<Model>, String, Measured)>;
+
+static MEASURED: Mutex<Measurements> = Mutex::new(Vec::new());
+
+/// Measures the gripper `parts` names (once per model: later binds in worlds sharing the model
+/// reuse it).
 pub(super) fn measure(bind: &Bind<Sim>, parts: &GripperParts) -> Result<Measured, BindError> {
     let model = Arc::clone(bind.backend().model());
+    let key = format!("{} {parts:?}", bind.path());
+    let found = |measured: &Measurements| {
+        measured
+            .iter()
+            .find(|(of, at, _)| *at == key && of.upgrade().is_some_and(|m| Arc::ptr_eq(&m, &model)))
+            .map(|(_, _, measured)| measured.clone())
+    };
+    if let Some(measured) = found(&MEASURED.lock().unwrap_or_else(PoisonError::into_inner)) {
+        return Ok(measured);
+    }
+    let measured = sweep_anew(bind, parts, &model)?;
+    let mut cache = MEASURED.lock().unwrap_or_else(PoisonError::into_inner);
+    cache.retain(|(of, _, _)| of.strong_count() > 0);
+    cache.push((Arc::downgrade(&model), key, measured.clone()));
+    Ok(measured)
+}
+
+/// Refuses a mapping that leaves out an actuator of the gripper (a third finger) or names a
+/// servo that moves neither pad, then sweeps the stroke.
+fn sweep_anew(
+    bind: &Bind<Sim>,
+    parts: &GripperParts,
+    model: &Arc<Model>,
+) -> Result<Measured, BindError> {
     if parts.servos.is_empty() {
         return Err(bind.error("a gripper needs at least one servo"));
     }
@@ -180,7 +210,7 @@ pub(super) fn measure(bind: &Bind<Sim>, parts: &GripperParts) -> Result<Measured
             range,
         });
     }
-    refuse_unnamed_actuators(bind, &model, &servos)?;
+    refuse_unnamed_actuators(bind, model, &servos)?;
     for servo in &servos {
         let (name, range) = (servo.name, servo.range);
         if let (Some(joint), Some([lowest, highest])) = (
