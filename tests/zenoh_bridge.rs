@@ -2,7 +2,7 @@
 //! client (eclipse-zenoh, a separate process): it reads a DigitWorld's joint states, its arm's
 //! state and a DIGIT's image, commands the arm to joints and sees it arrive, has gripper
 //! positions outside 0–255 and a command of a megabyte refused with a reply; a stop command ends
-//! the run cleanly.
+//! the run cleanly. A second world on the same keys is refused.
 #![cfg(feature = "zenoh")]
 
 use std::process::{Command, Stdio};
@@ -130,4 +130,55 @@ fn a_world_name_that_would_match_other_worlds_keys_is_refused() {
             &[&format!("`world` {world:?} is no plain key")],
         );
     }
+}
+
+/// A second world bridging the same keys on the same Zenoh network is refused when it starts,
+/// naming the keys (the first keeps them).
+#[test]
+fn a_second_world_on_the_same_keys_is_refused() {
+    let port = 20000 + (std::process::id() + 7) % 20000;
+    let world = |extra: &[String]| {
+        Command::new(env!("CARGO_BIN_EXE_yarok"))
+            .args(["run", "printer_world", "--behaviour", "idle", "--bridge"])
+            .args([
+                "--set",
+                "behaviour/seconds=60",
+                "--set",
+                "platform/realtime=true",
+            ])
+            .args(extra)
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap()
+    };
+    let mut first = world(&[
+        "--set".to_owned(),
+        format!("plugins/zenoh/listen=[\"tcp/127.0.0.1:{port}\"]"),
+    ]);
+    let started = Instant::now();
+    while std::net::TcpStream::connect(("127.0.0.1", port as u16)).is_err() {
+        if started.elapsed() > Duration::from_secs(60) || first.try_wait().unwrap().is_some() {
+            let _ = first.kill();
+            let output = first.wait_with_output().unwrap();
+            panic!("no bridge: {}", String::from_utf8_lossy(&output.stderr));
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    let second = world(&[
+        "--set".to_owned(),
+        format!("plugins/zenoh/listen=[\"tcp/127.0.0.1:{}\"]", port + 1),
+        "--set".to_owned(),
+        format!("plugins/zenoh/connect=[\"tcp/127.0.0.1:{port}\"]"),
+    ])
+    .wait_with_output()
+    .unwrap();
+    let _ = first.kill();
+    let _ = first.wait();
+    let stderr = String::from_utf8_lossy(&second.stderr);
+    assert!(!second.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("another world already bridges yarok/world"),
+        "{stderr}"
+    );
 }

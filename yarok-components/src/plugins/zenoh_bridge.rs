@@ -82,6 +82,9 @@ struct Command {
 ///   Each is answered on `…{path}/reply`: `{"ok": true}` or `{"ok": false, "error": …}`
 ///   (`{"pong": n}` for a ping); one larger than 64 KiB is refused unread, and logged.
 ///
+/// A world holds its keys while it runs (a Zenoh liveliness token on `yarok/{world}`): a second
+/// world bridging the same keys on the same network is refused when it starts.
+///
 /// Zenoh runs on a thread of its own (its API needs a multi-threaded tokio runtime; the
 /// platform's is single-threaded). Registered by `yarok::platform()` (feature `zenoh`) as
 /// `zenoh`; `yarok run WORLD --bridge` adds it.
@@ -235,6 +238,25 @@ fn command_keys(world: &World<'_>, prefix: &str) -> Vec<String> {
     keys
 }
 
+/// How long a starting bridge asks whether another world already holds its keys.
+const LIVELINESS_QUERY: Duration = Duration::from_millis(500);
+
+/// The key of a live world bridging `world`, if the network has one.
+fn live_world(session: &zenoh::Session, world: &str) -> Option<String> {
+    let replies = session
+        .liveliness()
+        .get(world)
+        .timeout(LIVELINESS_QUERY)
+        .wait()
+        .ok()?;
+    while let Ok(reply) = replies.recv() {
+        if let Ok(sample) = reply.result() {
+            return Some(sample.key_expr().as_str().to_owned());
+        }
+    }
+    None
+}
+
 /// The most bytes a command may hold: a command names a motion or a grip, never data; a larger
 /// one is refused (answered, and logged) unread.
 const MAX_COMMAND_BYTES: usize = 64 * 1024;
@@ -250,6 +272,23 @@ fn serve(
 ) {
     let session = match zenoh::open(config).wait() {
         Ok(session) => session,
+        Err(error) => {
+            let _ = opened.send(Err(error.to_string()));
+            return;
+        }
+    };
+    // A world holds its keys while it runs: a second on the same keys would obey the first's
+    // commands and mix its states in.
+    let world = prefix.trim_end_matches('/').to_owned();
+    if let Some(other) = live_world(&session, &world) {
+        let _ = opened.send(Err(format!(
+            "another world already bridges {world} (seen as {other}): two would both obey its \
+             commands and mix their states; give this one another `world`"
+        )));
+        return;
+    }
+    let _alive = match session.liveliness().declare_token(world.as_str()).wait() {
+        Ok(token) => token,
         Err(error) => {
             let _ = opened.send(Err(error.to_string()));
             return;
