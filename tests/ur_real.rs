@@ -418,3 +418,36 @@ fn a_silent_controller_is_named_once() {
     assert_eq!(error.matches(&named).count(), 1, "{error}");
     assert_says(&error, &["no robot state within"]);
 }
+
+/// The controller switched to local control while a behaviour runs (it would ignore the
+/// scripts sent to it): the next motion ends the run naming it, not with a position miss.
+#[test]
+fn a_controller_switched_to_local_control_mid_run_is_named() {
+    let fake = std::sync::Arc::new(fake_ur5e());
+    let switching = std::sync::Arc::clone(&fake);
+    let error = real::<Ur5eAlone>(&fake)
+        .behaviour(move |pl| async move {
+            let arm: Ur5e = pl.get("/arm")?;
+            switching.set_remote_control(false);
+            pl.wait_seconds(1.5).await?;
+            arm.move_j([0.2, -1.3, 1.2, -1.5, -1.57, 0.0])
+                .speed(2.0)
+                .await?;
+            pl.wait_seconds(5.0).await?;
+            Ok(())
+        })
+        .run()
+        .unwrap_err()
+        .to_string();
+    assert_says(
+        &error,
+        &[
+            &format!(
+                "controller {} was switched to local control while running",
+                fake.host
+            ),
+            "switch it back to remote control on the teach pendant",
+        ],
+    );
+    assert!(!error.contains("did not reach"), "{error}");
+}

@@ -462,6 +462,7 @@ async fn drive(
     let reply = Duration::try_from_secs_f64(settings.reply_seconds).unwrap_or_default();
     let host = settings.host.as_str();
     let secondary_again = async || secondary_stream(host, reply).await;
+    let mut remote_checked = Instant::now();
     loop {
         tokio::select! {
             values = rtde.receive() => match values {
@@ -494,6 +495,10 @@ async fn drive(
                 for request in requests {
                     match request {
                         Request::Script(script) => {
+                            if remote_checked.elapsed() >= REMOTE_CHECK {
+                                remote_checked = Instant::now();
+                                still_in_remote_control(host, reply).await?;
+                            }
                             if let Err(error) = secondary.send_script(&script).await {
                                 secondary =
                                     reconnect("secondary interface", host, reply, error, secondary_again)
@@ -510,6 +515,22 @@ async fn drive(
             }
         }
     }
+}
+
+/// How often, at most, the driver asks the dashboard whether the controller still takes
+/// scripts (a controller switched to local control mid-run ignores them without a word).
+const REMOTE_CHECK: Duration = Duration::from_secs(1);
+
+/// An error naming it when the controller at `host` has been switched to local control.
+async fn still_in_remote_control(host: &str, reply: Duration) -> Result<(), yarok_core::BoxError> {
+    if dashboard(host, reply).await?.is_in_remote_control().await? {
+        return Ok(());
+    }
+    Err(format!(
+        "controller {host} was switched to local control while running: it ignores the scripts \
+         sent to it; switch it back to remote control on the teach pendant"
+    )
+    .into())
 }
 
 /// The `what` connection to `host` made again with `open` ([`reopen`] within `reply` of the
