@@ -589,6 +589,30 @@ impl Data {
         }
     }
 
+    /// The gap between two bodies' surfaces: the least [`Data::geom_distance`] between their
+    /// colliding geoms (negative where they overlap), up to 1 m; `None` when either has no
+    /// colliding geom.
+    ///
+    /// # Panics
+    ///
+    /// When a body was resolved in a different model.
+    #[track_caller]
+    pub fn body_gap(&mut self, first: BodyId, second: BodyId) -> Option<f64> {
+        let model = Arc::clone(&self.model);
+        let colliding = |body: BodyId| -> Vec<GeomId> {
+            model
+                .body_geoms(body)
+                .into_iter()
+                .filter(|&geom| model.geom_collides(geom))
+                .collect()
+        };
+        let (mine, theirs) = (colliding(first), colliding(second));
+        mine.iter()
+            .flat_map(|&a| theirs.iter().map(move |&b| (a, b)))
+            .map(|(a, b)| self.geom_distance(a, b, 1.0))
+            .reduce(f64::min)
+    }
+
     /// The pose of a camera in world coordinates, as computed by the last [`Data::step`] or
     /// [`Data::forward`]; see [`Data::body_pose`]. MuJoCo's cameras look down their frame's −z
     /// axis, +y up in the image.

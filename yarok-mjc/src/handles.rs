@@ -207,24 +207,11 @@ impl Body {
         self.data.borrow().body_pose(self.id)
     }
 
-    /// The gap between this body's surface and `other`'s after the last step: the least
-    /// distance between their colliding geoms (negative where they overlap; see
-    /// [`Data::geom_distance`]), up to 1 m; `None` when either has no colliding geom.
+    /// The gap between this body's surface and `other`'s after the last step (see
+    /// [`Data::body_gap`]): the least distance between their colliding geoms, up to 1 m;
+    /// `None` when either has no colliding geom.
     pub fn gap_to(&self, other: &Body) -> Option<f64> {
-        let mut data = self.data.borrow_mut();
-        let model = std::sync::Arc::clone(data.model());
-        let colliding = |body: BodyId| -> Vec<GeomId> {
-            model
-                .body_geoms(body)
-                .into_iter()
-                .filter(|&geom| model.geom_collides(geom))
-                .collect()
-        };
-        let (mine, theirs) = (colliding(self.id), colliding(other.id));
-        mine.iter()
-            .flat_map(|&a| theirs.iter().map(move |&b| (a, b)))
-            .map(|(a, b)| data.geom_distance(a, b, 1.0))
-            .reduce(f64::min)
+        self.data.borrow_mut().body_gap(self.id, other.id)
     }
 }
 

@@ -8,10 +8,11 @@ use std::borrow::Cow;
 use std::sync::{Arc, Mutex, PoisonError, Weak};
 
 use yarok_core::component::{Bind, BindError};
-use yarok_mjc::{ActuatorId, BodyId, Data, GeomId, JointId, Model, ServoGains, Sim, SimBind};
+use yarok_mjc::{ActuatorId, BodyId, Data, JointId, Model, ServoGains, Sim, SimBind};
 
 use super::REACHED_COUNTS;
 use super::names::{FingerServo, Stroke};
+use super::sim::{check_servos_and_pads, position_servo};
 
 /// The parts of a two-finger gripper: the position servos that close it and its pads' bodies
 /// `[left, right]` (and the sites on the pads' faces, if it has them). yarok measures the rest
@@ -82,26 +83,23 @@ impl SweptServo {
     }
 }
 
-/// A copy of the model where the gripper is swept, the geoms its gap is measured between,
-/// and the joints of the rest of the world, held where they start (the gripper hangs as it
-/// is mounted, under gravity).
+/// A copy of the model where the gripper is swept, the pads its gap is measured between, and
+/// the joints of the rest of the world, held where they start (the gripper hangs as it is
+/// mounted, under gravity).
 struct Bench {
     data: Data,
     servos: Vec<SweptServo>,
-    pad_geoms: [Vec<GeomId>; 2],
+    pads: [BodyId; 2],
     held: Vec<(JointId, Vec<f64>)>,
 }
 
 impl Bench {
     /// The gap between the pads' surfaces (metres; negative where they overlap).
     fn gap(&mut self) -> f64 {
-        let mut gap = f64::INFINITY;
-        for &left in &self.pad_geoms[0] {
-            for &right in &self.pad_geoms[1] {
-                gap = gap.min(self.data.geom_distance(left, right, 1.0));
-            }
-        }
-        gap
+        let [left, right] = self.pads;
+        self.data
+            .body_gap(left, right)
+            .expect("checked when the bench was made: both pads have colliding geoms")
     }
 
     /// Sets each servo's control and steps until they are still (or [`SETTLE_SECONDS`] pass);
@@ -176,27 +174,10 @@ fn sweep_anew(
     parts: &GripperParts,
     model: &Arc<Model>,
 ) -> Result<Measured, BindError> {
-    if parts.servos.is_empty() {
-        return Err(bind.error("a gripper needs at least one servo"));
-    }
-    if parts.pads[0] == parts.pads[1] {
-        return Err(bind.error(format!(
-            "the pads are both {:?}: a parallel gripper has a left and a right pad",
-            parts.pads[0]
-        )));
-    }
+    check_servos_and_pads(bind, parts.servos.len(), parts.pads)?;
     let mut servos = Vec::with_capacity(parts.servos.len());
     for &name in parts.servos {
-        let actuator = bind.actuator(name)?;
-        let gains = actuator
-            .servo_gains()
-            .filter(|gains| gains.kp > 0.0)
-            .ok_or_else(|| {
-                bind.error(format!(
-                    "actuator {name:?} is not a position servo (a fixed gain and an affine bias \
-                     that pulls back, on a joint or tendon): the gripper drives one"
-                ))
-            })?;
+        let (actuator, gains) = position_servo(bind, name)?;
         let range = actuator.ctrl_range().ok_or_else(|| {
             bind.error(format!(
                 "actuator {name:?} has no control range (ctrlrange): the stroke is measured \
@@ -213,12 +194,9 @@ fn sweep_anew(
     refuse_unnamed_actuators(bind, model, &servos)?;
     for servo in &servos {
         let (name, range) = (servo.name, servo.range);
-        if let (Some(joint), Some([lowest, highest])) = (
-            model.actuator_joint(servo.id),
-            model
-                .actuator_joint(servo.id)
-                .and_then(|joint| model.joint_range(joint)),
-        ) {
+        if let Some(joint) = model.actuator_joint(servo.id)
+            && let Some([lowest, highest]) = model.joint_range(joint)
+        {
             let reach = (highest - lowest).abs() * servo.gains.gear.abs();
             let asked = (range[1] - range[0]).abs();
             if asked > MISREAD_RATIO * reach {
@@ -233,28 +211,10 @@ fn sweep_anew(
             }
         }
     }
-    let pad_geoms = [0, 1].map(|side| {
-        let body = bind.body(parts.pads[side])?;
-        let geoms = model.body_geoms(body.id());
-        let colliding: Vec<GeomId> = geoms
-            .iter()
-            .copied()
-            .filter(|&geom| model.geom_collides(geom))
-            .collect();
-        let geoms = if colliding.is_empty() {
-            geoms
-        } else {
-            colliding
-        };
-        if geoms.is_empty() {
-            return Err(bind.error(format!(
-                "pad {:?} has no geom: the opening is measured between the pads' surfaces",
-                parts.pads[side]
-            )));
-        }
-        Ok(geoms)
-    });
-    let [left, right] = pad_geoms;
+    let pads = [
+        bind.body(parts.pads[0])?.id(),
+        bind.body(parts.pads[1])?.id(),
+    ];
     let prefix = component_prefix(bind);
     let own_bodies: Vec<BodyId> = model
         .bodies()
@@ -278,10 +238,17 @@ fn sweep_anew(
         .map(|joint| (joint, data.qpos(joint).to_vec()))
         .collect();
     data.forward();
+    if data.body_gap(pads[0], pads[1]).is_none() {
+        return Err(bind.error(format!(
+            "pads {:?} and {:?}: the opening is measured between their colliding geoms, and \
+             one has none",
+            parts.pads[0], parts.pads[1]
+        )));
+    }
     let mut bench = Bench {
         data,
         servos,
-        pad_geoms: [left?, right?],
+        pads,
         held,
     };
     sweep(bind, &mut bench)
@@ -394,6 +361,15 @@ fn sweep(bind: &Bind<Sim>, bench: &mut Bench) -> Result<Measured, BindError> {
         .iter()
         .map(|(_, gap, _)| *gap)
         .fold(f64::NEG_INFINITY, f64::max);
+    if widest - narrowest < SHORTEST_STROKE {
+        return Err(bind.error(format!(
+            "the pads open only {:.1} mm over the servos' whole control ranges ({:.1} to \
+             {:.1} mm between them): {BARELY_MOVING}",
+            (widest - narrowest) * 1e3,
+            widest * 1e3,
+            narrowest * 1e3
+        )));
+    }
     let opening = samples
         .iter()
         .rev()
@@ -461,15 +437,6 @@ fn sweep(bind: &Bind<Sim>, bench: &mut Bench) -> Result<Measured, BindError> {
         let gap = gap_at(255.0 * k as f64 / (TABLE_POINTS - 1) as f64).max(0.0) * 1e3;
         let narrower = opening_mm.last().map_or(gap, |&last| gap.min(last));
         opening_mm.push(narrower);
-    }
-    if widest - narrowest < SHORTEST_STROKE {
-        return Err(bind.error(format!(
-            "the pads open only {:.1} mm over the servos' whole control ranges ({:.1} to \
-             {:.1} mm between them): {BARELY_MOVING}",
-            (widest - narrowest) * 1e3,
-            widest * 1e3,
-            narrowest * 1e3
-        )));
     }
     let travelled_mm = (wide - narrow).max(0.0) * 1e3;
     let fastest = (0.8 * travelled_mm / seconds.max(1e-3)).min(FASTEST_MM_S);

@@ -135,17 +135,18 @@ impl ParallelGripper {
     }
 
     /// Binds a gripper model in `sim` named by its servos and pads alone ([`GripperParts`]):
-    /// yarok measures the rest, sweeping the stroke in a copy of the model where nothing
-    /// collides and nothing falls — each servo's controls fully open and where the pads meet,
+    /// yarok measures the rest, sweeping the stroke in a copy of the model where only the
+    /// gripper's own parts collide and the rest of the world holds still (once per model) —
+    /// each servo's controls fully open and where the pads meet (or the fingers stop closing),
     /// the opening between the pads' surfaces over the stroke, how fast the fingers move, and
     /// how close the servos come to a request (the reach tolerance their friction needs).
     ///
     /// # Errors
     ///
     /// [`BindError`] when a part is missing, an actuator is not a position servo with a
-    /// control range, the gripper has an actuator the mapping leaves out (a hand of more than
-    /// two fingers), or a servo moves neither pad (naming the likely cause: a third finger, or
-    /// a file in radians read as degrees).
+    /// control range, a pad has no colliding geom, the gripper has an actuator the mapping
+    /// leaves out (a hand of more than two fingers), or a servo moves neither pad (naming the
+    /// likely cause: a third finger, or a file in radians read as degrees).
     pub fn bind_sim_measured(
         bind: &mut Bind<Sim>,
         parts: &GripperParts,

@@ -54,17 +54,7 @@ impl Servo {
         names: &FingerServo,
         lengths: Option<[f64; 2]>,
     ) -> Result<Self, BindError> {
-        let actuator = bind.actuator(names.actuator)?;
-        let gains = actuator
-            .servo_gains()
-            .filter(|gains| gains.kp > 0.0)
-            .ok_or_else(|| {
-                bind.error(format!(
-                    "actuator {:?} is not a position servo (a fixed gain and an affine bias \
-                     that pulls back, on a joint or tendon): the gripper drives one",
-                    names.actuator
-                ))
-            })?;
+        let (actuator, gains) = position_servo(bind, names.actuator)?;
         if !(names.open.is_finite() && names.closed.is_finite()) || names.open == names.closed {
             return Err(bind.error(format!(
                 "actuator {:?}: its controls open ({}) and closed ({}) must be two different \
@@ -129,6 +119,42 @@ impl Servo {
     }
 }
 
+/// The actuator `name` as a position servo, with its gains; an error saying what it is not.
+pub(super) fn position_servo(
+    bind: &Bind<Sim>,
+    name: &str,
+) -> Result<(Actuator, ServoGains), BindError> {
+    let actuator = bind.actuator(name)?;
+    let gains = actuator
+        .servo_gains()
+        .filter(|gains| gains.kp > 0.0)
+        .ok_or_else(|| {
+            bind.error(format!(
+                "actuator {name:?} is not a position servo (a fixed gain and an affine bias \
+                 that pulls back, on a joint or tendon): the gripper drives one"
+            ))
+        })?;
+    Ok((actuator, gains))
+}
+
+/// Refuses a gripper of no servos, or whose two pads are one.
+pub(super) fn check_servos_and_pads(
+    bind: &Bind<Sim>,
+    servos: usize,
+    pads: [&str; 2],
+) -> Result<(), BindError> {
+    if servos == 0 {
+        return Err(bind.error("a gripper needs at least one servo"));
+    }
+    if pads[0] == pads[1] {
+        return Err(bind.error(format!(
+            "the pads are both {:?}: a parallel gripper has a left and a right pad",
+            pads[0]
+        )));
+    }
+    Ok(())
+}
+
 impl ServoFingers {
     /// The fingers of the gripper `names` describes.
     ///
@@ -161,15 +187,7 @@ impl ServoFingers {
         stroke: Stroke,
         reached: f64,
     ) -> Result<Self, BindError> {
-        if servos.is_empty() {
-            return Err(bind.error("a gripper needs at least one servo"));
-        }
-        if pads[0] == pads[1] {
-            return Err(bind.error(format!(
-                "the pads are both {:?}: a parallel gripper has a left and a right pad",
-                pads[0]
-            )));
-        }
+        check_servos_and_pads(bind, servos.len(), pads)?;
         if !(reached.is_finite() && reached > 0.0) {
             return Err(bind.error(format!(
                 "reached {reached} must be a positive number of positions"
