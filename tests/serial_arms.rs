@@ -132,8 +132,7 @@ struct Mounted {
 }
 
 impl Mounted {
-    #[allow(non_snake_case)]
-    const fn AS_IT_IS(file: &'static str, hand: &'static str) -> Self {
+    const fn as_it_is(file: &'static str, hand: &'static str) -> Self {
         Self {
             file,
             hand,
@@ -170,28 +169,28 @@ const CASES: [Case; 12] = [
         robot: "panda",
         names: SerialNames::ROBOSUITE_PANDA,
         start: &[0.0, 0.196, 0.0, -2.618, 0.0, 2.942, 0.785],
-        gripper: Some(Mounted::AS_IT_IS("panda_gripper", "right_hand")),
+        gripper: Some(Mounted::as_it_is("panda_gripper", "right_hand")),
         other: None,
     },
     Case {
         robot: "sawyer",
         names: SerialNames::ROBOSUITE_SAWYER,
         start: &[0.0, -1.18, 0.0, 2.18, 0.0, 0.57, -1.57],
-        gripper: Some(Mounted::AS_IT_IS("rethink_gripper", "right_hand")),
+        gripper: Some(Mounted::as_it_is("rethink_gripper", "right_hand")),
         other: None,
     },
     Case {
         robot: "iiwa",
         names: SerialNames::ROBOSUITE_IIWA,
         start: &[0.0, 0.35, 0.0, -1.75, 0.0, 1.05, 0.0],
-        gripper: Some(Mounted::AS_IT_IS("robotiq_gripper_140", "right_hand")),
+        gripper: Some(Mounted::as_it_is("robotiq_gripper_140", "right_hand")),
         other: None,
     },
     Case {
         robot: "jaco",
         names: SerialNames::ROBOSUITE_JACO,
         start: &[3.192, 3.68, 0.0, 1.17, 0.05, 3.76, std::f64::consts::PI],
-        gripper: Some(Mounted::AS_IT_IS("jaco_three_finger_gripper", "right_hand")),
+        gripper: Some(Mounted::as_it_is("jaco_three_finger_gripper", "right_hand")),
         other: None,
     },
     Case {
@@ -219,14 +218,14 @@ const CASES: [Case; 12] = [
         robot: "baxter",
         names: SerialNames::ROBOSUITE_BAXTER_RIGHT,
         start: BAXTER_RIGHT_START,
-        gripper: Some(Mounted::AS_IT_IS("rethink_gripper", "right_hand")),
+        gripper: Some(Mounted::as_it_is("rethink_gripper", "right_hand")),
         other: Some((SerialNames::ROBOSUITE_BAXTER_LEFT, BAXTER_LEFT_START)),
     },
     Case {
         robot: "baxter",
         names: SerialNames::ROBOSUITE_BAXTER_LEFT,
         start: BAXTER_LEFT_START,
-        gripper: Some(Mounted::AS_IT_IS("rethink_gripper", "left_hand")),
+        gripper: Some(Mounted::as_it_is("rethink_gripper", "left_hand")),
         other: Some((SerialNames::ROBOSUITE_BAXTER_RIGHT, BAXTER_RIGHT_START)),
     },
     Case {

@@ -215,6 +215,12 @@ impl Controller {
             .min(stable.max(inertia))
     }
 
+    /// The proportional and derivative gains (per second squared, per second) that, with the
+    /// integral, place the tracking error's three poles at the stiffness.
+    fn gains(&self) -> (f64, f64) {
+        (3.0 * self.stiffness * self.stiffness, 3.0 * self.stiffness)
+    }
+
     /// Adds the step's tracking error to each motor's integral, unless the motor is saturated
     /// the way the error would push it (anti-windup).
     fn integrate(&self) {
@@ -304,8 +310,10 @@ impl Controller {
         };
         let drive = &self.drives[joint];
         let off = (target[joint] - at[joint]).abs();
-        let kp = 3.0 * self.stiffness * self.stiffness;
-        let pushing = kp * self.feedback_inertia(drive) * off + state.integral[joint].abs();
+        let (kp, _) = self.gains();
+        // The feedback's force there: the proportional and integral terms (accelerations)
+        // through the joint's feedback inertia.
+        let pushing = (kp * off + state.integral[joint].abs()) * self.feedback_inertia(drive);
         let cause = match state.strain {
             Some((strained, asked)) => StuckCause::Saturated {
                 joint: self.drives[strained].name.clone(),
@@ -354,7 +362,7 @@ impl Controller {
     /// give; servos with the model's gains.
     pub(super) fn command(&self) {
         let mut state = self.state.borrow_mut();
-        let (kp, kv) = (3.0 * self.stiffness * self.stiffness, 3.0 * self.stiffness);
+        let (kp, kv) = self.gains();
         let feedback: Vec<f64> = self
             .drives
             .iter()
