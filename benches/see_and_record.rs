@@ -12,7 +12,6 @@
 //! ```
 
 use std::cell::Cell;
-use std::process::{Child, Command, Stdio};
 use std::rc::Rc;
 use std::time::{Duration, Instant};
 
@@ -23,6 +22,7 @@ use yarok::components::plugins::{
 };
 use yarok::components::worlds::PickAndPlaceWorld;
 use yarok::{BoxError, Plugin, World};
+use yarok_test::XServer;
 
 #[path = "measure.rs"]
 mod measure;
@@ -85,32 +85,14 @@ impl Plugin for MeasuredViewer {
     }
 }
 
-/// An X server for the viewer when none is set: Xvfb on a free display.
-fn display() -> Option<Child> {
+/// An X server for the viewer when none is set.
+fn display() -> Option<XServer> {
     if std::env::var_os("DISPLAY").is_some() {
         return None;
     }
-    let number = (90..190)
-        .find(|n| !std::path::Path::new(&format!("/tmp/.X11-unix/X{n}")).exists())
-        .expect("a free display number");
-    let server = Command::new("Xvfb")
-        .args([
-            &format!(":{number}"),
-            "-screen",
-            "0",
-            "1280x1024x24",
-            "-nolisten",
-            "tcp",
-        ])
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("Xvfb (scripts/setup-test-peers.sh installs it)");
-    while !std::path::Path::new(&format!("/tmp/.X11-unix/X{number}")).exists() {
-        std::thread::sleep(Duration::from_millis(20));
-    }
+    let server = XServer::start();
     // SAFETY: set before any other thread of this process reads the environment.
-    unsafe { std::env::set_var("DISPLAY", format!(":{number}")) };
+    unsafe { std::env::set_var("DISPLAY", server.display()) };
     Some(server)
 }
 
@@ -136,7 +118,7 @@ fn dataset(folder: &std::path::Path, cameras: Vec<String>) -> Box<dyn Plugin> {
 }
 
 fn main() {
-    let mut xvfb = display();
+    let _x_server = display();
     let folder = tempfile::tempdir().unwrap();
     let ticks = run(RUN, None);
     let overview = || vec!["overview".to_owned()];
@@ -190,8 +172,4 @@ fn main() {
         1e3 * drawing / frames.max(1) as f64,
         100.0 * drawing / wall
     );
-    if let Some(server) = &mut xvfb {
-        let _ = server.kill();
-        let _ = server.wait();
-    }
 }

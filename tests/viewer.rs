@@ -10,50 +10,23 @@
 //! asked to.
 #![cfg(feature = "viewer")]
 
-use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
 use yarok_test::assert_says;
-use yarok_test::peers;
+use yarok_test::{XServer, peers};
 
-/// An X server of its own, on a display no other test uses, killed when dropped.
-struct Xvfb {
-    display: String,
-    server: Child,
-}
+/// An X server of the test's own, with the third-party X client that drives its windows.
+struct Xvfb(XServer);
 
 impl Xvfb {
     fn start() -> Self {
-        // Tests of one process (threads under `cargo test`) start from numbers of their own.
-        static STARTED: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
-        let own = STARTED.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        let first = 100 + (std::process::id() % 800) + 1000 * own;
-        let number = (first..first + 100)
-            .find(|n| !Path::new(&format!("/tmp/.X11-unix/X{n}")).exists())
-            .expect("a free display number");
-        let display = format!(":{number}");
-        let server = Command::new("Xvfb")
-            .args([&display, "-screen", "0", "1280x1024x24", "-nolisten", "tcp"])
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .spawn()
-            .expect("Xvfb runs (scripts/setup-test-peers.sh installs it)");
-        let socket = format!("/tmp/.X11-unix/X{number}");
-        let started = Instant::now();
-        while !Path::new(&socket).exists() {
-            assert!(
-                started.elapsed() < Duration::from_secs(10),
-                "Xvfb did not start"
-            );
-            std::thread::sleep(Duration::from_millis(20));
-        }
-        Self { display, server }
+        Self(XServer::start())
     }
 
     /// Runs `x11_window.py` on this display for the window titled `title…`.
     fn window(&self, title: &str, command: &[&str]) -> String {
-        let mut args = vec![self.display.as_str(), title];
+        let mut args = vec![self.0.display(), title];
         args.extend(command);
         peers::run("x11_window.py", &args)
     }
@@ -62,18 +35,11 @@ impl Xvfb {
     fn yarok(&self, args: &[&str]) -> Child {
         Command::new(env!("CARGO_BIN_EXE_yarok"))
             .args(args)
-            .env("DISPLAY", &self.display)
+            .env("DISPLAY", self.0.display())
             .stdout(Stdio::piped())
             .stderr(Stdio::piped())
             .spawn()
             .unwrap()
-    }
-}
-
-impl Drop for Xvfb {
-    fn drop(&mut self) {
-        let _ = self.server.kill();
-        let _ = self.server.wait();
     }
 }
 

@@ -7,6 +7,7 @@
 //! - [`virtual_printer`]: OctoPrint's VirtualPrinter, a third-party Marlin, on a pseudo-terminal;
 //! - [`peers`]: the third-party programs `scripts/setup-test-peers.sh` installs;
 //! - [`generator`]: a deterministic generator of inputs for the parsers' tests;
+//! - [`XServer`]: an Xvfb of a test's own, for the viewer's tests and benchmarks;
 //! - [`assert_says`]: an error's text checked for what it must name;
 //! - [`assert_succeeded`]: a program's run checked for success, showing what it wrote if not.
 
@@ -15,6 +16,9 @@ pub mod peers;
 pub mod scripted_printer;
 pub mod ur_controller;
 pub mod virtual_printer;
+mod x_server;
+
+pub use x_server::XServer;
 
 /// Asserts that `error`'s text names every one of `parts` (a component path, a device, a key),
 /// printing the text and what it lacks when it does not; returns the text for further checks.
