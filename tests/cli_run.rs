@@ -263,6 +263,53 @@ fn a_recording_on_a_full_disk_ends_the_run_naming_the_file() {
     );
 }
 
+/// A video whose disk fills while its index is written at the end (ffmpeg then exits 0 and
+/// leaves a file no player opens) ends the run with an error naming the file, as incomplete.
+/// The disk is a small tmpfs in a mount namespace of the run's own (`unshare`, util-linux):
+/// the run's whole video, less one page, fits on it.
+#[test]
+fn a_video_on_a_disk_that_fills_at_its_end_is_an_error_naming_the_file() {
+    let folder = tempfile::tempdir().unwrap();
+    let whole = folder.path().join("whole.mp4");
+    let run = |video: &str| {
+        [
+            "run",
+            "pick_and_place_world",
+            "--behaviour",
+            "idle",
+            "--set",
+            "behaviour/seconds=10",
+            "--video",
+            video,
+        ]
+        .map(str::to_owned)
+    };
+    let (code, _, stderr) = yarok(&run(whole.to_str().unwrap()).each_ref().map(String::as_str));
+    assert_eq!(code, 0, "{stderr}");
+    // 10 s of video make an index longer than a page, so a page boundary falls inside it.
+    let size = std::fs::metadata(&whole).unwrap().len();
+    let disk = folder.path().join("disk");
+    std::fs::create_dir(&disk).unwrap();
+    let clip = disk.join("clip.mp4");
+    let script = format!(
+        "mount -t tmpfs -o size={} tmpfs \"$1\" && shift && exec \"$@\"",
+        (size - 1) / 4096 * 4096
+    );
+    let output = std::process::Command::new("unshare")
+        .args(["--mount", "--map-root-user", "sh", "-c", &script, "sh"])
+        .arg(&disk)
+        .arg(env!("CARGO_BIN_EXE_yarok"))
+        .args(run(clip.to_str().unwrap()))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert_says(
+        &stderr,
+        &[&format!("plugin video ({})", clip.display()), "incomplete"],
+    );
+}
+
 #[test]
 fn a_recorder_of_the_simulation_is_refused_in_mock_before_anything_runs() {
     let folder = tempfile::tempdir().unwrap();

@@ -142,25 +142,33 @@ impl Encoder {
         .into())
     }
 
-    /// Ends the input and waits (at most [`FINISH`]) for the encoder to write the file.
+    /// Ends the input and waits (at most [`FINISH`]) for the encoder to write the file, then
+    /// checks that the file is a whole MP4.
     ///
     /// # Errors
     ///
-    /// When it fails, with what it said, or does not finish in time (it is then stopped).
+    /// When it fails or reports an error, with what it said; when it does not finish in time
+    /// (it is then stopped); when the file it left is not whole.
     pub(super) fn finish(mut self) -> Result<(), BoxError> {
         self.frames = None;
         let status = poll_within(FINISH, || self.process.try_wait())?;
         let said = self.stop();
+        let path = self.path.display();
         match status {
-            Some(status) if status.success() => Ok(()),
+            // ffmpeg exits 0 when writing the index at the end fails (a disk that fills then):
+            // at `-loglevel error` anything it says is an error.
+            Some(status) if status.success() && said.is_empty() => {
+                whole_mp4(&self.path).map_err(|why| format!("{path} is incomplete: {why}").into())
+            }
+            Some(status) if status.success() => {
+                Err(format!("the encoder failed writing {path}; it is incomplete{said}").into())
+            }
             Some(status) => Err(format!(
-                "the encoder could not write {} ({status}){said}",
-                self.path.display()
+                "the encoder could not write {path} ({status}); it is incomplete{said}"
             )
             .into()),
             None => Err(format!(
-                "the encoder did not finish {} within {} s and was stopped{said}",
-                self.path.display(),
+                "the encoder did not finish {path} within {} s and was stopped{said}",
                 FINISH.as_secs()
             )
             .into()),
@@ -189,10 +197,84 @@ impl Encoder {
     }
 }
 
+/// Checks that `path` is whole as an MP4 file: its top-level boxes follow one another to the
+/// file's end exactly, and one of them is the index (`moov`) players need.
+fn whole_mp4(path: &std::path::Path) -> Result<(), String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("cannot read it back ({e})"))?;
+    let mut at = 0usize;
+    let mut index = false;
+    while at < bytes.len() {
+        let header = bytes
+            .get(at..at + 8)
+            .ok_or("it ends inside a box's header")?;
+        let kind = &header[4..8];
+        let size = match u32::from_be_bytes([header[0], header[1], header[2], header[3]]) {
+            0 => bytes.len() - at,
+            1 => {
+                let large = bytes
+                    .get(at + 8..at + 16)
+                    .ok_or("it ends inside a box's size")?;
+                usize::try_from(u64::from_be_bytes(large.try_into().unwrap_or_default()))
+                    .map_err(|_| "a box larger than memory")?
+            }
+            size => size as usize,
+        };
+        if size < 8 || at.checked_add(size).is_none_or(|end| end > bytes.len()) {
+            return Err(format!(
+                "its box {:?} at byte {at} runs past the file's end ({} bytes)",
+                String::from_utf8_lossy(kind),
+                bytes.len()
+            ));
+        }
+        index |= kind == b"moov";
+        at += size;
+    }
+    if index {
+        Ok(())
+    } else {
+        Err("it has no index (moov box): players cannot open it".into())
+    }
+}
+
 impl Drop for Encoder {
     fn drop(&mut self) {
         if self.complaints.is_some() {
             self.stop();
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Encoder, H264, whole_mp4};
+
+    /// ffmpeg's MP4 of 30 grey frames is whole; cut anywhere, it is not, and the reason says
+    /// where.
+    #[test]
+    fn an_mp4_cut_short_is_not_whole() {
+        let folder = tempfile::tempdir().unwrap();
+        let path = folder.path().join("grey.mp4");
+        let video = H264 {
+            size: [32, 16],
+            fps: 30.0,
+            keyframe_interval: None,
+            crf: None,
+        };
+        let mut encoder = Encoder::start(video.ffmpeg(&path), path.clone()).unwrap();
+        for level in 0..30u8 {
+            encoder.send(vec![level * 8; 32 * 16 * 3]).unwrap();
+        }
+        encoder.finish().unwrap();
+        let bytes = std::fs::read(&path).unwrap();
+        for cut in [4, 100, bytes.len() / 2, bytes.len() - 1] {
+            std::fs::write(&path, &bytes[..cut]).unwrap();
+            let why = whole_mp4(&path).unwrap_err();
+            assert!(
+                why.contains("past the file's end") || why.contains("inside a box"),
+                "{cut}: {why}"
+            );
+        }
+        std::fs::write(&path, &bytes[..32]).unwrap();
+        assert!(whole_mp4(&path).unwrap_err().contains("no index"));
     }
 }
