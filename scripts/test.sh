@@ -24,12 +24,12 @@ if cargo nextest --version >/dev/null 2>&1; then
   echo "runner: cargo nextest, the camera, viewer, zenoh and dataset features' tests (and yarok-components' unit tests with them)"
   cargo nextest run --workspace --features yarok/camera,yarok/viewer,yarok/zenoh,yarok/dataset --locked --no-fail-fast \
     --retries 0 \
-    -E 'binary(camera_decode) | binary(video_device) | binary(cam_real) | binary(tactile_real) | binary(viewer) | binary(zenoh_bridge) | binary(named_state) | binary(dataset_lerobot) | binary_id(yarok-components)'
+    -E 'binary(camera_decode) | binary(video_device) | binary(cam_real) | binary(tactile_real) | binary(viewer) | binary(zenoh_bridge) | binary(named_state) | binary(dataset_lerobot) | binary(never_lose_a_file) | binary_id(yarok-components)'
 else
   echo "runner: cargo test (cargo-nextest is not installed)"
   cargo test --workspace --locked --no-fail-fast
   cargo test --features camera,viewer,zenoh,dataset --locked --no-fail-fast --test cam_real \
-    --test tactile_real --test viewer --test zenoh_bridge --test dataset_lerobot
+    --test tactile_real --test viewer --test zenoh_bridge --test dataset_lerobot --test never_lose_a_file
   cargo test -p yarok-hw --features camera --locked --no-fail-fast --test camera_decode \
     --test video_device
 fi

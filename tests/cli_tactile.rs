@@ -372,6 +372,58 @@ fn an_output_that_is_one_of_the_inputs_is_refused_and_the_input_kept() {
     assert_eq!(std::fs::read(presses).unwrap(), kept[1]);
 }
 
+/// An image or a calibration at the output path that yarok did not write (a user's photo, the
+/// real sensor's frame, a JSON of theirs) is refused and kept byte for byte; what yarok wrote
+/// there before is replaced.
+#[test]
+fn an_output_yarok_did_not_write_is_refused_and_kept() {
+    let folder = tempfile::tempdir().unwrap();
+    let depth = golden("digit/sphere_center/input_depth.npy.gz");
+    let depth = depth.to_str().unwrap();
+    let real = format!(
+        "{}/yarok-components/data/tactile-real/digit",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let photo = folder.path().join("photo.png");
+    std::fs::copy(format!("{real}/background.png"), &photo).unwrap();
+    let photo = photo.to_str().unwrap();
+    let notes = folder.path().join("notes.json");
+    std::fs::write(&notes, r#"{"format": "my own notes"}"#).unwrap();
+    let notes = notes.to_str().unwrap();
+    let kept = [std::fs::read(photo).unwrap(), std::fs::read(notes).unwrap()];
+    yarok_binary::yarok_fails(
+        &["tactile", "digit", depth, photo],
+        2,
+        &[photo, "is not a PNG image yarok wrote", "another path"],
+    );
+    yarok_binary::yarok_fails(
+        &[
+            "tactile",
+            "calibrate",
+            &format!("{real}/background.png"),
+            &format!("{real}/presses.csv"),
+            notes,
+            "--sensor",
+            "digit",
+            "--contact-scale",
+            "0.9",
+            "--spread",
+            "10",
+        ],
+        2,
+        &[notes, "is not a calibration yarok wrote"],
+    );
+    assert_eq!(std::fs::read(photo).unwrap(), kept[0]);
+    assert_eq!(std::fs::read(notes).unwrap(), kept[1]);
+
+    let image = folder.path().join("out/image.png");
+    let image = image.to_str().unwrap();
+    for time in ["first", "second"] {
+        let (code, _, stderr) = yarok(&["tactile", "digit", depth, image]);
+        assert_eq!(code, 0, "{time} image: {stderr}");
+    }
+}
+
 #[test]
 fn calibration_settings_outside_their_physical_range_are_refused_before_fitting() {
     let real = format!(

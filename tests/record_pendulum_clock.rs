@@ -98,3 +98,41 @@ fn the_joint_recorder_writes_one_row_per_tick_with_the_angles_the_behaviour_saw(
         );
     }
 }
+
+/// The recorder replaces a CSV it wrote, and refuses (keeping it byte for byte) a user's CSV.
+#[test]
+fn the_joint_recorder_replaces_only_a_csv_it_wrote() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |csv: &std::path::Path| {
+        Command::new(pendulum_clock())
+            .args([
+                "--set",
+                &format!("plugins/joints_csv/path={}", csv.display()),
+            ])
+            .output()
+            .unwrap()
+    };
+    let ours = dir.path().join("clock.csv");
+    yarok_test::assert_succeeded(&run(&ours));
+    let first = std::fs::read(&ours).unwrap();
+    yarok_test::assert_succeeded(&run(&ours));
+    assert_eq!(
+        std::fs::read(&ours).unwrap(),
+        first,
+        "a rerun writes the same rows"
+    );
+
+    let users = dir.path().join("measurements.csv");
+    let theirs = "time,force\n0.0,1.5\n";
+    std::fs::write(&users, theirs).unwrap();
+    let output = run(&users);
+    assert!(!output.status.success());
+    yarok_test::assert_says(
+        String::from_utf8_lossy(&output.stderr),
+        &[
+            &users.display().to_string(),
+            "is not a joints CSV yarok wrote",
+        ],
+    );
+    assert_eq!(std::fs::read_to_string(&users).unwrap(), theirs);
+}

@@ -30,10 +30,15 @@ pub(crate) fn depth(image: DepthImage, unit: f32) -> ProbeImage {
 /// a micrometre).
 pub const DEPTH_UNIT_KEYWORD: &str = "depth_unit_m";
 
+/// What a PNG yarok writes says under the standard `Software` keyword (with yarok's version):
+/// how an existing image is known as yarok's.
+const SOFTWARE: &str = "yarok";
+
 /// `image` as PNG, as the Zenoh bridge sends it (and recorders colour images): colour as 8-bit
 /// RGB; depth as 16-bit grey (big-endian, as the PNG standard has it) in counts of the image's
 /// unit, which a text chunk [`DEPTH_UNIT_KEYWORD`] states (`1e-6`), 0 where there is no depth
-/// (nothing within range, or not a number) and 65535 beyond the range.
+/// (nothing within range, or not a number) and 65535 beyond the range. The `Software` text
+/// names yarok.
 ///
 /// # Errors
 ///
@@ -57,6 +62,10 @@ pub fn png(image: &ProbeImage) -> Result<Vec<u8>, yarok_core::BoxError> {
     let mut encoder = ::png::Encoder::new(&mut out, width, height);
     encoder.set_compression(::png::Compression::Fast);
     encoder.set_filter(::png::Filter::Sub);
+    encoder.add_text_chunk(
+        "Software".into(),
+        format!("{SOFTWARE} {}", env!("CARGO_PKG_VERSION")),
+    )?;
     match image {
         ProbeImage::Rgb { pixels, .. } => {
             encoder.set_color(::png::ColorType::Rgb);
@@ -76,6 +85,23 @@ pub fn png(image: &ProbeImage) -> Result<Vec<u8>, yarok_core::BoxError> {
         _ => return Err("a probe image of an unknown kind".into()),
     }
     Ok(out)
+}
+
+/// Whether the file at `path` is a PNG yarok wrote with [`png()`]: its `Software` text names
+/// yarok.
+///
+/// # Errors
+///
+/// When the file cannot be read.
+pub fn png_by_yarok(path: &std::path::Path) -> std::io::Result<bool> {
+    let file = std::io::BufReader::new(std::fs::File::open(path)?);
+    let Ok(reader) = ::png::Decoder::new(file).read_info() else {
+        return Ok(false);
+    };
+    Ok(reader.info().uncompressed_latin1_text.iter().any(|text| {
+        text.keyword == "Software"
+            && (text.text == SOFTWARE || text.text.starts_with(&format!("{SOFTWARE} ")))
+    }))
 }
 
 /// `metres` in counts of `unit`: 0 for no depth, 65535 beyond the range.

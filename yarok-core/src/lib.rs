@@ -7,7 +7,9 @@
 //!   [`time`] (platform time and waits) and [`component`] (the component model: components,
 //!   environments, interfaces, binding, backends);
 //! - [`template`] and [`compose`]: MJCF component templates and their composition into one world;
-//! - [`runtime`]: the platform that binds components and runs behaviours and plugins on ticks.
+//! - [`runtime`]: the platform that binds components and runs behaviours and plugins on ticks;
+//! - beside them, [`output`]: the rule every writer follows (a file is replaced only when yarok
+//!   wrote it).
 //!
 //! It names neither MuJoCo nor any device; simulation lives in `yarok-mjc`, hardware in
 //! `yarok-hw`.
@@ -15,6 +17,7 @@
 pub mod component;
 pub mod compose;
 pub mod config;
+pub mod output;
 pub mod report;
 pub mod runtime;
 mod stack;

@@ -1,7 +1,7 @@
 //! [`Encoder`]: an `ffmpeg` process fed raw frames from a thread of its own, every wait on it
 //! bounded: an encoder that stops reading ends the run with an error instead of blocking it.
 
-use std::io::{Read, Write};
+use std::io::{Read, Seek, Write};
 use std::path::PathBuf;
 use std::process::{Child, Command, Stdio};
 use std::sync::mpsc::{SyncSender, sync_channel};
@@ -9,6 +9,7 @@ use std::thread::JoinHandle;
 use std::time::Duration;
 
 use yarok_core::BoxError;
+use yarok_core::output::{check_replaceable, make_folder_for};
 
 use super::bounded_wait::{Refused, poll_within, send_within};
 
@@ -20,6 +21,10 @@ const STALL: Duration = Duration::from_secs(5);
 
 /// How long the encoder may take to write the file once its input has ended.
 const FINISH: Duration = Duration::from_secs(60);
+
+/// The comment every video yarok encodes carries (with yarok's version): how an existing file
+/// is known as yarok's.
+const WRITTEN_BY: &str = "written by yarok";
 
 /// How an [`H264`] video is encoded.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -54,7 +59,13 @@ impl H264 {
         if let Some(crf) = self.crf {
             command.args(["-crf", &crf.to_string()]);
         }
-        command.args(["-movflags", "+faststart"]).arg(path);
+        command
+            .args([
+                "-metadata",
+                &format!("comment={WRITTEN_BY} {}", env!("CARGO_PKG_VERSION")),
+            ])
+            .args(["-movflags", "+faststart", "-f", "mp4"])
+            .arg(path);
         command
     }
 }
@@ -75,8 +86,11 @@ impl Encoder {
     ///
     /// # Errors
     ///
-    /// When the program cannot be started.
+    /// When `path` holds a file yarok did not encode (it is left as it is), or the program
+    /// cannot be started.
     pub(super) fn start(mut command: Command, path: PathBuf) -> Result<Self, BoxError> {
+        check_replaceable(&path, "video", encoded_by_yarok)?;
+        make_folder_for(&path)?;
         let program = command.get_program().to_string_lossy().into_owned();
         let mut process = command
             .stdin(Stdio::piped())
@@ -195,6 +209,40 @@ impl Encoder {
             format!(": {said}")
         }
     }
+}
+
+/// Whether the file at `path` is a video yarok encoded: an MP4 whose index holds yarok's
+/// comment (the index comes first: [`H264::ffmpeg`] asks for it at the front).
+fn encoded_by_yarok(path: &std::path::Path) -> std::io::Result<bool> {
+    let mut at = 0u64;
+    let length = std::fs::metadata(path)?.len();
+    let mut file = std::fs::File::open(path)?;
+    // The boxes before the index (ftyp, free) are small; a file whose index is not within the
+    // first few boxes is not one of ours.
+    for _ in 0..4 {
+        let mut header = [0u8; 8];
+        if at + 8 > length {
+            return Ok(false);
+        }
+        file.seek(std::io::SeekFrom::Start(at))?;
+        file.read_exact(&mut header)?;
+        let size = u64::from(u32::from_be_bytes([
+            header[0], header[1], header[2], header[3],
+        ]));
+        if &header[4..] == b"moov" {
+            let mut index = Vec::new();
+            Read::by_ref(&mut file)
+                .take(size.min(64 << 20))
+                .read_to_end(&mut index)?;
+            let mark = WRITTEN_BY.as_bytes();
+            return Ok(index.windows(mark.len()).any(|w| w == mark));
+        }
+        if size < 8 {
+            return Ok(false);
+        }
+        at += size;
+    }
+    Ok(false)
 }
 
 /// Checks that `path` is whole as an MP4 file: its top-level boxes follow one another to the

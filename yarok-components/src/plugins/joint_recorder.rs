@@ -5,6 +5,7 @@ use std::io::{BufWriter, Write};
 use std::path::PathBuf;
 
 use yarok_core::BoxError;
+use yarok_core::output::{check_replaceable, make_folder_for};
 use yarok_core::runtime::{Plugin, World};
 use yarok_mjc::{Data, JointId};
 
@@ -89,6 +90,35 @@ impl JointRecorder {
     }
 }
 
+/// Whether the file at `path` is a joints CSV yarok wrote: its header is `time` and then only
+/// joints' `.pos` and `.vel` columns (`arm/joint1.pos`, `free.pos[3]`).
+fn joints_csv_by_yarok(path: &std::path::Path) -> std::io::Result<bool> {
+    let head = yarok_core::output::head(path, 1 << 20)?;
+    let Some(header) = head.split(|b| *b == b'\n').next() else {
+        return Ok(false);
+    };
+    let Ok(header) = std::str::from_utf8(header) else {
+        return Ok(false);
+    };
+    let mut columns = header.split(',');
+    let joint_column = |column: &str| {
+        let column = column.split_once('[').map_or(column, |(name, index)| {
+            if index
+                .strip_suffix(']')
+                .is_some_and(|k| k.parse::<usize>().is_ok())
+            {
+                name
+            } else {
+                ""
+            }
+        });
+        column
+            .rsplit_once('.')
+            .is_some_and(|(joint, what)| !joint.is_empty() && (what == "pos" || what == "vel"))
+    };
+    Ok(columns.next() == Some("time") && columns.all(joint_column))
+}
+
 impl Plugin for JointRecorder {
     fn writes(&self) -> Vec<std::path::PathBuf> {
         vec![self.settings.path.clone()]
@@ -106,6 +136,8 @@ impl Plugin for JointRecorder {
         let sim = super::sim_backend(world)?;
         self.joints = sim.model().joints().collect();
         let path = &self.settings.path;
+        check_replaceable(path, "joints CSV", joints_csv_by_yarok)?;
+        make_folder_for(path)?;
         let file =
             File::create(path).map_err(|e| format!("cannot create {}: {e}", path.display()))?;
         let mut file = BufWriter::new(file);

@@ -9,9 +9,35 @@ use std::sync::Arc;
 
 use yarok_core::BoxError;
 use yarok_core::component::ProbeImage;
+use yarok_core::output::{check_replaceable, head, make_folder_for};
 use yarok_mjc::Pose;
 
 use crate::plugins::recording_profile::{JointValues, MessageKind, RecordingProfile, nanoseconds};
+
+/// The library an MCAP file's header names when yarok recorded it (with yarok's version).
+const LIBRARY: &str = "yarok";
+
+/// Whether the file at `path` is an MCAP recording yarok made: its header names yarok as the
+/// library that wrote it.
+fn recorded_by_yarok(path: &Path) -> std::io::Result<bool> {
+    const MAGIC: &[u8] = b"\x89MCAP0\r\n";
+    let bytes = head(path, 4096)?;
+    let string_at = |at: usize| -> Option<(&[u8], usize)> {
+        let length = u32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?) as usize;
+        Some((bytes.get(at + 4..at + 4 + length)?, at + 4 + length))
+    };
+    // The magic, then the header record: opcode 1, its length (u64), profile, library.
+    let library = bytes
+        .starts_with(MAGIC)
+        .then_some(())
+        .filter(|()| bytes.get(MAGIC.len()) == Some(&1))
+        .and_then(|()| string_at(MAGIC.len() + 9))
+        .and_then(|(_, next)| string_at(next))
+        .map(|(library, _)| library);
+    Ok(library.is_some_and(|library| {
+        library == LIBRARY.as_bytes() || library.starts_with(format!("{LIBRARY} ").as_bytes())
+    }))
+}
 
 /// What a recording's files hold, found once at the start of the run.
 #[derive(Debug, Clone, Default)]
@@ -92,14 +118,13 @@ impl McapFile {
         metadata: &mcap::records::Metadata,
     ) -> Result<Self, BoxError> {
         let cannot = |e: std::io::Error| format!("cannot create {}: {e}", path.display());
-        if let Some(folder) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
-            std::fs::create_dir_all(folder).map_err(cannot)?;
-        }
+        check_replaceable(&path, "recording", recorded_by_yarok)?;
+        make_folder_for(&path)?;
         let file = File::create(&path).map_err(cannot)?;
         let options = mcap::WriteOptions::new()
             .compression(Some(mcap::Compression::Zstd))
             .profile(profile.mcap_profile())
-            .library(concat!("yarok ", env!("CARGO_PKG_VERSION")));
+            .library(format!("{LIBRARY} {}", env!("CARGO_PKG_VERSION")));
         let mut writer = options
             .create(BufWriter::new(file))
             .map_err(|e| failed(&path, e))?;

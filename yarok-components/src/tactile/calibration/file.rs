@@ -5,6 +5,8 @@ use base64::Engine;
 use image::{ImageEncoder, RgbImage};
 use serde::{Deserialize, Serialize};
 
+use yarok_core::output::{check_replaceable, head, make_folder_for};
+
 use super::surface::{NORMAL_TERMS, POSITION_TERMS};
 use super::{Calibration, CalibrationError, Geometry};
 
@@ -63,12 +65,16 @@ impl Calibration {
         serde_json::to_string_pretty(&file).expect("a calibration serialises") + "\n"
     }
 
-    /// Writes the calibration to `path` as JSON.
+    /// Writes the calibration to `path` as JSON, replacing only a calibration file.
     ///
     /// # Errors
     ///
-    /// [`CalibrationError::Io`] naming the file.
+    /// [`CalibrationError::Refused`] when `path` holds a file that is not a calibration (it is
+    /// left as it is); [`CalibrationError::Io`] naming the file.
     pub fn save(&self, path: &str) -> Result<(), CalibrationError> {
+        check_replaceable(path.as_ref(), "calibration", calibration_file)
+            .map_err(CalibrationError::Refused)?;
+        make_folder_for(path.as_ref()).map_err(CalibrationError::Refused)?;
         std::fs::write(path, self.to_json()).map_err(|source| CalibrationError::Io {
             path: path.to_owned(),
             source,
@@ -89,6 +95,24 @@ impl Calibration {
         })?;
         parse(&text, path)
     }
+}
+
+/// Whether the file at `path` is a calibration file: a JSON object whose first field names
+/// the format.
+fn calibration_file(path: &std::path::Path) -> std::io::Result<bool> {
+    let head = head(path, 256)?;
+    let text = String::from_utf8_lossy(&head);
+    let first_field = text.trim_start().strip_prefix('{').map(str::trim_start);
+    Ok(first_field.is_some_and(|field| {
+        field
+            .strip_prefix("\"format\"")
+            .map(str::trim_start)
+            .and_then(|rest| rest.strip_prefix(':'))
+            .is_some_and(|rest| {
+                let format = FORMAT.rsplit_once(' ').map_or(FORMAT, |(name, _)| name);
+                rest.trim_start().starts_with(&format!("\"{format}"))
+            })
+    }))
 }
 
 /// The calibration in `text`, read from `path` (for errors).

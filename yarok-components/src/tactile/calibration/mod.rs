@@ -57,6 +57,10 @@ pub enum CalibrationError {
         /// Why.
         source: std::io::Error,
     },
+    /// The path to write a calibration to cannot take it: a file yarok did not write is there
+    /// (it is left as it is), or the folder for it cannot be made.
+    #[error("{0}")]
+    Refused(String),
     /// A calibration file is not one.
     #[error("calibration file {path}: {reason}")]
     Format {
