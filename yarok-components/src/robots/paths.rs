@@ -10,12 +10,16 @@ const MAX_JOINT_STEP: f64 = 0.25;
 /// Spacing (metres or radians of path length) at which a line is checked before it starts.
 const CHECK_SPACING: f64 = 0.005;
 
+/// The most points a line is checked at: 500 m of line. No arm reaches so far; the bound keeps
+/// a length nothing can follow (a pose 1e308 m away) from taking forever.
+const MAX_CHECKED_POINTS: usize = 100_000;
+
 /// At how many points, evenly spaced to its end, a path `length` long is checked before it
-/// starts: a line's every [`CHECK_SPACING`]; a joint move's end alone (its joints move in
-/// proportion, through no singularity).
+/// starts: a line's every [`CHECK_SPACING`] (at most [`MAX_CHECKED_POINTS`]); a joint move's
+/// end alone (its joints move in proportion, through no singularity).
 fn checked_points(length: f64, line: bool) -> usize {
     if line {
-        ((length / CHECK_SPACING).ceil() as usize).max(1)
+        ((length / CHECK_SPACING).ceil() as usize).clamp(1, MAX_CHECKED_POINTS)
     } else {
         1
     }

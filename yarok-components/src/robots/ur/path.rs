@@ -58,13 +58,17 @@ impl Path {
     }
 
     /// Checks, before anything moves, that the arm can follow the whole path from `start`:
-    /// every point of a line reachable within the joint limits, without a joint jumping (a
-    /// singularity or a change of branch on the way). Returns the joints at the end.
+    /// a line's end within reach first, then every point of it reachable within the joint
+    /// limits, without a joint jumping (a singularity or a change of branch on the way).
+    /// Returns the joints at the end.
     pub(crate) fn check(
         &self,
         kinematics: &Kinematics,
         start: &Joints,
     ) -> Result<Joints, PathError> {
+        if let Path::Line { to, .. } = self {
+            kinematics.nearest(to, start)?;
+        }
         paths::check(
             self.length(),
             matches!(self, Path::Line { .. }),
