@@ -61,6 +61,32 @@ struct Command {
     body: Result<Value, String>,
 }
 
+impl Command {
+    /// The command that came on `key` (under the world's `prefix`) with the body `payload`, or
+    /// the size of one larger than [`MAX_COMMAND_BYTES`] (refused unread). A body that is not
+    /// JSON, or is too large, is an error the reply will carry.
+    fn received(key: &str, prefix: &str, payload: Result<&[u8], usize>) -> Self {
+        let (path, name) = key
+            .strip_prefix(prefix)
+            .unwrap_or_default()
+            .rsplit_once('/')
+            .unwrap_or(("", "command"));
+        let body = match payload {
+            Ok(payload) => serde_json::from_slice(payload)
+                .map_err(|e| format!("{key}: the body is not JSON: {e}")),
+            Err(size) => Err(format!(
+                "{key}: the command is {size} bytes, more than the {MAX_COMMAND_BYTES} a command \
+                 may be"
+            )),
+        };
+        Self {
+            path: path.to_owned(),
+            name: name.to_owned(),
+            body,
+        }
+    }
+}
+
 /// Publishes a world's state over [Zenoh](https://zenoh.io) and takes commands from it, in
 /// `sim` and `real` alike. Keys, under `yarok/{world}` (`world` set, default `world`):
 ///
@@ -301,28 +327,16 @@ fn serve(
             .declare_subscriber(key)
             .callback(move |sample| {
                 let key = sample.key_expr().as_str();
-                let (path, name) = key
-                    .strip_prefix(&prefix)
-                    .unwrap_or_default()
-                    .rsplit_once('/')
-                    .unwrap_or(("", "command"));
-                let size = sample.payload().len();
-                let body = if size > MAX_COMMAND_BYTES {
-                    let error = format!(
-                        "{key}: the command is {size} bytes, more than the {MAX_COMMAND_BYTES} \
-                         a command may be"
-                    );
-                    tracing::warn!("{error}");
-                    Err(error)
+                let payload = sample.payload();
+                let command = if payload.len() > MAX_COMMAND_BYTES {
+                    Command::received(key, &prefix, Err(payload.len()))
                 } else {
-                    serde_json::from_slice(&sample.payload().to_bytes())
-                        .map_err(|e| format!("{key}: the body is not JSON: {e}"))
+                    Command::received(key, &prefix, Ok(&payload.to_bytes()))
                 };
-                let _ = commands.send(Command {
-                    path: path.to_owned(),
-                    name: name.to_owned(),
-                    body,
-                });
+                if let Err(error) = &command.body {
+                    tracing::warn!("{error}");
+                }
+                let _ = commands.send(command);
             })
             .wait();
         match subscriber {
@@ -433,5 +447,79 @@ impl Plugin for ZenohBridge {
             thread.join().map_err(|_| "the Zenoh thread panicked")?;
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use yarok_test::generator::Generator;
+
+    use super::{Command, MAX_COMMAND_BYTES};
+
+    /// 100 000 generated keys and payloads (JSON, JSON cut or flipped, bytes, sizes past the
+    /// limit) each become a command to answer: the path and name under the world's keys, and
+    /// the body or the reason it is refused. None panics.
+    #[test]
+    fn every_received_key_and_payload_becomes_a_command_to_answer() {
+        let prefix = "yarok/world/";
+        let keys = [
+            "yarok/world/command",
+            "yarok/world/arm/command",
+            "yarok/world/gripper/command",
+            "yarok/world/a/b/c/grip",
+            "yarok/world/",
+            "yarok/other/arm/command",
+        ];
+        let bodies: [&[u8]; 6] = [
+            br#"{"move_j": [0.1, -1.5, 1.5, -1.5, -1.57, 0.0], "speed": 0.5}"#,
+            br#"{"move_to": 255}"#,
+            br#"{"ping": 1e308}"#,
+            br#"[1, 2, {"a": null}]"#,
+            b"\"\\u0000\"",
+            b"",
+        ];
+        let mut generator = Generator(0x00b2_1d6e);
+        let (mut taken, mut refused) = (0, 0);
+        for _ in 0..100_000 {
+            let key = generator.pick(&keys);
+            let mut body = bodies[generator.below(bodies.len())].to_vec();
+            match generator.below(4) {
+                0 => body.truncate(generator.below(body.len() + 1)),
+                1 if !body.is_empty() => {
+                    let at = generator.below(body.len());
+                    body[at] = generator.next_u64() as u8;
+                }
+                2 => {
+                    let length = generator.below(64);
+                    body = generator.bytes(length);
+                }
+                _ => {}
+            }
+            let payload = match generator.below(50) {
+                0 => Err(MAX_COMMAND_BYTES + 1 + generator.below(1 << 30)),
+                _ => Ok(body.as_slice()),
+            };
+            let command = Command::received(key, prefix, payload);
+            match &command.body {
+                Ok(_) => taken += 1,
+                Err(error) => {
+                    assert!(error.starts_with(key), "{error}");
+                    refused += 1;
+                }
+            }
+            // Under the world's keys, the path and the name are the key's; the world's own
+            // command has no path.
+            if let Some(under) = key.strip_prefix(prefix).filter(|under| !under.is_empty()) {
+                let rebuilt = match command.path.as_str() {
+                    "" => command.name.clone(),
+                    path => format!("{path}/{}", command.name),
+                };
+                assert_eq!(rebuilt, under);
+            }
+        }
+        assert!(
+            taken > 10_000 && refused > 10_000,
+            "{taken} taken, {refused} refused"
+        );
     }
 }
