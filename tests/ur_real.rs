@@ -5,8 +5,8 @@
 //! are reconnected while the behaviour waits; a CB3 UR5 moves too and takes its payload; dropping a
 //! motion's future stops the arm; the arm is stopped when the run ends; a controller in local
 //! control, an arm powered off or in a protective stop, is refused at connect in words; an arm powered off mid-motion
-//! fails the motion at once; an RTDE service that answers but sends no data is named, without a
-//! tight loop of reconnections.
+//! fails the motion at once; a motion lost to a controller restart is named so; an RTDE service
+//! that answers but sends no data is named, without a tight loop of reconnections.
 
 use std::time::Duration;
 
@@ -323,6 +323,38 @@ fn an_arm_powered_off_mid_motion_fails_the_motion_at_once() {
                 "{:?}",
                 started.elapsed()
             );
+            Ok(())
+        })
+        .run()
+        .unwrap();
+}
+
+/// The controller restarts during a motion (its program stops, its connections drop): the
+/// motion ends saying its connection dropped and the controller did not finish it — not "did
+/// not reach" as if something blocked the arm — and the next motion arrives.
+#[test]
+fn a_motion_lost_to_a_controller_restart_is_named_so() {
+    let fake = std::sync::Arc::new(fake_ur5e());
+    let restarting = std::sync::Arc::clone(&fake);
+    real::<Ur5eAlone>(&fake)
+        .behaviour(move |pl| async move {
+            let arm: Ur5e = pl.get("/arm")?;
+            let far = [1.5, -1.3, 1.2, -1.5, -1.57, 0.0];
+            let (lost, ()) = tokio::join!(arm.move_j(far).speed(0.75), async {
+                pl.wait_seconds(0.5).await.unwrap();
+                restarting.restart();
+            });
+            let error = lost.unwrap_err();
+            assert!(
+                matches!(error, MotionError::ConnectionLost { .. }),
+                "{error}"
+            );
+            assert_says(
+                &error,
+                &["dropped during the motion", "restarted", "move it again"],
+            );
+            arm.move_j(START).speed(1.0).await?;
+            assert!(arm.is_at(&START));
             Ok(())
         })
         .run()

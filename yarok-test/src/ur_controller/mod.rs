@@ -370,6 +370,14 @@ impl FakeController {
         self.shared.drops.fetch_add(1, Ordering::Relaxed);
     }
 
+    /// Restarts the controller as its power cycle does: the program running stops (the arm
+    /// halts where it is) and every connection drops.
+    pub fn restart(&self) {
+        self.shared.motion.lock().unwrap().command(ArmCommand::Stop);
+        self.shared.arm.lock().unwrap().playing = false;
+        self.drop_streams();
+    }
+
     /// The output variables clients asked for so far.
     pub fn asked(&self) -> Vec<String> {
         self.shared.asked.lock().unwrap().clone()

@@ -137,7 +137,9 @@ impl Controller {
                 setpoint.speed = speed;
                 // A real arm's position not yet current is known again, or the run ends.
                 if t >= motion.profile.duration() && self.drive.is_current() {
-                    motion.settled(self.drive.q(&state.setpoint), now)
+                    motion
+                        .settled(self.drive.q(&state.setpoint), now)
+                        .map(|outcome| outcome.map_err(|miss| self.explained(miss)))
                 } else {
                     None
                 }
@@ -150,6 +152,17 @@ impl Controller {
                 state.motions.end(motion, outcome);
             }
             None => state.motions.keep(motion),
+        }
+    }
+
+    /// `miss` as the drive explains it: a motion whose connection dropped on the way is lost
+    /// to that, not merely short of its target.
+    fn explained(&self, miss: MotionError) -> MotionError {
+        match (miss, self.drive.interruption()) {
+            (MotionError::NotArrived { target, at, .. }, Some(cause)) => {
+                MotionError::ConnectionLost { cause, target, at }
+            }
+            (miss, _) => miss,
         }
     }
 

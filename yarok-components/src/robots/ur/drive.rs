@@ -124,6 +124,14 @@ pub trait ArmDrive {
         None
     }
 
+    /// What cut the motion under way short, if the drive knows: a real arm's connection that
+    /// dropped and was reopened since the last order (its controller restarted, and the
+    /// order's program with it). A motion that misses its target ends with it instead of a
+    /// plain miss. By default nothing.
+    fn interruption(&self) -> Option<String> {
+        None
+    }
+
     /// Whether [`ArmDrive::q`] is where the arm is now; `false` while it cannot be known (a
     /// dropped stream being reconnected), and a motion waits to end.
     fn is_current(&self) -> bool {

@@ -46,6 +46,21 @@ pub enum MotionError {
         /// How long after the motion's end it was given to settle.
         seconds: f64,
     },
+    /// A real arm's connection dropped during the motion and was reopened, and the arm did
+    /// not reach the target: the controller lost the motion's program (a restart, say).
+    #[error(
+        "the connection to the arm's controller dropped during the motion and was reopened \
+         ({cause}); the controller did not finish the motion (was it restarted?): the arm is at \
+         {at:?}, not at {target:?}; move it again"
+    )]
+    ConnectionLost {
+        /// What dropped, and why.
+        cause: String,
+        /// The target joints.
+        target: Joints,
+        /// Where the arm is.
+        at: Joints,
+    },
     /// A real arm's safety system stopped it (a protective stop after a collision, an
     /// emergency stop, …); after a protective stop, inspect the cause, then
     /// [`Arm::unlock_protective_stop`](super::Arm::unlock_protective_stop).

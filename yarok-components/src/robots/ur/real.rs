@@ -150,6 +150,9 @@ enum Request {
 pub(super) struct RealLink {
     measured: Cell<Measured>,
     received_at: Cell<Instant>,
+    /// A connection that dropped and was reopened since the last order was sent: what, and
+    /// why.
+    dropped_since_order: RefCell<Option<String>>,
     requests: RefCell<VecDeque<Request>>,
     wake: Notify,
     clock: Clock,
@@ -165,6 +168,11 @@ impl RealLink {
     fn update(&self, now: Measured) {
         self.measured.set(now);
         self.received_at.set(Instant::now());
+    }
+
+    /// Notes that a connection dropped (`what`, and why): a motion under way may be lost.
+    fn dropped(&self, what: String) {
+        *self.dropped_since_order.borrow_mut() = Some(what);
     }
 
     fn request(&self, request: Request) {
@@ -208,6 +216,7 @@ impl ArmDrive for RealLink {
             Order::StopL { deceleration } => script::stopl(deceleration),
             Order::SetPayload(payload) => script::set_payload(payload.mass, payload.centre),
         };
+        self.dropped_since_order.take();
         self.request(Request::Script(script));
     }
 
@@ -221,6 +230,10 @@ impl ArmDrive for RealLink {
                 mode: robot_mode_name(robot_mode),
             }),
         }
+    }
+
+    fn interruption(&self) -> Option<String> {
+        self.dropped_since_order.borrow().clone()
     }
 
     /// Whether RTDE has been heard from lately (a dropped stream being reconnected is not):
@@ -431,6 +444,7 @@ pub(super) async fn connect(
     let link = Rc::new(RealLink {
         measured: Cell::new(first),
         received_at: Cell::new(Instant::now()),
+        dropped_since_order: RefCell::new(None),
         requests: RefCell::new(VecDeque::new()),
         wake: Notify::new(),
         clock: bind.clock(),
@@ -474,6 +488,7 @@ async fn drive(
                 }
                 Err(error) => {
                     tracing::warn!(controller = %host, "RTDE dropped ({error}); reconnecting");
+                    link.dropped(format!("controller {host}'s RTDE stream: {error}"));
                     let first;
                     (rtde, first) = reconnect("RTDE", host, reply, error, async || {
                         rtde_stream(host, settings.rtde_hz, reply).await
@@ -486,6 +501,7 @@ async fn drive(
                 // Read to keep the controller's sending side flowing; RTDE is faster.
                 if let Err(error) = state {
                     tracing::warn!(controller = %host, "secondary interface dropped ({error}); reconnecting");
+                    link.dropped(format!("controller {host}'s secondary interface: {error}"));
                     secondary =
                         reconnect("secondary interface", host, reply, error, secondary_again).await?;
                 }
