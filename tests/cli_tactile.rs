@@ -424,6 +424,67 @@ fn an_output_yarok_did_not_write_is_refused_and_kept() {
     }
 }
 
+/// Presses confined to the lower half of the gel: `calibrate` writes the coverage map beside the
+/// calibration and warns naming the share of the gel no press reached and the rows they did.
+#[test]
+fn calibrate_reports_where_the_presses_reached() {
+    let real = format!(
+        "{}/yarok-components/data/tactile-real/digit",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let folder = tempfile::tempdir().unwrap();
+    std::os::unix::fs::symlink(format!("{real}/frames"), folder.path().join("frames")).unwrap();
+    let all = std::fs::read_to_string(format!("{real}/presses.csv")).unwrap();
+    let lower: Vec<&str> = all
+        .lines()
+        .enumerate()
+        .filter(|(number, line)| {
+            *number == 0 || line.split(',').nth(2).unwrap().parse::<f64>().unwrap() >= 150.0
+        })
+        .map(|(_, line)| line)
+        .collect();
+    let presses = folder.path().join("lower.csv");
+    std::fs::write(&presses, lower.join("\n") + "\n").unwrap();
+    let out = folder.path().join("lower.json");
+    let (code, stdout, stderr) = yarok(&[
+        "tactile",
+        "calibrate",
+        &format!("{real}/background.png"),
+        presses.to_str().unwrap(),
+        out.to_str().unwrap(),
+        "--sensor",
+        "digit",
+        "--contact-scale",
+        "0.9",
+        "--spread",
+        "10",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let map = folder.path().join("lower.coverage.png");
+    yarok_test::assert_says(
+        &stdout,
+        &[&map.display().to_string(), "warning: no press reached"],
+    );
+    let uncovered: f64 = stdout
+        .split("warning: no press reached ")
+        .nth(1)
+        .and_then(|rest| rest.split(' ').next())
+        .and_then(|share| share.parse().ok())
+        .unwrap();
+    // The presses' rows start below the upper half's.
+    let rows = stdout.split(", rows ").nth(1).unwrap();
+    let first_row: u32 = rows.split('-').next().unwrap().parse().unwrap();
+    assert!(uncovered > 50.0 && first_row >= 90, "{stdout}");
+    let map = image::open(&map).unwrap().to_rgb8();
+    assert_eq!(map.dimensions(), (240, 320));
+    assert_eq!(map.get_pixel(120, 10).0, [0; 3], "the top row is outside");
+    assert_eq!(
+        map.get_pixel(120, 200).0,
+        [255; 3],
+        "the lower middle is reached"
+    );
+}
+
 #[test]
 fn calibration_settings_outside_their_physical_range_are_refused_before_fitting() {
     let real = format!(

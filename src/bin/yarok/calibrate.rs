@@ -1,8 +1,11 @@
 //! `yarok tactile calibrate`: a sensor's optical model fitted to real frames of ball presses.
 
+use yarok::components::probe_images;
 use yarok::components::tactile::calibration::{
-    Calibration, FitSettings, check_sensor_name, check_setting, read_presses, split_held_out,
+    Calibration, Coverage, FitSettings, check_sensor_name, check_setting, read_presses,
+    split_held_out,
 };
+use yarok::core::output::check_replaceable;
 
 /// Each option's calibration setting, whose physical range bounds it.
 const SETTINGS: [(&str, &str); 4] = [
@@ -71,17 +74,47 @@ pub(super) fn run(args: &[String]) -> Result<(), String> {
     let background = image::open(untouched)
         .map_err(|e| format!("{untouched}: {e}"))?
         .to_rgb8();
+    let map = coverage_map_path(out);
+    super::apart_from_inputs(&map, &[untouched, presses])?;
+    check_replaceable(map.as_ref(), "PNG image", probe_images::png_by_yarok)?;
     let (used, held) = split_held_out(read_presses(presses).map_err(|e| e.to_string())?, hold_out);
+    let coverage = Coverage::of(&used, background.width(), background.height());
     let calibration = Calibration::fit(&background, &used, &settings)
         .and_then(|calibration| calibration.for_sensor(sensor))
         .map_err(|e| e.to_string())?;
     calibration.save(out).map_err(|e| e.to_string())?;
+    super::tactile::write_png(coverage.map(), &map)?;
     let geometry = calibration.geometry();
-    super::print(&format!(
+    let mut report = format!(
         "{out}: fitted to {} of {} presses (contact scale {}, spread {} px)\n",
         used.len(),
         used.len() + held.len(),
         geometry.contact_scale,
         geometry.spread
-    ))
+    );
+    report += &format!(
+        "{map}: the presses reached {:.0} % of the gel (white; grey: the rest of the rectangle \
+         holding them)\n",
+        100.0 * coverage.reached_share()
+    );
+    let [x0, y0, x1, y1] = coverage.rectangle();
+    if coverage.outside_share() > UNCOVERED_WARNING {
+        report += &format!(
+            "warning: no press reached {:.0} % of the gel (outside columns {x0}-{x1}, rows \
+             {y0}-{y1}): there the model holds the colour weights of the nearest covered point \
+             rather than extrapolating; add presses there\n",
+            100.0 * coverage.outside_share()
+        );
+    }
+    super::print(&report)
+}
+
+/// The share of the gel outside the presses' rectangle beyond which `calibrate` warns.
+const UNCOVERED_WARNING: f64 = 0.25;
+
+/// Where the coverage map of the calibration written to `out` goes: beside it,
+/// `NAME.coverage.png`.
+fn coverage_map_path(out: &str) -> String {
+    let stem = out.strip_suffix(".json").unwrap_or(out);
+    format!("{stem}.coverage.png")
 }

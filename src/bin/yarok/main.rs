@@ -74,7 +74,9 @@ const USAGE: &str = "usage: yarok run WORLD [--behaviour NAME] [--viewer] [--ins
                (each frame once, its centre on the frame, 1 px <= radius <= half the frame);
                frames/FRAME.png beside it, all of one size and kind; --hold-out N
          leaves out the frames whose number is one less than a multiple of N; the ball's
-         diameter 0.5-50 mm, pixels per mm 1-200, contact scales 0.05-3, spreads 0-64 px";
+         diameter 0.5-50 mm, pixels per mm 1-200, contact scales 0.05-3, spreads 0-64 px;
+         beside OUT.json, OUT.coverage.png maps where the presses reached (beyond their
+         rectangle the model holds the nearest covered weights)";
 
 /// Writes `text` to standard output; a closed standard output (`yarok … | head`) ends the
 /// output quietly, as Unix tools do.

@@ -264,7 +264,7 @@ pub(super) fn run(args: &[String]) -> Result<(), String> {
 }
 
 /// Writes `image` to `out` as PNG, replacing only a PNG yarok wrote.
-fn write_png(image: image::RgbImage, out: &str) -> Result<(), String> {
+pub(super) fn write_png(image: image::RgbImage, out: &str) -> Result<(), String> {
     check_replaceable(out.as_ref(), "PNG image", probe_images::png_by_yarok)?;
     make_folder_for(out.as_ref())?;
     let bytes = probe_images::png(&ProbeImage::Rgb {

@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 
 use yarok_core::output::{check_replaceable, head, make_folder_for};
 
-use super::surface::{NORMAL_TERMS, POSITION_TERMS};
+use super::surface::{EVERYWHERE, NORMAL_TERMS, POSITION_TERMS};
 use super::{Calibration, CalibrationError, Geometry};
 
 /// The format's name and version, the file's first field.
@@ -32,6 +32,10 @@ struct CalibrationFile {
     coefficients: Vec<[f64; 3]>,
     /// The camera's noise, standard deviation per channel (levels).
     noise_levels: [f64; 3],
+    /// Where the calibration presses reached (`[x_min, y_min, x_max, y_max]`, from the image's
+    /// centre in image widths and heights); files before it was stated extrapolate everywhere.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    covered: Option<[f64; 4]>,
     background_png: String,
 }
 
@@ -60,6 +64,7 @@ impl Calibration {
             position_terms: POSITION_TERMS.map(str::to_owned).to_vec(),
             coefficients: self.coefficients.clone(),
             noise_levels: self.noise,
+            covered: (self.covered != EVERYWHERE).then_some(self.covered),
             background_png: base64::engine::general_purpose::STANDARD.encode(png),
         };
         serde_json::to_string_pretty(&file).expect("a calibration serialises") + "\n"
@@ -169,8 +174,15 @@ pub(super) fn parse(text: &str, path: &str) -> Result<Calibration, CalibrationEr
     ] {
         super::fit::check_setting(name, value).map_err(format)?;
     }
-    let calibration = Calibration::new(background, geometry, file.coefficients, file.noise_levels)
-        .map_err(|e| format(e.to_string()))?;
+    let covered = file.covered.unwrap_or(EVERYWHERE);
+    let calibration = Calibration::new(
+        background,
+        geometry,
+        file.coefficients,
+        file.noise_levels,
+        covered,
+    )
+    .map_err(|e| format(e.to_string()))?;
     match file.sensor {
         Some(sensor) => calibration
             .for_sensor(&sensor)

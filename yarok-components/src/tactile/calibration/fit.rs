@@ -3,9 +3,10 @@
 use image::RgbImage;
 use nalgebra::{DMatrix, SMatrix};
 
+use super::Coverage;
 use super::press::{Press, within};
 use super::surface::{
-    NORMAL_TERMS, POSITION_TERMS, between, half_normal_terms, half_position_terms, half_size,
+    Area, NORMAL_TERMS, POSITION_TERMS, between, half_normal_terms, half_position_terms, half_size,
     spread,
 };
 use super::{Calibration, CalibrationError, Geometry};
@@ -82,6 +83,7 @@ pub(super) fn fit(
     check(untouched, presses, settings)?;
     let background = background(untouched, presses);
     let noise = camera_noise(&background, presses);
+    let covered = Coverage::of(presses, untouched.width(), untouched.height()).area();
     let mut best: Option<(f64, Calibration)> = None;
     for &contact_scale in &settings.contact_scales {
         for &spread in &settings.spreads {
@@ -91,8 +93,9 @@ pub(super) fn fit(
                 contact_scale,
                 spread,
             };
-            let coefficients = coefficients(&background, presses, &geometry)?;
-            let calibration = Calibration::new(background.clone(), geometry, coefficients, noise)?;
+            let coefficients = coefficients(&background, presses, &geometry, &covered)?;
+            let calibration =
+                Calibration::new(background.clone(), geometry, coefficients, noise, covered)?;
             let error = mean_error(&calibration, presses);
             if best.as_ref().is_none_or(|(least, _)| error < *least) {
                 best = Some((error, calibration));
@@ -248,13 +251,14 @@ fn coefficients(
     background: &RgbImage,
     presses: &[Press],
     geometry: &Geometry,
+    covered: &Area,
 ) -> Result<Vec<[f64; 3]>, CalibrationError> {
     let (width, height) = (background.width() as usize, background.height() as usize);
     let mut normal = DMatrix::<f64>::zeros(TERMS, TERMS);
     let mut target = DMatrix::<f64>::zeros(TERMS, 3);
     let (half_width, half_height) = half_size(width, height);
     let positions: Vec<[f64; 6]> = (0..half_width * half_height)
-        .map(|i| half_position_terms(i % half_width, i / half_width, width, height))
+        .map(|i| half_position_terms(i % half_width, i / half_width, width, height, covered))
         .collect();
     let columns: Vec<_> = (0..width).map(|x| between(x, half_width)).collect();
     let mut terms = [0.0; TERMS];

@@ -27,6 +27,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod coverage;
 mod file;
 mod fit;
 mod press;
@@ -36,9 +37,10 @@ use std::sync::Arc;
 
 use image::RgbImage;
 
+pub use coverage::Coverage;
 pub use fit::{FitSettings, SETTING_RANGES, check_setting};
 pub use press::{Press, ball_press, held_out, read_presses, split_held_out};
-pub use surface::{NORMAL_TERMS, POSITION_TERMS};
+pub use surface::{Area, NORMAL_TERMS, POSITION_TERMS};
 
 use super::SizeError;
 
@@ -142,6 +144,9 @@ pub struct Calibration {
     coefficients: Vec<[f64; 3]>,
     /// The camera's noise, per channel: standard deviation, levels.
     noise: [f64; 3],
+    /// Where the calibration presses reached: beyond it, the colour polynomial's weights are
+    /// those of the nearest point within it.
+    covered: Area,
     /// Per point of the half-resolution grid, per channel (R, G, B), per normal term: the
     /// coefficients' position polynomials evaluated.
     weights: Arc<Vec<f32>>,
@@ -153,7 +158,14 @@ impl Calibration {
         geometry: Geometry,
         coefficients: Vec<[f64; 3]>,
         noise: [f64; 3],
+        covered: Area,
     ) -> Result<Self, CalibrationError> {
+        if covered[0] > covered[2] || covered[1] > covered[3] || covered.iter().any(|c| c.is_nan())
+        {
+            return Err(CalibrationError::Fit(format!(
+                "the covered area {covered:?} is not a rectangle"
+            )));
+        }
         if noise.iter().any(|n| !(n.is_finite() && *n >= 0.0)) {
             return Err(CalibrationError::Fit(format!(
                 "the noise levels {noise:?} are not finite and non-negative"
@@ -172,7 +184,7 @@ impl Calibration {
         let mut weights = Vec::with_capacity(half_width * half_height * NORMAL_TERMS.len() * 3);
         for hy in 0..half_height {
             for hx in 0..half_width {
-                let positions = surface::half_position_terms(hx, hy, width, height);
+                let positions = surface::half_position_terms(hx, hy, width, height, &covered);
                 for channel in 0..3 {
                     for term in coefficients.chunks_exact(POSITION_TERMS.len()) {
                         let weight: f64 = positions
@@ -191,6 +203,7 @@ impl Calibration {
             geometry,
             coefficients,
             noise,
+            covered,
             weights: Arc::new(weights),
         })
     }

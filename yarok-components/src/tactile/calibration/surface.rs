@@ -96,13 +96,42 @@ pub(super) fn between(x: usize, half_len: usize) -> (usize, usize, f64) {
     (first, (first + 1).min(half_len - 1), at - first as f64)
 }
 
+/// A rectangle of the gel, in the position terms' coordinates (`x`, `y` from the image's centre,
+/// in image widths and heights): `[x_min, y_min, x_max, y_max]`.
+pub type Area = [f64; 4];
+
+/// The whole plane: positions taken as they are.
+pub(super) const EVERYWHERE: Area = [
+    f64::NEG_INFINITY,
+    f64::NEG_INFINITY,
+    f64::INFINITY,
+    f64::INFINITY,
+];
+
+/// Image point (`x`, `y`, pixels from the top-left corner) of a `width × height` image in the
+/// position terms' coordinates.
+pub(super) fn position(x: f64, y: f64, width: usize, height: usize) -> [f64; 2] {
+    [
+        (x - width as f64 / 2.0) / width as f64,
+        (y - height as f64 / 2.0) / height as f64,
+    ]
+}
+
 /// The position terms of point (`hx`, `hy`) of the half-resolution grid of a `width × height`
-/// image: those of the image's point at its centre.
-pub(super) fn half_position_terms(hx: usize, hy: usize, width: usize, height: usize) -> [f64; 6] {
+/// image: those of the image's point at its centre, or, outside `covered` (where no calibration
+/// press reached), of the nearest point within it — the polynomial is not extrapolated.
+pub(super) fn half_position_terms(
+    hx: usize,
+    hy: usize,
+    width: usize,
+    height: usize,
+    covered: &Area,
+) -> [f64; 6] {
     let x = (HALF * hx) as f64 + 0.5 * (HALF - 1) as f64;
     let y = (HALF * hy) as f64 + 0.5 * (HALF - 1) as f64;
-    let x = (x - width as f64 / 2.0) / width as f64;
-    let y = (y - height as f64 / 2.0) / height as f64;
+    let [x, y] = position(x, y, width, height);
+    let x = x.clamp(covered[0], covered[2]);
+    let y = y.clamp(covered[1], covered[3]);
     [1.0, x, y, x * x, y * y, x * y]
 }
 
