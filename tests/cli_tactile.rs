@@ -475,6 +475,19 @@ fn calibrate_reports_where_the_presses_reached() {
     let rows = stdout.split(", rows ").nth(1).unwrap();
     let first_row: u32 = rows.split('-').next().unwrap().parse().unwrap();
     assert!(uncovered > 50.0 && first_row >= 90, "{stdout}");
+    // Each press's depth: a 0.9 contact circle of a ~50 px imprint on the 4.7 mm ball at
+    // 19.58 px/mm sinks it about 2 mm, short of its equator; wider ones reach it (2.35 mm).
+    let depths: Vec<f64> = stdout
+        .lines()
+        .filter(|line| line.trim_start().starts_with("press "))
+        .map(|line| {
+            let depth = line.split("depth ").nth(1).unwrap();
+            depth.split(' ').next().unwrap().parse().unwrap()
+        })
+        .collect();
+    assert_eq!(depths.len(), lower.len() - 1, "{stdout}");
+    assert!(depths.iter().all(|d| (1.5..=2.35).contains(d)), "{stdout}");
+    assert!(depths.iter().any(|d| *d < 2.3), "{stdout}");
     let map = image::open(&map).unwrap().to_rgb8();
     assert_eq!(map.dimensions(), (240, 320));
     assert_eq!(map.get_pixel(120, 10).0, [0; 3], "the top row is outside");

@@ -2,7 +2,7 @@
 
 use yarok::components::probe_images;
 use yarok::components::tactile::calibration::{
-    Calibration, Coverage, FitSettings, check_sensor_name, check_setting, read_presses,
+    Calibration, Coverage, FitSettings, check_sensor_name, check_setting, held_out, read_presses,
     split_held_out,
 };
 use yarok::core::output::check_replaceable;
@@ -77,7 +77,13 @@ pub(super) fn run(args: &[String]) -> Result<(), String> {
     let map = coverage_map_path(out);
     super::apart_from_inputs(&map, &[untouched, presses])?;
     check_replaceable(map.as_ref(), "PNG image", probe_images::png_by_yarok)?;
-    let (used, held) = split_held_out(read_presses(presses).map_err(|e| e.to_string())?, hold_out);
+    let read = read_presses(presses).map_err(|e| e.to_string())?;
+    let names: Vec<String> = read
+        .iter()
+        .filter(|(name, _)| !held_out(name, hold_out))
+        .map(|(name, _)| name.clone())
+        .collect();
+    let (used, held) = split_held_out(read, hold_out);
     let coverage = Coverage::of(&used, background.width(), background.height());
     let calibration = Calibration::fit(&background, &used, &settings)
         .and_then(|calibration| calibration.for_sensor(sensor))
@@ -92,6 +98,19 @@ pub(super) fn run(args: &[String]) -> Result<(), String> {
         geometry.contact_scale,
         geometry.spread
     );
+    for (name, press) in names.iter().zip(&used) {
+        let (depth, clamped) = geometry.depth_mm(press.radius);
+        report += &format!(
+            "  press {name}: radius {:.1} px, depth {depth:.2} mm{}\n",
+            press.radius,
+            if clamped {
+                " (its contact circle would be wider than the ball: taken as the ball sunk to \
+                 its equator)"
+            } else {
+                ""
+            }
+        );
+    }
     report += &format!(
         "{map}: the presses reached {:.0} % of the gel (white; grey: the rest of the rectangle \
          holding them)\n",

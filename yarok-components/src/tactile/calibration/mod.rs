@@ -101,6 +101,27 @@ impl Geometry {
         )
     }
 
+    /// How deep (millimetres) a press of `radius` pixels sinks the ball under this geometry:
+    /// the spherical cap whose contact circle is `contact_scale · radius`, and whether that
+    /// circle was wider than the ball, so that the press is taken as the ball sunk to its
+    /// equator.
+    ///
+    /// ```
+    /// use yarok_components::tactile::calibration::Geometry;
+    ///
+    /// let geometry = Geometry { pixels_per_mm: 10.0, ball_diameter_mm: 4.0, contact_scale: 1.0, spread: 0.0 };
+    /// let (depth, clamped) = geometry.depth_mm(12.0); // a 1.2 mm contact circle on a 2 mm ball
+    /// assert!((depth - 0.4).abs() < 1e-12 && !clamped);
+    /// assert_eq!(geometry.depth_mm(30.0), (2.0, true));
+    /// ```
+    pub fn depth_mm(&self, radius: f64) -> (f64, bool) {
+        let ball = self.ball_diameter_mm / 2.0;
+        let contact = self.contact_scale * radius / self.pixels_per_mm;
+        let clamped = contact > ball;
+        let contact = contact.min(ball);
+        (ball - (ball * ball - contact * contact).sqrt(), clamped)
+    }
+
     /// [`Geometry::press`] spread, on the half-resolution grid.
     fn heights(&self, width: usize, height: usize, centre: [f64; 2], radius: f64) -> Vec<f64> {
         let mut half = surface::halve(&self.press(width, height, centre, radius), width);
