@@ -13,6 +13,14 @@ fn golden(path: &str) -> PathBuf {
         .join(path)
 }
 
+/// The real DIGIT's frames and press list bundled with the project.
+fn real_digit() -> String {
+    format!(
+        "{}/yarok-components/data/tactile-real/digit",
+        env!("CARGO_MANIFEST_DIR")
+    )
+}
+
 #[test]
 fn the_digit_model_from_the_command_line_matches_the_reference() {
     let dir = tempfile::tempdir().unwrap();
@@ -324,10 +332,7 @@ fn depths_and_noise_that_make_no_sense_are_refused() {
 #[test]
 fn an_output_that_is_one_of_the_inputs_is_refused_and_the_input_kept() {
     let copy = tempfile::tempdir().unwrap();
-    let real = format!(
-        "{}/yarok-components/data/tactile-real/digit",
-        env!("CARGO_MANIFEST_DIR")
-    );
+    let real = real_digit();
     let (untouched, presses) = (
         copy.path().join("background.png"),
         copy.path().join("presses.csv"),
@@ -380,10 +385,7 @@ fn an_output_yarok_did_not_write_is_refused_and_kept() {
     let folder = tempfile::tempdir().unwrap();
     let depth = golden("digit/sphere_center/input_depth.npy.gz");
     let depth = depth.to_str().unwrap();
-    let real = format!(
-        "{}/yarok-components/data/tactile-real/digit",
-        env!("CARGO_MANIFEST_DIR")
-    );
+    let real = real_digit();
     let photo = folder.path().join("photo.png");
     std::fs::copy(format!("{real}/background.png"), &photo).unwrap();
     let photo = photo.to_str().unwrap();
@@ -428,10 +430,7 @@ fn an_output_yarok_did_not_write_is_refused_and_kept() {
 /// calibration and warns naming the share of the gel no press reached and the rows they did.
 #[test]
 fn calibrate_reports_where_the_presses_reached() {
-    let real = format!(
-        "{}/yarok-components/data/tactile-real/digit",
-        env!("CARGO_MANIFEST_DIR")
-    );
+    let real = real_digit();
     let folder = tempfile::tempdir().unwrap();
     std::os::unix::fs::symlink(format!("{real}/frames"), folder.path().join("frames")).unwrap();
     let all = std::fs::read_to_string(format!("{real}/presses.csv")).unwrap();
@@ -500,10 +499,7 @@ fn calibrate_reports_where_the_presses_reached() {
 
 #[test]
 fn calibration_settings_outside_their_physical_range_are_refused_before_fitting() {
-    let real = format!(
-        "{}/yarok-components/data/tactile-real/digit",
-        env!("CARGO_MANIFEST_DIR")
-    );
+    let real = real_digit();
     let out = tempfile::tempdir().unwrap();
     let written = out.path().join("c.json");
     let (untouched, presses) = (
@@ -586,10 +582,7 @@ fn calibration_settings_outside_their_physical_range_are_refused_before_fitting(
 fn press_lists_are_read_by_their_header_and_checked() {
     use yarok::components::tactile::calibration::read_presses;
 
-    let real = format!(
-        "{}/yarok-components/data/tactile-real/digit",
-        env!("CARGO_MANIFEST_DIR")
-    );
+    let real = real_digit();
     let original = std::fs::read_to_string(format!("{real}/presses.csv")).unwrap();
     let rows: Vec<Vec<&str>> = original
         .lines()
@@ -693,10 +686,7 @@ fn press_lists_are_read_by_their_header_and_checked() {
 /// given to `yarok tactile gelsight` is refused naming both.
 #[test]
 fn a_calibration_is_of_one_sensor() {
-    let real = format!(
-        "{}/yarok-components/data/tactile-real/digit",
-        env!("CARGO_MANIFEST_DIR")
-    );
+    let real = real_digit();
     let out = tempfile::tempdir().unwrap();
     let written = out.path().join("c.json");
     yarok_binary::yarok_fails(

@@ -10,20 +10,13 @@ use std::time::{Duration, Instant};
 use serde_json::{Map, Value, json};
 use yarok::components::worlds::DigitWorld;
 use yarok::{BoxError, Plugin, World};
-use yarok_test::generator::Generator;
+use yarok_test::generator::{Generator, fuzz_inputs};
 
 /// Commands run each tick.
 const PER_TICK: usize = 100;
 
 /// The longest the whole run may take.
 const BOUND: Duration = Duration::from_secs(600);
-
-fn inputs() -> usize {
-    std::env::var("YAROK_FUZZ_INPUTS")
-        .ok()
-        .and_then(|n| n.parse().ok())
-        .unwrap_or(100_000)
-}
 
 /// A number a command may hold: plausible, extreme or nonsensical.
 fn number(generator: &mut Generator) -> Value {
@@ -157,7 +150,7 @@ impl Plugin for Fuzzer {
 
 #[test]
 fn generated_commands_are_taken_or_refused_and_the_world_runs_on() {
-    let total = inputs();
+    let total = fuzz_inputs();
     let (taken, refused) = (
         std::rc::Rc::new(std::cell::Cell::new(0)),
         std::rc::Rc::new(std::cell::Cell::new(0)),

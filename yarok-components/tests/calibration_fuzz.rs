@@ -12,20 +12,13 @@ use image::RgbImage;
 use yarok_components::tactile::calibration::{
     Calibration, CalibrationError, FitSettings, check_setting, read_presses,
 };
-use yarok_test::generator::Generator;
+use yarok_test::generator::{Generator, fuzz_inputs};
 
 /// The frames' size: small, so that a hundred thousand lists read in seconds.
 const SIZE: (u32, u32) = (24, 16);
 
 /// The longest a fit of these small frames may take.
 const FIT_BOUND: Duration = Duration::from_secs(5);
-
-fn inputs() -> usize {
-    std::env::var("YAROK_FUZZ_INPUTS")
-        .ok()
-        .and_then(|n| n.parse().ok())
-        .unwrap_or(100_000)
-}
 
 /// The untouched gel and six frames of presses: 0000–0003 of one size and colour, 0004 grey and
 /// 0005 of another size.
@@ -122,7 +115,7 @@ fn generated_press_lists_are_read_within_their_promises_or_refused() {
     let csv = csv.to_str().unwrap();
     let mut generator = Generator(0x000c_a11b_8a7e);
     let (mut read, mut refused, mut fitted) = (0, 0, 0);
-    for _ in 0..inputs() {
+    for _ in 0..fuzz_inputs() {
         std::fs::write(csv, press_list(&mut generator)).unwrap();
         let presses = match read_presses(csv) {
             Ok(presses) => presses,
@@ -167,7 +160,7 @@ fn generated_press_lists_are_read_within_their_promises_or_refused() {
     }
     eprintln!("{read} press lists read ({fitted} fitted), {refused} refused");
     assert!(
-        read > inputs() / 20 && refused > inputs() / 2,
+        read > fuzz_inputs() / 20 && refused > fuzz_inputs() / 2,
         "{read} read, {refused} refused"
     );
 }
@@ -253,7 +246,7 @@ fn mutated_calibration_files_are_loaded_within_bounds_or_refused() {
     let path = path.to_str().unwrap();
     let mut generator = Generator(0x0f11_eca1);
     let (mut loaded, mut refused) = (0, 0);
-    for _ in 0..inputs() {
+    for _ in 0..fuzz_inputs() {
         std::fs::write(path, mutate(&valid, &mut generator)).unwrap();
         match Calibration::load(path) {
             Ok(calibration) => {
@@ -275,7 +268,10 @@ fn mutated_calibration_files_are_loaded_within_bounds_or_refused() {
         }
     }
     eprintln!("{loaded} calibrations loaded, {refused} refused");
-    assert!(refused > inputs() / 2, "{loaded} loaded, {refused} refused");
+    assert!(
+        refused > fuzz_inputs() / 2,
+        "{loaded} loaded, {refused} refused"
+    );
 }
 
 #[test]
@@ -288,7 +284,7 @@ fn generated_settings_are_checked_against_their_ranges() {
         "spread_pixels",
         "radius",
     ];
-    for _ in 0..inputs() {
+    for _ in 0..fuzz_inputs() {
         let name = generator.pick(&names);
         let bits = generator.next_u64();
         let value = match generator.below(3) {

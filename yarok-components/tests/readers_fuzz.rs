@@ -6,42 +6,20 @@
 use yarok_components::probe_images::{depth_from_png, png};
 use yarok_components::tactile::npy::{self, NpyArray};
 use yarok_core::component::ProbeImage;
-
-/// A xorshift generator: the same inputs every run.
-struct Random(u64);
-
-impl Random {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-}
-
-fn inputs() -> usize {
-    std::env::var("YAROK_FUZZ_INPUTS")
-        .ok()
-        .and_then(|n| n.parse().ok())
-        .unwrap_or(100_000)
-}
+use yarok_test::generator::{Generator, fuzz_inputs};
 
 /// `valid` changed in one of several ways.
-fn mutate(valid: &[u8], random: &mut Random) -> Vec<u8> {
+fn mutate(valid: &[u8], random: &mut Generator) -> Vec<u8> {
     let mut bytes = valid.to_vec();
     match random.below(6) {
         0 => {
             for _ in 0..=random.below(8) {
                 let at = random.below(bytes.len());
-                bytes[at] = random.next() as u8;
+                bytes[at] = random.next_u64() as u8;
             }
         }
         1 => bytes.truncate(random.below(bytes.len())),
-        2 => bytes.extend((0..random.below(64)).map(|_| random.next() as u8)),
+        2 => bytes.extend((0..random.below(64)).map(|_| random.next_u64() as u8)),
         3 => {
             // A number in the header replaced by an extreme one.
             let extreme = [
@@ -62,7 +40,10 @@ fn mutate(valid: &[u8], random: &mut Random) -> Vec<u8> {
         }
         4 => {
             let at = random.below(bytes.len());
-            bytes.splice(at..at, (0..random.below(16)).map(|_| random.next() as u8));
+            bytes.splice(
+                at..at,
+                (0..random.below(16)).map(|_| random.next_u64() as u8),
+            );
         }
         _ => {
             // Four bytes at a random place set to a 32-bit length-like value.
@@ -83,9 +64,9 @@ fn mutated_npy_files_are_read_or_refused_never_a_panic() {
         data: (0..12).map(|i| i as f32 * 0.5).collect(),
     }
     .to_bytes();
-    let mut random = Random(0x9E37_79B9_7F4A_7C15);
+    let mut random = Generator(0x9E37_79B9_7F4A_7C15);
     let (mut read, mut refused) = (0, 0);
-    for _ in 0..inputs() {
+    for _ in 0..fuzz_inputs() {
         match npy::parse(&mutate(&valid, &mut random)) {
             Ok(array) => {
                 let count: usize = array.shape.iter().product();
@@ -107,9 +88,9 @@ fn mutated_depth_pngs_are_read_or_refused_never_a_panic() {
         unit: 1e-6,
     })
     .unwrap();
-    let mut random = Random(0x2545_F491_4F6C_DD1D);
+    let mut random = Generator(0x2545_F491_4F6C_DD1D);
     let (mut read, mut refused) = (0, 0);
-    for _ in 0..inputs() {
+    for _ in 0..fuzz_inputs() {
         match depth_from_png(&mutate(&valid, &mut random)) {
             Ok((width, height, metres)) => {
                 assert_eq!(metres.len(), (width * height) as usize);
