@@ -1,0 +1,209 @@
+//! Sim-to-real: a contact localiser (a ridge regression from the press's change image to its
+//! centre and radius) trained **only** on images a model renders — the DIGIT's bundled
+//! calibration, or the reference Phong model over the real untouched frame — at random centres
+//! and radii, then tested on the real DIGIT's 21 frames of ball presses
+//! (`yarok-components/data/tactile-real/digit`); beside them, the same localiser trained on the
+//! real frames themselves, each left out in turn. Prints the median and the largest error of
+//! the centre and of the radius, pixels.
+//!
+//! ```text
+//! cargo bench --bench tactile_localiser
+//! ```
+
+use image::RgbImage;
+use yarok::components::tactile::calibration::{Calibration, Press, read_presses};
+use yarok::components::tactile::fidelity;
+use yarok::components::tactile::phong::{PhongModel, PhongParams};
+use yarok::nalgebra::{DMatrix, DVector};
+use yarok_test::generator::Generator;
+
+/// Images rendered to train on.
+const TRAINING: usize = 1500;
+
+/// Pixels averaged into one feature, each way.
+const BLOCK: u32 = 10;
+
+/// A pixel's change (levels, summed over its channels) below which it counts as the camera's
+/// noise, not the press.
+const NOISE_FLOOR: f64 = 20.0;
+
+/// Ridge regularisation, relative to the normal equations' mean diagonal.
+const RIDGE: f64 = 1e-3;
+
+/// The features of a press's frame: its change from the untouched gel, per block of
+/// [`BLOCK`] × [`BLOCK`] pixels, beyond the camera's noise ([`NOISE_FLOOR`]), normalised to sum to one (so that
+/// the centre is near a linear function of them), and the change's total size.
+fn features(frame: &RgbImage, untouched: &RgbImage) -> Vec<f64> {
+    let (width, height) = frame.dimensions();
+    let (columns, rows) = (width / BLOCK, height / BLOCK);
+    let mut blocks = vec![0.0; (columns * rows) as usize];
+    for (x, y, seen) in frame.enumerate_pixels() {
+        let (bx, by) = (x / BLOCK, y / BLOCK);
+        if bx >= columns || by >= rows {
+            continue;
+        }
+        let base = untouched.get_pixel(x, y);
+        let change: f64 = (0..3)
+            .map(|c| (f64::from(seen[c]) - f64::from(base[c])).abs())
+            .sum();
+        blocks[(by * columns + bx) as usize] += (change - NOISE_FLOOR).max(0.0);
+    }
+    let total: f64 = blocks.iter().sum::<f64>().max(1.0);
+    let mut features: Vec<f64> = blocks.iter().map(|b| b / total).collect();
+    features.push((total / f64::from(width * height)).sqrt());
+    features.push(1.0);
+    features
+}
+
+/// A ridge regression from features to `[centre x, centre y, radius]`.
+struct Localiser {
+    weights: DMatrix<f64>,
+}
+
+impl Localiser {
+    fn train(samples: &[(Vec<f64>, [f64; 3])]) -> Self {
+        let n = samples[0].0.len();
+        let x = DMatrix::from_fn(samples.len(), n, |i, j| samples[i].0[j]);
+        let y = DMatrix::from_fn(samples.len(), 3, |i, j| samples[i].1[j]);
+        let mut normal = x.transpose() * &x;
+        let ridge = RIDGE * normal.trace() / n as f64;
+        for i in 0..n {
+            normal[(i, i)] += ridge;
+        }
+        let weights = normal
+            .cholesky()
+            .expect("regularised normal equations")
+            .solve(&(x.transpose() * y));
+        Self { weights }
+    }
+
+    fn locate(&self, features: &[f64]) -> [f64; 3] {
+        let f = DVector::from_column_slice(features);
+        let out = self.weights.transpose() * f;
+        [out[0], out[1], out[2]]
+    }
+}
+
+/// The median and the largest of `values`.
+fn median_and_largest(mut values: Vec<f64>) -> (f64, f64) {
+    values.sort_by(f64::total_cmp);
+    let n = values.len();
+    ((values[(n - 1) / 2] + values[n / 2]) / 2.0, values[n - 1])
+}
+
+/// The localiser's errors on the real presses: centre distance and radius difference, pixels.
+fn errors(located: &[[f64; 3]], presses: &[Press]) -> ([f64; 2], [f64; 2]) {
+    let centre: Vec<f64> = located
+        .iter()
+        .zip(presses)
+        .map(|(l, p)| (l[0] - p.centre[0]).hypot(l[1] - p.centre[1]))
+        .collect();
+    let radius: Vec<f64> = located
+        .iter()
+        .zip(presses)
+        .map(|(l, p)| (l[2] - p.radius).abs())
+        .collect();
+    let (c, r) = (median_and_largest(centre), median_and_largest(radius));
+    ([c.0, c.1], [r.0, r.1])
+}
+
+fn report(name: &str, (centre, radius): ([f64; 2], [f64; 2])) {
+    println!(
+        "  {name:<44} centre {:>5.1} px median, {:>5.1} largest; radius {:>4.1} median, {:>4.1} largest",
+        centre[0], centre[1], radius[0], radius[1]
+    );
+}
+
+fn main() {
+    let folder = format!(
+        "{}/yarok-components/data/tactile-real/digit",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let untouched = image::open(format!("{folder}/background.png"))
+        .expect("the untouched frame")
+        .to_rgb8();
+    let real: Vec<Press> = read_presses(&format!("{folder}/presses.csv"))
+        .expect("the presses")
+        .into_iter()
+        .map(|(_, press)| press)
+        .collect();
+    let calibration = Calibration::digit();
+    let geometry = calibration.geometry();
+    let (width, height) = untouched.dimensions();
+    let mut generator = Generator(0x10ca_1153);
+    let mut unit = move || generator.next_u64() as f64 / u64::MAX as f64;
+    let random_presses: Vec<[f64; 3]> = (0..TRAINING)
+        .map(|_| {
+            [
+                40.0 + unit() * f64::from(width - 80),
+                40.0 + unit() * f64::from(height - 80),
+                20.0 + unit() * 45.0,
+            ]
+        })
+        .collect();
+    let real_features: Vec<Vec<f64>> = real
+        .iter()
+        .map(|press| features(&press.frame, &untouched))
+        .collect();
+    println!(
+        "a contact localiser (ridge regression on {BLOCK}×{BLOCK}-pixel change blocks) tested on \
+         the real DIGIT's {} presses:",
+        real.len()
+    );
+
+    let yarok: Vec<(Vec<f64>, [f64; 3])> = random_presses
+        .iter()
+        .map(|&[x, y, r]| {
+            let image = calibration.render_press([x, y], r);
+            (features(&image, calibration.background()), [x, y, r])
+        })
+        .collect();
+    let localiser = Localiser::train(&yarok);
+    let located: Vec<[f64; 3]> = real_features.iter().map(|f| localiser.locate(f)).collect();
+    report(
+        &format!("trained on {TRAINING} yarok calibrated images"),
+        errors(&located, &real),
+    );
+
+    let mut phong = PhongModel::new(PhongParams::digit_metric());
+    let surface = 0.030;
+    let flat = fidelity::phong_image(&mut phong, surface, &geometry, None, &untouched);
+    let phong_samples: Vec<(Vec<f64>, [f64; 3])> = random_presses
+        .iter()
+        .map(|&[x, y, r]| {
+            let press = Press {
+                frame: RgbImage::new(1, 1),
+                centre: [x, y],
+                radius: r,
+            };
+            let image =
+                fidelity::phong_image(&mut phong, surface, &geometry, Some(&press), &untouched);
+            (features(&image, &flat), [x, y, r])
+        })
+        .collect();
+    let localiser = Localiser::train(&phong_samples);
+    let located: Vec<[f64; 3]> = real_features.iter().map(|f| localiser.locate(f)).collect();
+    report(
+        &format!("trained on {TRAINING} reference Phong images"),
+        errors(&located, &real),
+    );
+
+    let located: Vec<[f64; 3]> = (0..real.len())
+        .map(|left_out| {
+            let others: Vec<(Vec<f64>, [f64; 3])> = real
+                .iter()
+                .zip(&real_features)
+                .enumerate()
+                .filter(|(i, _)| *i != left_out)
+                .map(|(_, (press, f))| {
+                    (f.clone(), [press.centre[0], press.centre[1], press.radius])
+                })
+                .collect();
+            Localiser::train(&others).locate(&real_features[left_out])
+        })
+        .collect();
+    report(
+        &format!("trained on the other {} real frames", real.len() - 1),
+        errors(&located, &real),
+    );
+}
