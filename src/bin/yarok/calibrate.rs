@@ -89,7 +89,7 @@ pub(super) fn run(args: &[String]) -> Result<(), String> {
         .and_then(|calibration| calibration.for_sensor(sensor))
         .map_err(|e| e.to_string())?;
     calibration.save(out).map_err(|e| e.to_string())?;
-    super::tactile::write_png(coverage.map(), &map)?;
+    super::write_png(coverage.map(), &map)?;
     let geometry = calibration.geometry();
     let mut report = format!(
         "{out}: fitted to {} of {} presses (contact scale {}, spread {} px)\n",

@@ -1,13 +1,11 @@
 //! `yarok tactile`: a depth map turned into a tactile image by a sensor's optical model.
 
-use yarok::components::probe_images::{self, depth_from_png};
+use yarok::components::probe_images::depth_from_png;
 use yarok::components::tactile::calibration::Calibration;
 use yarok::components::tactile::geltip::{GelTipModel, GelTipParams, read_membrane};
 use yarok::components::tactile::light_fields::{LightFieldMethod, led_ring};
 use yarok::components::tactile::phong::{PhongModel, PhongParams};
 use yarok::components::tactile::{default_background, npy};
-use yarok::core::component::ProbeImage;
-use yarok::core::output::{check_replaceable, make_folder_for};
 
 struct Options<'a> {
     sensor: &'a str,
@@ -260,20 +258,7 @@ pub(super) fn run(args: &[String]) -> Result<(), String> {
     };
     let image = image::RgbImage::from_raw(width as u32, height as u32, image)
         .ok_or("internal: image size")?;
-    write_png(image, options.out)
-}
-
-/// Writes `image` to `out` as PNG, replacing only a PNG yarok wrote.
-pub(super) fn write_png(image: image::RgbImage, out: &str) -> Result<(), String> {
-    check_replaceable(out.as_ref(), "PNG image", probe_images::png_by_yarok)?;
-    make_folder_for(out.as_ref())?;
-    let bytes = probe_images::png(&ProbeImage::Rgb {
-        width: image.width(),
-        height: image.height(),
-        pixels: image.into_raw(),
-    })
-    .map_err(|e| format!("{out}: {e}"))?;
-    std::fs::write(out, bytes).map_err(|e| format!("cannot write {out}: {e}"))
+    super::write_png(image, options.out)
 }
 
 /// Renders `depth` with the calibration in `path` (the gel at the map's farthest value).
@@ -313,5 +298,5 @@ fn calibrated(
     let image = calibration
         .render_indentation(&indentation, 1e-3 / pixels_per_mm)
         .map_err(|e| format!("{}: {e}", options.depth))?;
-    write_png(image, options.out)
+    super::write_png(image, options.out)
 }
