@@ -39,12 +39,38 @@ fn composes_a_template_file_using_bundled_components() {
         out.to_str().unwrap(),
     ]);
     assert_eq!(code, 0);
-    let xml = std::fs::read_to_string(out).unwrap();
+    let xml = std::fs::read_to_string(&out).unwrap();
     assert!(
         xml.contains(r#"name="tower/block_2_0""#) && !xml.contains("block_3_0"),
         "{xml}"
     );
     assert!(xml.contains(r#"<geom name="floor""#));
+
+    // Composed again over what it wrote: replaced. Over the user's template, the input: refused,
+    // the template kept byte for byte.
+    let (code, _, stderr) = yarok(&[
+        "compose",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let template = std::fs::read(&file).unwrap();
+    let (code, _, stderr) = yarok(&[
+        "compose",
+        file.to_str().unwrap(),
+        "--out",
+        file.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{stderr}");
+    yarok_test::assert_says(
+        &stderr,
+        &[
+            file.to_str().unwrap(),
+            "is not a composed world yarok wrote",
+        ],
+    );
+    assert_eq!(std::fs::read(&file).unwrap(), template);
 }
 
 #[test]

@@ -6,6 +6,7 @@ use yarok::components::catalogue;
 use yarok::core::component::Declaration;
 use yarok::core::compose::{compose_configured, compose_declaration};
 use yarok::core::config::{RunConfig, Settings};
+use yarok::core::output::{check_replaceable, make_folder_for};
 
 use super::USAGE;
 
@@ -66,8 +67,21 @@ pub(super) fn run(args: &[String]) -> Result<(), String> {
     let xml = composition.to_xml();
     match args.out {
         Some(path) => {
-            std::fs::write(&path, xml).map_err(|e| format!("cannot write {}: {e}", path.display()))
+            check_replaceable(&path, "composed world", composed_by_yarok)?;
+            make_folder_for(&path)?;
+            std::fs::write(&path, format!("{COMPOSED_MARK}\n{xml}"))
+                .map_err(|e| format!("cannot write {}: {e}", path.display()))
         }
         None => super::print(&xml),
     }
+}
+
+/// The comment a world `compose --out` writes starts with: how an existing file is known as
+/// yarok's (a user's template never is).
+const COMPOSED_MARK: &str = "<!-- composed by yarok compose: regenerated, not edited -->";
+
+/// Whether the file at `path` is a world `compose --out` wrote.
+fn composed_by_yarok(path: &std::path::Path) -> std::io::Result<bool> {
+    Ok(yarok::core::output::head(path, COMPOSED_MARK.len() as u64)?
+        .starts_with(COMPOSED_MARK.as_bytes()))
 }

@@ -13,7 +13,8 @@ use yarok_mjc::{Data, JointId};
 #[derive(Debug, Clone, PartialEq, serde::Deserialize)]
 #[serde(default)]
 pub struct JointRecorderSettings {
-    /// The CSV file (created or truncated at start).
+    /// The CSV file (created, with its folder, at start; a file there is replaced only if it
+    /// is a joints CSV yarok wrote).
     pub path: PathBuf,
     /// Write a row every this many ticks.
     pub every: u64,

@@ -13,7 +13,8 @@ use super::model_cameras::ModelCameras;
 #[derive(Debug, Clone, PartialEq, serde::Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct VideoRecorderSettings {
-    /// The video file (`.mp4`; overwritten).
+    /// The video file (MP4 whatever its extension; a file there is replaced only if yarok
+    /// encoded it).
     pub path: PathBuf,
     /// The model's camera to film, by name.
     pub camera: String,

@@ -25,7 +25,8 @@ use crate::probe_images;
 #[derive(Debug, Clone, PartialEq, serde::Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct McapRecorderSettings {
-    /// The MCAP file (created, with its folder, or truncated at start).
+    /// The MCAP file (created, with its folder, at start; a file there is replaced only if
+    /// yarok recorded it).
     pub path: PathBuf,
     /// Joint states and body poses (`sim` only) and components' named states every this many
     /// ticks.
