@@ -87,6 +87,25 @@ pub fn png(image: &ProbeImage) -> Result<Vec<u8>, yarok_core::BoxError> {
     Ok(out)
 }
 
+/// Writes `image` to `path` as a PNG ([`png()`]), making its folder, and replacing only a PNG
+/// yarok wrote (a user's file there is refused and kept).
+///
+/// # Errors
+///
+/// When a file yarok did not write is at `path`, or the image cannot be encoded or written,
+/// naming the path.
+pub fn save_png(
+    image: RgbImage,
+    path: impl AsRef<std::path::Path>,
+) -> Result<(), yarok_core::BoxError> {
+    use yarok_core::output::{check_replaceable, make_folder_for};
+    let path = path.as_ref();
+    check_replaceable(path, "PNG image", png_by_yarok)?;
+    make_folder_for(path)?;
+    let bytes = png(&rgb(image)).map_err(|e| format!("{}: {e}", path.display()))?;
+    std::fs::write(path, bytes).map_err(|e| format!("cannot write {}: {e}", path.display()).into())
+}
+
 /// Whether the file at `path` is a PNG yarok wrote with [`png()`]: its `Software` text names
 /// yarok.
 ///

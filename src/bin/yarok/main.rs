@@ -48,8 +48,6 @@ mod tactile;
 use std::process::ExitCode;
 
 use yarok::components::probe_images;
-use yarok::core::component::ProbeImage;
-use yarok::core::output::{check_replaceable, make_folder_for};
 
 const USAGE: &str = "usage: yarok run WORLD [--behaviour NAME] [--viewer] [--inspect] [--record FILE.mcap]
                  [--profile foxglove|ros2] [--dataset DIR] [--video FILE.mp4] [--shard I/N] [--bridge]
@@ -122,15 +120,7 @@ fn apart_from_inputs(output: &str, inputs: &[&str]) -> Result<(), String> {
 
 /// Writes `image` to `out` as PNG, replacing only a PNG yarok wrote.
 fn write_png(image: image::RgbImage, out: &str) -> Result<(), String> {
-    check_replaceable(out.as_ref(), "PNG image", probe_images::png_by_yarok)?;
-    make_folder_for(out.as_ref())?;
-    let bytes = probe_images::png(&ProbeImage::Rgb {
-        width: image.width(),
-        height: image.height(),
-        pixels: image.into_raw(),
-    })
-    .map_err(|e| format!("{out}: {e}"))?;
-    std::fs::write(out, bytes).map_err(|e| format!("cannot write {out}: {e}"))
+    probe_images::save_png(image, out).map_err(|e| e.to_string())
 }
 
 fn main() -> ExitCode {

@@ -58,7 +58,7 @@ pub async fn feel(pl: Pl) -> BehaviourResult {
     for (digit, side) in digits.iter().zip(["left", "right"]) {
         let contact = digit.contact()?;
         let path = format!("{out}/digit_{side}.png");
-        digit.read().save(&path)?;
+        crate::probe_images::save_png(digit.read(), &path)?;
         pl.log(format!(
             "{side} DIGIT: {:.2} mm deep over {:.1} mm² → {path}",
             contact.max_indentation * 1e3,

@@ -57,7 +57,7 @@ pub async fn pull(pl: Pl) -> BehaviourResult {
     pl.wait_seconds(0.1).await?;
     for (sensor, side) in sensors.iter().zip(["left", "right"]) {
         let path = format!("{out}/geltip_{side}.png");
-        sensor.read().save(&path)?;
+        crate::probe_images::save_png(sensor.read(), &path)?;
         let contact = sensor.contact()?;
         pl.log(format!(
             "{side} GelTip: {:.2} mm deep over {:.1} mm² → {path}",

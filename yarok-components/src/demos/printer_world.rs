@@ -26,7 +26,7 @@ pub async fn survey(pl: Pl) -> BehaviourResult {
         pl.wait(|| printer.is_at(target)).timeout(10.0).await?;
         pl.wait_seconds(0.2).await?; // let the head settle before the shot
         let path = format!("{out}/printer_camera_{index}.png");
-        camera.read()?.save(&path)?;
+        crate::probe_images::save_png(camera.read()?, &path)?;
         pl.log(format!(
             "t = {:5.2} s  head at {:?} mm  → {path}",
             pl.time(),

@@ -23,7 +23,7 @@ pub async fn press(pl: Pl) -> BehaviourResult {
             })
             .await?;
         let path = format!("{out}/press_{index}.png");
-        sample.image.save(&path)?;
+        crate::probe_images::save_png(sample.image, &path)?;
         let felt = sample.contact.max_indentation;
         pl.log(format!(
             "t = {:.2} s: {} pressed {:.1} mm deep, felt {:.2} mm over {:.1} mm² → {path}",
@@ -120,7 +120,7 @@ fn write_sample(
     sample: &Sample,
 ) -> Result<String, BoxError> {
     let (image, depth) = (format!("{number:04}.png"), format!("{number:04}_depth.npy"));
-    sample.image.save(out.join(&image))?;
+    crate::probe_images::save_png(sample.image.clone(), out.join(&image))?;
     let (width, height) = sample.depth.dimensions();
     NpyArray {
         shape: vec![height as usize, width as usize],
