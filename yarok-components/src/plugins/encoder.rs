@@ -211,71 +211,85 @@ impl Encoder {
     }
 }
 
+/// An MP4 file's top-level box: its kind, and where it starts and ends (bytes).
+struct Mp4Box {
+    kind: [u8; 4],
+    start: u64,
+    end: u64,
+}
+
+/// The top-level box at byte `at` of `file`, `length` bytes long, read from its header alone.
+fn box_at(file: &mut std::fs::File, at: u64, length: u64) -> Result<Mp4Box, String> {
+    let mut header = [0u8; 16];
+    let available = usize::try_from(length.saturating_sub(at).min(16)).unwrap_or(16);
+    if available < 8 {
+        return Err("it ends inside a box's header".into());
+    }
+    file.seek(std::io::SeekFrom::Start(at))
+        .and_then(|_| file.read_exact(&mut header[..available]))
+        .map_err(|e| format!("cannot read it back ({e})"))?;
+    let kind = [header[4], header[5], header[6], header[7]];
+    let size = match u32::from_be_bytes([header[0], header[1], header[2], header[3]]) {
+        0 => length - at,
+        1 if available < 16 => return Err("it ends inside a box's size".into()),
+        1 => u64::from_be_bytes(header[8..16].try_into().unwrap_or_default()),
+        size => u64::from(size),
+    };
+    match at.checked_add(size) {
+        Some(end) if size >= 8 && end <= length => Ok(Mp4Box {
+            kind,
+            start: at,
+            end,
+        }),
+        _ => Err(format!(
+            "its box {:?} at byte {at} runs past the file's end ({length} bytes)",
+            String::from_utf8_lossy(&kind)
+        )),
+    }
+}
+
+/// `path` opened, with its length.
+fn opened(path: &std::path::Path) -> std::io::Result<(std::fs::File, u64)> {
+    let file = std::fs::File::open(path)?;
+    let length = file.metadata()?.len();
+    Ok((file, length))
+}
+
 /// Whether the file at `path` is a video yarok encoded: an MP4 whose index holds yarok's
 /// comment (the index comes first: [`H264::ffmpeg`] asks for it at the front).
 fn encoded_by_yarok(path: &std::path::Path) -> std::io::Result<bool> {
-    let mut at = 0u64;
-    let length = std::fs::metadata(path)?.len();
-    let mut file = std::fs::File::open(path)?;
+    let (mut file, length) = opened(path)?;
+    let mut at = 0;
     // The boxes before the index (ftyp, free) are small; a file whose index is not within the
     // first few boxes is not one of ours.
     for _ in 0..4 {
-        let mut header = [0u8; 8];
-        if at + 8 > length {
+        let Ok(found) = box_at(&mut file, at, length) else {
             return Ok(false);
-        }
-        file.seek(std::io::SeekFrom::Start(at))?;
-        file.read_exact(&mut header)?;
-        let size = u64::from(u32::from_be_bytes([
-            header[0], header[1], header[2], header[3],
-        ]));
-        if &header[4..] == b"moov" {
+        };
+        if &found.kind == b"moov" {
             let mut index = Vec::new();
             Read::by_ref(&mut file)
-                .take(size.min(64 << 20))
+                .take((found.end - found.start).min(64 << 20))
                 .read_to_end(&mut index)?;
             let mark = WRITTEN_BY.as_bytes();
             return Ok(index.windows(mark.len()).any(|w| w == mark));
         }
-        if size < 8 {
-            return Ok(false);
-        }
-        at += size;
+        at = found.end;
     }
     Ok(false)
 }
 
 /// Checks that `path` is whole as an MP4 file: its top-level boxes follow one another to the
-/// file's end exactly, and one of them is the index (`moov`) players need.
+/// file's end exactly, and one of them is the index (`moov`) players need. Only the boxes'
+/// headers are read.
 fn whole_mp4(path: &std::path::Path) -> Result<(), String> {
-    let bytes = std::fs::read(path).map_err(|e| format!("cannot read it back ({e})"))?;
-    let mut at = 0usize;
+    let (mut file, length) = opened(path).map_err(|e| format!("cannot read it back ({e})"))?;
+    let mut at = 0;
     let mut index = false;
-    while at < bytes.len() {
-        let header = bytes
-            .get(at..at + 8)
-            .ok_or("it ends inside a box's header")?;
-        let kind = &header[4..8];
-        let size = match u32::from_be_bytes([header[0], header[1], header[2], header[3]]) {
-            0 => bytes.len() - at,
-            1 => {
-                let large = bytes
-                    .get(at + 8..at + 16)
-                    .ok_or("it ends inside a box's size")?;
-                usize::try_from(u64::from_be_bytes(large.try_into().unwrap_or_default()))
-                    .map_err(|_| "a box larger than memory")?
-            }
-            size => size as usize,
-        };
-        if size < 8 || at.checked_add(size).is_none_or(|end| end > bytes.len()) {
-            return Err(format!(
-                "its box {:?} at byte {at} runs past the file's end ({} bytes)",
-                String::from_utf8_lossy(kind),
-                bytes.len()
-            ));
-        }
-        index |= kind == b"moov";
-        at += size;
+    while at < length {
+        let found = box_at(&mut file, at, length)?;
+        index |= &found.kind == b"moov";
+        at = found.end;
     }
     if index {
         Ok(())
