@@ -5,7 +5,7 @@ use std::path::PathBuf;
 mod support;
 use support::yarok_binary;
 
-use yarok_binary::yarok;
+use yarok_binary::{quick_calibrate, yarok};
 
 fn golden(path: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -398,20 +398,13 @@ fn an_output_yarok_did_not_write_is_refused_and_kept() {
         2,
         &[photo, "is not a PNG image yarok wrote", "another path"],
     );
+    let calibrate = quick_calibrate(
+        &format!("{real}/background.png"),
+        &format!("{real}/presses.csv"),
+        notes,
+    );
     yarok_binary::yarok_fails(
-        &[
-            "tactile",
-            "calibrate",
-            &format!("{real}/background.png"),
-            &format!("{real}/presses.csv"),
-            notes,
-            "--sensor",
-            "digit",
-            "--contact-scale",
-            "0.9",
-            "--spread",
-            "10",
-        ],
+        &calibrate.iter().map(String::as_str).collect::<Vec<_>>(),
         2,
         &[notes, "is not a calibration yarok wrote"],
     );
@@ -445,19 +438,12 @@ fn calibrate_reports_where_the_presses_reached() {
     let presses = folder.path().join("lower.csv");
     std::fs::write(&presses, lower.join("\n") + "\n").unwrap();
     let out = folder.path().join("lower.json");
-    let (code, stdout, stderr) = yarok(&[
-        "tactile",
-        "calibrate",
+    let calibrate = quick_calibrate(
         &format!("{real}/background.png"),
         presses.to_str().unwrap(),
         out.to_str().unwrap(),
-        "--sensor",
-        "digit",
-        "--contact-scale",
-        "0.9",
-        "--spread",
-        "10",
-    ]);
+    );
+    let (code, stdout, stderr) = yarok(&calibrate.iter().map(String::as_str).collect::<Vec<_>>());
     assert_eq!(code, 0, "{stderr}");
     let map = folder.path().join("lower.coverage.png");
     yarok_test::assert_says(

@@ -5,6 +5,8 @@
 //! refused with a message, a hundred a tick while the world runs on; none panics, none stops
 //! the world, and the run ends within its bound. `YAROK_FUZZ_INPUTS` sets how many.
 
+use std::cell::Cell;
+use std::rc::Rc;
 use std::time::{Duration, Instant};
 
 use serde_json::{Map, Value, json};
@@ -105,8 +107,9 @@ fn plausible(generator: &mut Generator) -> Value {
 struct Fuzzer {
     generator: Generator,
     left: usize,
-    taken: usize,
-    refused: usize,
+    /// How many were taken and refused, read by the test once the run ends.
+    taken: Rc<Cell<usize>>,
+    refused: Rc<Cell<usize>>,
 }
 
 impl Plugin for Fuzzer {
@@ -128,17 +131,17 @@ impl Plugin for Fuzzer {
             };
             match world.command(&path, &name) {
                 Some(command) => match command.run(body.clone()) {
-                    Ok(()) => self.taken += 1,
+                    Ok(()) => self.taken.set(self.taken.get() + 1),
                     Err(error) => {
                         let said = error.to_string();
                         assert!(
                             !said.trim().is_empty(),
                             "{path} {name} {body}: an empty error"
                         );
-                        self.refused += 1;
+                        self.refused.set(self.refused.get() + 1);
                     }
                 },
-                None => self.refused += 1,
+                None => self.refused.set(self.refused.get() + 1),
             }
         }
         if self.left == 0 {
@@ -151,38 +154,15 @@ impl Plugin for Fuzzer {
 #[test]
 fn generated_commands_are_taken_or_refused_and_the_world_runs_on() {
     let total = fuzz_inputs();
-    let (taken, refused) = (
-        std::rc::Rc::new(std::cell::Cell::new(0)),
-        std::rc::Rc::new(std::cell::Cell::new(0)),
-    );
-    struct Counted {
-        fuzzer: Fuzzer,
-        taken: std::rc::Rc<std::cell::Cell<usize>>,
-        refused: std::rc::Rc<std::cell::Cell<usize>>,
-    }
-    impl Plugin for Counted {
-        fn name(&self) -> String {
-            self.fuzzer.name()
-        }
-        fn step(&mut self, world: &World<'_>) -> Result<(), BoxError> {
-            self.fuzzer.step(world)?;
-            self.taken.set(self.fuzzer.taken);
-            self.refused.set(self.fuzzer.refused);
-            Ok(())
-        }
-    }
+    let (taken, refused) = (Rc::new(Cell::new(0)), Rc::new(Cell::new(0)));
     let started = Instant::now();
     let result = yarok::platform()
         .world::<DigitWorld>()
-        .plugin(Counted {
-            fuzzer: Fuzzer {
-                generator: Generator(0xc0de_f022),
-                left: total,
-                taken: 0,
-                refused: 0,
-            },
-            taken: std::rc::Rc::clone(&taken),
-            refused: std::rc::Rc::clone(&refused),
+        .plugin(Fuzzer {
+            generator: Generator(0xc0de_f022),
+            left: total,
+            taken: Rc::clone(&taken),
+            refused: Rc::clone(&refused),
         })
         .behaviour(|pl| async move {
             pl.wait(|| false).await?;

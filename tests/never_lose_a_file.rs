@@ -15,6 +15,9 @@ use std::time::{Duration, Instant};
 
 use yarok_test::generator::Generator;
 
+mod support;
+use support::yarok_binary::quick_calibrate;
+
 /// Runs per writer.
 const CASES: usize = 24;
 
@@ -32,30 +35,26 @@ enum Writer {
 
 impl Writer {
     fn args(self, target: &str) -> Vec<String> {
-        let run = |world: &'static str, option: &'static str| {
-            let mut args = vec!["run", world, "--behaviour", "idle"];
-            args.extend(["--set", "behaviour/seconds=0.1", option, target]);
-            args
+        let run = |world: &str, option: &str| {
+            let args = [
+                "run",
+                world,
+                "--behaviour",
+                "idle",
+                "--set",
+                "behaviour/seconds=0.1",
+            ];
+            args.into_iter()
+                .chain([option, target])
+                .map(str::to_owned)
+                .collect()
         };
-        let args = match self {
+        match self {
             Self::Dataset => run("pick_and_place_world", "--dataset"),
             Self::Record => run("tower_world", "--record"),
             Self::Video => run("pick_and_place_world", "--video"),
-            Self::Calibrate => vec![
-                "tactile",
-                "calibrate",
-                "press/background.png",
-                "press/presses.csv",
-                target,
-                "--sensor",
-                "digit",
-                "--contact-scale",
-                "0.9",
-                "--spread",
-                "10",
-            ],
-        };
-        args.into_iter().map(str::to_owned).collect()
+            Self::Calibrate => quick_calibrate("press/background.png", "press/presses.csv", target),
+        }
     }
 
     /// An output path that holds nothing yet.

@@ -27,3 +27,23 @@ pub(crate) fn yarok_fails(args: &[&str], code: i32, parts: &[&str]) -> String {
     );
     yarok_test::assert_says(stderr, parts)
 }
+
+/// The arguments of `yarok tactile calibrate UNTOUCHED PRESSES OUT --sensor digit` with one
+/// candidate geometry (contact scale 0.9, spread 10 px): a fit in a fraction of a second.
+pub(crate) fn quick_calibrate(untouched: &str, presses: &str, out: &str) -> Vec<String> {
+    [
+        "tactile",
+        "calibrate",
+        untouched,
+        presses,
+        out,
+        "--sensor",
+        "digit",
+        "--contact-scale",
+        "0.9",
+        "--spread",
+        "10",
+    ]
+    .map(str::to_owned)
+    .to_vec()
+}
