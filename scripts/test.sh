@@ -22,9 +22,12 @@ if cargo nextest --version >/dev/null 2>&1; then
   echo "runner: cargo nextest (one process per test, no retries)"
   cargo nextest run --workspace --locked --no-fail-fast --retries 0
   echo "runner: cargo nextest, the camera, viewer, zenoh and dataset features' tests (and yarok-components' unit tests with them)"
+  # Only the test binaries run are built: each holds the whole stack, and all of them again
+  # would take minutes and gigabytes.
   cargo nextest run --workspace --features yarok/camera,yarok/viewer,yarok/zenoh,yarok/dataset --locked --no-fail-fast \
-    --retries 0 \
-    -E 'binary(camera_decode) | binary(video_device) | binary(cam_real) | binary(tactile_real) | binary(viewer) | binary(zenoh_bridge) | binary(named_state) | binary(dataset_lerobot) | binary(never_lose_a_file) | binary_id(yarok-components)'
+    --retries 0 --lib --test camera_decode --test video_device --test cam_real --test tactile_real \
+    --test viewer --test zenoh_bridge --test named_state --test dataset_lerobot --test never_lose_a_file \
+    -E 'kind(test) | binary_id(yarok-components)'
 else
   echo "runner: cargo test (cargo-nextest is not installed)"
   cargo test --workspace --locked --no-fail-fast
