@@ -91,16 +91,20 @@ fn main() {
         let calibration = if set.name == "digit" {
             Calibration::digit()
         } else {
-            let settings = FitSettings::with_geometry(&Calibration::digit().geometry());
-            Calibration::fit(&set.untouched, &set.calibration, &settings).expect("a calibration")
+            // Its own geometry, searched among the default candidates (its presses are contact
+            // circles, the DIGIT's visible imprints).
+            Calibration::fit(&set.untouched, &set.calibration, &FitSettings::default())
+                .expect("a calibration")
         };
         let geometry = calibration.geometry();
         let mut reference = PhongModel::new(params);
         println!(
-            "{}: {} held-out presses (calibrated on {}); medians",
+            "{}: {} held-out presses (calibrated on {}: contact scale {}, spread {} px); medians",
             set.name,
             set.held_out.len(),
-            set.calibration.len()
+            set.calibration.len(),
+            geometry.contact_scale,
+            geometry.spread
         );
         println!(
             "  {:<22} {:>6} {:>8} {:>6} {:>8} {:>6} {:>8}   change correlation R/G/B (mean)",
@@ -149,59 +153,6 @@ fn main() {
     }
 }
 
-/// The band of the gel a press's centre is in, the gel cut in thirds each way.
-fn band(press: &Press, width: u32, height: u32) -> &'static str {
-    let third = |at: f64, size: u32| (3.0 * at / f64::from(size)).clamp(0.0, 2.0) as u32;
-    match (
-        third(press.centre[0], width),
-        third(press.centre[1], height),
-    ) {
-        (1, 1) => "centre",
-        (0 | 2, 0 | 2) => "corners",
-        _ => "edge bands",
-    }
-}
-
-/// Pearson correlation of `a` and `b` (0 where either is constant).
-fn correlation(a: &[f64], b: &[f64]) -> f64 {
-    let n = a.len().max(1) as f64;
-    let (ma, mb) = (a.iter().sum::<f64>() / n, b.iter().sum::<f64>() / n);
-    let (mut ab, mut aa, mut bb) = (0.0, 0.0, 0.0);
-    for (x, y) in a.iter().zip(b) {
-        ab += (x - ma) * (y - mb);
-        aa += (x - ma).powi(2);
-        bb += (y - mb).powi(2);
-    }
-    if aa > 0.0 && bb > 0.0 {
-        ab / (aa * bb).sqrt()
-    } else {
-        0.0
-    }
-}
-
-/// `a − b` over the pixels within `radius` of `centre`, every channel.
-fn difference(a: &RgbImage, b: &RgbImage, centre: [f64; 2], radius: f64) -> Vec<f64> {
-    a.enumerate_pixels()
-        .filter(|(x, y, _)| {
-            let (dx, dy) = (
-                f64::from(*x) + 0.5 - centre[0],
-                f64::from(*y) + 0.5 - centre[1],
-            );
-            dx * dx + dy * dy < radius * radius
-        })
-        .flat_map(|(x, y, p)| {
-            let q = b.get_pixel(x, y);
-            (0..3).map(move |c| f64::from(p[c]) - f64::from(q[c]))
-        })
-        .collect()
-}
-
-fn median_of(mut values: Vec<f64>) -> Option<f64> {
-    values.sort_by(f64::total_cmp);
-    let n = values.len();
-    (n > 0).then(|| (values[(n - 1) / 2] + values[n / 2]) / 2.0)
-}
-
 /// Prints what the held-out medians hide (see the module's documentation).
 fn hidden_by_the_medians(
     calibration: &Calibration,
@@ -210,104 +161,46 @@ fn hidden_by_the_medians(
     held_out_scores: &[Scores],
 ) {
     let (width, height) = set.untouched.dimensions();
-    let mut bands = Vec::new();
-    for name in ["centre", "edge bands", "corners"] {
-        let in_band: Vec<f64> = set
-            .held_out
+    let bands: Vec<String> =
+        fidelity::change_correlation_by_band(&set.held_out, held_out_scores, width, height)
             .iter()
-            .zip(held_out_scores)
-            .filter(|(press, _)| band(press, width, height) == name)
-            .map(|(_, scores)| scores.mean_change_correlation())
+            .map(|(band, median, count)| match median {
+                Some(median) => format!("{} {median:.2} ({count})", band.name()),
+                None => format!("{} — (0)", band.name()),
+            })
             .collect();
-        match median_of(in_band.clone()) {
-            Some(median) => bands.push(format!("{name} {median:.2} ({})", in_band.len())),
-            None => bands.push(format!("{name} — (0)")),
-        }
-    }
     println!(
         "  change correlation by band (held-out presses): {}",
         bands.join(", ")
     );
-
-    let near = |a: &Press, b: &Press| (a.centre[0] - b.centre[0]).hypot(a.centre[1] - b.centre[1]);
-    let pairs = |within: f64, radii: &dyn Fn(f64) -> bool| -> Vec<(&Press, &Press)> {
-        let mut found = Vec::new();
-        for (i, a) in all.iter().enumerate() {
-            for b in &all[i + 1..] {
-                if near(a, b) <= within && radii((a.radius - b.radius).abs()) {
-                    found.push((*a, *b));
-                }
-            }
-        }
-        found
-    };
-    let deeper = pairs(6.0, &|dr| dr >= 1.5);
-    let sensitivity: Vec<f64> = deeper
-        .iter()
-        .map(|(a, b)| {
-            let radius = 1.5 * a.radius.max(b.radius);
-            let real = difference(&a.frame, &b.frame, a.centre, radius);
-            let simulated = difference(
-                &calibration.render_press(a.centre, a.radius),
-                &calibration.render_press(b.centre, b.radius),
-                a.centre,
-                radius,
-            );
-            correlation(&real, &simulated)
-        })
-        .collect();
-    match median_of(sensitivity) {
-        Some(median) => println!(
+    match fidelity::depth_sensitivity(all, |press| {
+        calibration.render_press(press.centre, press.radius)
+    }) {
+        (Some(median), pairs) => println!(
             "  depth sensitivity: {median:.2} median correlation of the simulated and real \
-             differences over {} pairs of presses",
-            deeper.len()
+             differences over {pairs} pairs of presses"
         ),
-        None => println!("  depth sensitivity: no pair of presses within 6 px differs in radius"),
+        (None, _) => {
+            println!("  depth sensitivity: no pair of presses within 6 px differs in radius")
+        }
     }
-
-    let metres_per_pixel = 1e-3 / calibration.geometry().pixels_per_mm;
-    let (w, h) = calibration.size();
-    let flat = calibration
-        .render_indentation(&vec![0.856e-3; w * h], metres_per_pixel)
-        .expect("its size");
-    let changes: Vec<f64> = flat
-        .pixels()
-        .zip(calibration.background().pixels())
-        .map(|(p, q)| {
-            (0..3)
-                .map(|c| f64::from(p[c].abs_diff(q[c])))
-                .fold(0.0, f64::max)
-        })
-        .collect();
-    let largest = changes.iter().copied().fold(0.0, f64::max);
-    let median = median_of(changes).unwrap_or(0.0);
+    let (largest, median) = fidelity::flat_press_changes(calibration, FLAT_PRESS_M);
     println!(
-        "  flat press 0.856 mm: median change {median:.0} levels, largest {largest:.0} ({:.1} × \
+        "  flat press {} mm: median change {median:.0} levels, largest {largest:.0} ({:.1} × \
          the median; even is at most 2)",
+        FLAT_PRESS_M * 1e3,
         largest / median.max(1.0)
     );
-
-    let same_spot = pairs(5.0, &|dr| dr <= 1.5);
-    let ceiling: Vec<f64> = same_spot
-        .iter()
-        .map(|(a, b)| {
-            let disc = fidelity::Disc {
-                centre: a.centre,
-                radius: 1.5 * a.radius,
-            };
-            // Smoothed, as a simulated image has no camera noise.
-            let smoothed = image::imageops::blur(&b.frame, 1.0);
-            fidelity::compare(&a.frame, &set.untouched, &smoothed, &set.untouched, disc).whole_ssim
-        })
-        .collect();
     let whole = fidelity::median(held_out_scores).whole_ssim;
-    match median_of(ceiling) {
-        Some(ceiling) => println!(
+    match fidelity::ssim_ceiling(all, &set.untouched) {
+        (Some(ceiling), pairs) => println!(
             "  whole-image SSIM {whole:.3} is {:.0} % of the data's ceiling {ceiling:.3} (median \
-             of {} pairs of real frames of one spot)",
+             of {pairs} pairs of real frames of one spot)",
             100.0 * whole / ceiling,
-            same_spot.len()
         ),
-        None => println!("  whole-image SSIM ceiling: no two real presses of one spot"),
+        (None, _) => println!("  whole-image SSIM ceiling: no two real presses of one spot"),
     }
 }
+
+/// A grasped block's face sinking the gel evenly: what `DigitWorld`'s grasp gives.
+const FLAT_PRESS_M: f32 = 0.856e-3;

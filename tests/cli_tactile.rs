@@ -1,6 +1,7 @@
 //! `yarok tactile` turns depth maps into tactile images from the command line.
 
 use std::path::PathBuf;
+use yarok::components::tactile::calibration::Calibration;
 
 mod support;
 use support::yarok_binary;
@@ -460,8 +461,8 @@ fn calibrate_reports_where_the_presses_reached() {
     let rows = stdout.split(", rows ").nth(1).unwrap();
     let first_row: u32 = rows.split('-').next().unwrap().parse().unwrap();
     assert!(uncovered > 50.0 && first_row >= 90, "{stdout}");
-    // Each press's depth: a 0.9 contact circle of a ~50 px imprint on the 4.7 mm ball at
-    // 19.58 px/mm sinks it about 2 mm, short of its equator; wider ones reach it (2.35 mm).
+    // Each press's depth: a 0.8 contact circle of a 49-55 px imprint on the 4.7 mm ball at
+    // 19.58 px/mm sinks it 1.1-1.7 mm, short of its equator (2.35 mm), wider ones deeper.
     let depths: Vec<f64> = stdout
         .lines()
         .filter(|line| line.trim_start().starts_with("press "))
@@ -471,8 +472,11 @@ fn calibrate_reports_where_the_presses_reached() {
         })
         .collect();
     assert_eq!(depths.len(), lower.len() - 1, "{stdout}");
-    assert!(depths.iter().all(|d| (1.5..=2.35).contains(d)), "{stdout}");
-    assert!(depths.iter().any(|d| *d < 2.3), "{stdout}");
+    assert!(depths.iter().all(|d| (1.0..=1.7).contains(d)), "{stdout}");
+    let spread =
+        depths.iter().copied().fold(0.0, f64::max) - depths.iter().copied().fold(9.0, f64::min);
+    assert!(spread > 0.2, "{stdout}");
+    assert!(!stdout.contains("equator"), "{stdout}");
     let map = image::open(&map).unwrap().to_rgb8();
     assert_eq!(map.dimensions(), (240, 320));
     assert_eq!(map.get_pixel(120, 10).0, [0; 3], "the top row is outside");
@@ -481,6 +485,35 @@ fn calibrate_reports_where_the_presses_reached() {
         [255; 3],
         "the lower middle is reached"
     );
+}
+
+/// A contact scale that would make a press's contact circle wider than the ball is no press a
+/// ball can make: refused, naming the largest scale the presses allow.
+#[test]
+fn calibrate_refuses_a_contact_circle_wider_than_the_ball() {
+    let real = real_digit();
+    let out = tempfile::tempdir().unwrap();
+    let written = out.path().join("c.json");
+    yarok_binary::yarok_fails(
+        &[
+            "tactile",
+            "calibrate",
+            &format!("{real}/background.png"),
+            &format!("{real}/presses.csv"),
+            written.to_str().unwrap(),
+            "--sensor",
+            "digit",
+            "--contact-scale",
+            "1.2",
+        ],
+        2,
+        &[
+            "with contact scale 1.2 the widest press's contact circle (54.6 px × the scale) is \
+             wider than the 4.7 mm ball (46.0 px at 19.58 px/mm)",
+            "at most 0.843",
+        ],
+    );
+    assert!(!written.exists());
 }
 
 #[test]
@@ -540,10 +573,14 @@ fn calibration_settings_outside_their_physical_range_are_refused_before_fitting(
     ))
     .unwrap();
     let file = out.path().join("wide.json");
-    std::fs::write(
-        &file,
-        bundled.replace("\"spread_pixels\": 18.0", "\"spread_pixels\": 1e9"),
-    )
+    std::fs::write(&file, {
+        let spread = format!(
+            "\"spread_pixels\": {:?}",
+            Calibration::digit().geometry().spread
+        );
+        assert!(bundled.contains(&spread), "{spread}");
+        bundled.replace(&spread, "\"spread_pixels\": 1e9")
+    })
     .unwrap();
     let depth = golden("digit/sphere_center/input_depth.npy.gz");
     yarok_binary::yarok_fails(

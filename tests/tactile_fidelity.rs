@@ -8,7 +8,7 @@ use image::RgbImage;
 use yarok::components::tactile::calibration::{
     Calibration, FitSettings, Press, read_presses, split_held_out,
 };
-use yarok::components::tactile::fidelity::{self, Disc, Scores};
+use yarok::components::tactile::fidelity::{self, Disc};
 use yarok::components::tactile::phong::{PhongModel, PhongParams};
 
 use yarok_test::peers;
@@ -52,7 +52,7 @@ fn the_bundled_digit_calibration_is_what_calibrate_makes_of_the_shipped_frames()
         "--hold-out",
         "3",
         "--contact-scale",
-        "1.2",
+        "0.8",
         "--spread",
         "18",
     ]);
@@ -70,16 +70,34 @@ fn the_bundled_digit_calibration_is_what_calibrate_makes_of_the_shipped_frames()
     assert_eq!(Calibration::digit().to_json().as_bytes(), bundled);
 }
 
-/// Medians over the held-out presses of a set: the untouched frame alone, the reference model,
-/// the calibrated model.
-fn held_out_medians(sensor: &str, presses: &str, params: PhongParams, surface: f64) -> [Scores; 3] {
-    let (untouched, calibration_presses, held_out) = real_set(sensor, presses);
-    let calibration = if sensor == "digit" {
+/// The GelSight's calibration settings: its own geometry (its presses are contact circles, the
+/// DIGIT's visible imprints), the one the default candidates' search picks for its presses
+/// (`cargo bench --bench tactile_fidelity` searches and prints it; a search takes a minute here).
+fn gelsight_settings() -> FitSettings {
+    FitSettings {
+        contact_scales: vec![1.0],
+        spreads: vec![22.0],
+        ..FitSettings::default()
+    }
+}
+
+/// A set's calibrated model: the bundled DIGIT's, or the GelSight's fitted to its calibration
+/// presses.
+fn calibrated(sensor: &str, untouched: &RgbImage, calibration_presses: &[Press]) -> Calibration {
+    if sensor == "digit" {
         Calibration::digit()
     } else {
-        let settings = FitSettings::with_geometry(&Calibration::digit().geometry());
-        Calibration::fit(&untouched, &calibration_presses, &settings).unwrap()
-    };
+        Calibration::fit(untouched, calibration_presses, &gelsight_settings()).unwrap()
+    }
+}
+
+/// Checks, on the held-out presses of a set, that the calibrated model reaches `whole_ssim` and
+/// the protocol's other thresholds and beats the untouched frame alone and the reference model
+/// on every measure; and, beyond the medians, that the change correlation is at least 0.95
+/// overall and 0.90 in every band of the gel that holds a held-out press.
+fn check(sensor: &str, presses: &str, params: PhongParams, surface: f64, whole_ssim: f64) {
+    let (untouched, calibration_presses, held_out) = real_set(sensor, presses);
+    let calibration = calibrated(sensor, &untouched, &calibration_presses);
     let geometry = calibration.geometry();
     let mut reference = PhongModel::new(params);
     let alone = fidelity::score(&untouched, &untouched, &held_out, |_| untouched.clone());
@@ -87,20 +105,15 @@ fn held_out_medians(sensor: &str, presses: &str, params: PhongParams, surface: f
     let phong = fidelity::score(&untouched, &flat, &held_out, |press| {
         fidelity::phong_image(&mut reference, surface, &geometry, Some(press), &untouched)
     });
-    let calibrated = fidelity::score(&untouched, calibration.background(), &held_out, |press| {
+    let scores = fidelity::score(&untouched, calibration.background(), &held_out, |press| {
         calibration.render_press(press.centre, press.radius)
     });
-    [alone, phong, calibrated].map(|scores| fidelity::median(&scores))
-}
-
-/// The calibrated model reaches `whole_ssim` and the protocol's other thresholds, and beats the
-/// others on every measure.
-fn check(sensor: &str, [alone, phong, calibrated]: [Scores; 3], whole_ssim: f64) {
+    let [alone, phong, calibrated] = [alone, phong, scores.clone()].map(|s| fidelity::median(&s));
     let report =
         format!("{sensor}: alone {alone:?}\nreference {phong:?}\ncalibrated {calibrated:?}");
     assert!(calibrated.whole_ssim >= whole_ssim, "{report}");
     assert!(calibrated.contact_ssim >= 0.85, "{report}");
-    assert!(calibrated.mean_change_correlation() >= 0.80, "{report}");
+    assert!(calibrated.mean_change_correlation() >= 0.95, "{report}");
     assert!(calibrated.contact_mae <= 10.0, "{report}");
     for other in [alone, phong] {
         assert!(calibrated.whole_ssim > other.whole_ssim, "{report}");
@@ -112,21 +125,97 @@ fn check(sensor: &str, [alone, phong, calibrated]: [Scores; 3], whole_ssim: f64)
             "{report}"
         );
     }
+    let (width, height) = untouched.dimensions();
+    let bands = fidelity::change_correlation_by_band(&held_out, &scores, width, height);
+    for (band, median, count) in bands {
+        assert!(
+            median.is_none_or(|median| median >= 0.90),
+            "{sensor}: {} presses in the {}: {median:?}",
+            count,
+            band.name()
+        );
+    }
 }
 
 #[test]
 fn on_held_out_gelsight_presses_the_calibrated_model_meets_the_protocol() {
-    let medians = held_out_medians("gelsight", "labels.csv", PhongParams::gelsight2014(), 0.034);
-    check("gelsight", medians, 0.90);
+    check(
+        "gelsight",
+        "labels.csv",
+        PhongParams::gelsight2014(),
+        0.034,
+        0.95,
+    );
 }
 
-/// The DIGIT's whole-image SSIM is 0.895 against the protocol's 0.90: about three quarters of
-/// the image is untouched gel, where the real frames' own noise caps any prediction at about
-/// 0.90 (a held-out frame smoothed by a 5-pixel Gaussian scores 0.905 against itself there).
+/// The DIGIT's whole-image SSIM is held to the share of its data's ceiling (real frames of one
+/// spot against each other, one smoothed) rather than to the protocol's 0.90, which the camera
+/// noise of its untouched gel puts out of any model's reach.
 #[test]
-fn on_held_out_digit_presses_the_calibrated_model_meets_the_protocol_but_whole_image_ssim() {
-    let medians = held_out_medians("digit", "presses.csv", PhongParams::digit_metric(), 0.030);
-    check("digit", medians, 0.89);
+fn on_held_out_digit_presses_the_calibrated_model_meets_the_protocol() {
+    let (untouched, calibration_presses, held_out) = real_set("digit", "presses.csv");
+    let all: Vec<&Press> = calibration_presses.iter().chain(&held_out).collect();
+    let (ceiling, pairs) = fidelity::ssim_ceiling(&all, &untouched);
+    let ceiling = ceiling.expect("two real presses of one spot");
+    assert!(pairs >= 1 && (0.8..0.95).contains(&ceiling), "{ceiling}");
+    check(
+        "digit",
+        "presses.csv",
+        PhongParams::digit_metric(),
+        0.030,
+        0.98 * ceiling,
+    );
+}
+
+/// Two real presses near one place but of different radii differ as the bundled DIGIT's images
+/// of them do.
+#[test]
+fn the_digit_images_change_with_the_press_as_the_real_frames_do() {
+    let (_, calibration_presses, held_out) = real_set("digit", "presses.csv");
+    let all: Vec<&Press> = calibration_presses.iter().chain(&held_out).collect();
+    let digit = Calibration::digit();
+    let (sensitivity, pairs) =
+        fidelity::depth_sensitivity(&all, |press| digit.render_press(press.centre, press.radius));
+    assert!(
+        pairs >= 2 && sensitivity.unwrap() >= 0.6,
+        "{sensitivity:?} over {pairs}"
+    );
+}
+
+#[test]
+fn every_calibration_press_is_one_a_ball_can_make_and_deeper_presses_render_deeper() {
+    let digit = Calibration::digit();
+    let geometry = digit.geometry();
+    let (_, calibration_presses, _) = real_set("digit", "presses.csv");
+    for press in &calibration_presses {
+        let (depth, clamped) = geometry.depth_mm(press.radius);
+        assert!(!clamped && depth < 2.35, "{press:?}: {depth} mm");
+    }
+    let centre = [120.0, 160.0];
+    let [shallow, deep] = [45.0, 52.0].map(|radius| digit.render_press(centre, radius));
+    assert_ne!(shallow, deep);
+    let change = |image: &RgbImage| -> f64 {
+        image
+            .pixels()
+            .zip(digit.background().pixels())
+            .map(|(p, q)| (0..3).map(|c| f64::from(p[c].abs_diff(q[c]))).sum::<f64>())
+            .sum()
+    };
+    assert!(change(&deep) > 1.1 * change(&shallow));
+}
+
+#[test]
+fn a_flat_press_changes_the_calibrated_image_evenly() {
+    let (untouched, calibration_presses, _) = real_set("gelsight", "labels.csv");
+    let gelsight =
+        Calibration::fit(&untouched, &calibration_presses, &gelsight_settings()).unwrap();
+    for (sensor, calibration) in [("digit", Calibration::digit()), ("gelsight", gelsight)] {
+        let (largest, median) = fidelity::flat_press_changes(&calibration, 0.856e-3);
+        assert!(
+            median >= 1.0 && largest <= 2.0 * median,
+            "{sensor}: {largest} / {median}"
+        );
+    }
 }
 
 #[test]

@@ -59,7 +59,7 @@ const USAGE: &str = "usage: yarok run WORLD [--behaviour NAME] [--viewer] [--ins
                      [--calibration FILE.json] [--pixels-per-mm PX] [--depth-unit m|zbuffer]
        yarok tactile calibrate UNTOUCHED.png PRESSES.csv OUT.json --sensor NAME
                      [--ball-diameter-mm 4.7] [--pixels-per-mm 19.58]
-                     [--contact-scale 0.6,0.9,1.2] [--spread 6,10,14,18] [--hold-out N]
+                     [--contact-scale 0.5,0.6,…,1] [--spread 6,10,14,18] [--hold-out N]
   WORLD  run: a bundled world's tag (see --list); compose: a bundled component's tag, or an
          MJCF template file
   DEPTH  a 16-bit grey PNG in the unit its depth_unit_m text states (millimetres without one),
@@ -76,7 +76,8 @@ const USAGE: &str = "usage: yarok run WORLD [--behaviour NAME] [--viewer] [--ins
                (each frame once, its centre on the frame, 1 px <= radius <= half the frame);
                frames/FRAME.png beside it, all of one size and kind; --hold-out N
          leaves out the frames whose number is one less than a multiple of N; the ball's
-         diameter 0.5-50 mm, pixels per mm 1-200, contact scales 0.05-3, spreads 0-64 px;
+         diameter 0.5-50 mm, pixels per mm 1-200, contact scales 0.05-3 (those that keep
+         every press's contact circle within the ball are tried), spreads 0-64 px;
          beside OUT.json, OUT.coverage.png maps where the presses reached (beyond their
          rectangle the model holds the nearest covered weights)";
 

@@ -7,7 +7,7 @@ use super::Coverage;
 use super::press::{Press, within};
 use super::surface::{
     Area, NORMAL_TERMS, POSITION_TERMS, between, half_normal_terms, half_position_terms, half_size,
-    spread,
+    position_terms_of, spread,
 };
 use super::{Calibration, CalibrationError, Geometry};
 
@@ -23,21 +23,23 @@ pub struct FitSettings {
     /// The frames' scale at the gel, pixels per millimetre.
     pub pixels_per_mm: f64,
     /// Candidates for the contact circle's radius as a multiple of each press's radius (1 when
-    /// the radii are contact circles; below 1 when they are visible imprints).
+    /// the radii are contact circles; below 1 when they are visible imprints). Only those that
+    /// keep every press's contact circle within the ball are tried: a ball cannot touch a circle
+    /// wider than itself, and every press would be the ball sunk to its equator.
     pub contact_scales: Vec<f64>,
     /// Candidates for how far (Gaussian σ, pixels) the gel around a contact sinks with it.
     pub spreads: Vec<f64>,
 }
 
 impl Default for FitSettings {
-    /// A 4.70 mm ball, 19.58 px/mm, contact scales 0.6, 0.9 and 1.2, spreads 6, 10, 14 and 18
-    /// pixels.
+    /// A 4.70 mm ball, 19.58 px/mm, contact scales 0.5 to 1 by 0.1, spreads 6 to 26 pixels by
+    /// 4.
     fn default() -> Self {
         Self {
             ball_diameter_mm: 4.7,
             pixels_per_mm: 19.58,
-            contact_scales: vec![0.6, 0.9, 1.2],
-            spreads: vec![6.0, 10.0, 14.0, 18.0],
+            contact_scales: vec![0.5, 0.6, 0.7, 0.8, 0.9, 1.0],
+            spreads: vec![6.0, 10.0, 14.0, 18.0, 22.0, 26.0],
         }
     }
 }
@@ -85,7 +87,7 @@ pub(super) fn fit(
     let noise = camera_noise(&background, presses);
     let covered = Coverage::of(presses, untouched.width(), untouched.height()).area();
     let mut best: Option<(f64, Calibration)> = None;
-    for &contact_scale in &settings.contact_scales {
+    for contact_scale in possible_contact_scales(presses, settings)? {
         for &spread in &settings.spreads {
             let geometry = Geometry {
                 pixels_per_mm: settings.pixels_per_mm,
@@ -103,6 +105,40 @@ pub(super) fn fit(
         }
     }
     Ok(best.expect("checked: at least one candidate").1)
+}
+
+/// The candidate contact scales of `settings` that keep every press's contact circle within
+/// the ball.
+///
+/// # Errors
+///
+/// When none does: naming the widest press, the ball and the largest scale they allow.
+fn possible_contact_scales(
+    presses: &[Press],
+    settings: &FitSettings,
+) -> Result<Vec<f64>, CalibrationError> {
+    let ball_radius = settings.ball_diameter_mm * settings.pixels_per_mm / 2.0;
+    let widest = presses.iter().map(|p| p.radius).fold(0.0, f64::max);
+    let possible: Vec<f64> = settings
+        .contact_scales
+        .iter()
+        .copied()
+        .filter(|scale| scale * widest <= ball_radius)
+        .collect();
+    if possible.is_empty() {
+        let tried: Vec<String> = settings.contact_scales.iter().map(f64::to_string).collect();
+        return Err(CalibrationError::Fit(format!(
+            "with contact scale {} the widest press's contact circle ({widest} px × the scale) \
+             is wider than the {} mm ball ({ball_radius:.1} px at {} px/mm): a ball cannot \
+             touch a circle wider than itself; these presses allow a contact scale of at most \
+             {:.3}",
+            tried.join(", "),
+            settings.ball_diameter_mm,
+            settings.pixels_per_mm,
+            ball_radius / widest
+        )));
+    }
+    Ok(possible)
 }
 
 fn check(
@@ -285,7 +321,8 @@ fn coefficients(
                         continue;
                     };
                     for (k, n) in grid_terms.iter().enumerate() {
-                        for (q, p) in positions[corner].iter().enumerate() {
+                        let positions = &positions[corner][..position_terms_of(k)];
+                        for (q, p) in positions.iter().enumerate() {
                             terms[k * POSITION_TERMS.len() + q] += weight * n * p;
                         }
                     }

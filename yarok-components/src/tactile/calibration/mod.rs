@@ -282,7 +282,7 @@ impl Calibration {
         fit::fit(untouched, presses, settings)
     }
 
-    /// The calibration bundled for the DIGIT: fitted (contact scale 1.2, spread 18 pixels, as
+    /// The calibration bundled for the DIGIT: fitted (contact scale 0.8, spread 18 pixels, as
     /// its file says) to the 14 calibration presses of a real DIGIT's frames from FOTS (MIT
     /// licence; see `yarok-components/data/tactile-real/`), the other 7 held out to measure it.
     pub fn digit() -> Self {

@@ -22,7 +22,18 @@ pub const NORMAL_TERMS: [&str; 13] = [
 
 /// The terms of the pixel's position (`x`, `y` from the image's centre, in image widths and
 /// heights) that each normal term's weight is a polynomial of: the lights differ across the gel.
+/// The height term's weight is the first alone (the same everywhere): a gel sunk evenly, as by a
+/// flat face, moves away from the camera evenly and changes its image evenly.
 pub const POSITION_TERMS: [&str; 6] = ["1", "x", "y", "x^2", "y^2", "x*y"];
+
+/// How many of [`POSITION_TERMS`] normal term `k`'s weight is fitted with (the others' are 0).
+pub(super) fn position_terms_of(k: usize) -> usize {
+    if NORMAL_TERMS[k].starts_with("height") {
+        1
+    } else {
+        POSITION_TERMS.len()
+    }
+}
 
 /// The normal terms of a pixel whose surface slopes by `gx`, `gy` (pixels per pixel) at
 /// `height` pixels below the untouched gel.

@@ -15,7 +15,14 @@
 //! assert_eq!(scores.contact_mae, 0.0);
 //! ```
 
+mod hidden;
+
 use image::RgbImage;
+
+pub use hidden::{
+    Band, change_correlation_by_band, depth_sensitivity, flat_press_changes, nearby_pairs,
+    ssim_ceiling,
+};
 
 use super::calibration::{Geometry, Press};
 use super::filter::reflect;
