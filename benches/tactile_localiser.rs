@@ -4,7 +4,8 @@
 //! and radii, then tested on the real DIGIT's 21 frames of ball presses
 //! (`yarok-components/data/tactile-real/digit`); beside them, the same localiser trained on the
 //! real frames themselves, each left out in turn. Prints the median and the largest error of
-//! the centre and of the radius, pixels.
+//! the centre and of the radius, pixels; and, first, where the real frames' change lies against
+//! their labelled centres and where yarok's images of the same presses put theirs.
 //!
 //! ```text
 //! cargo bench --bench tactile_localiser
@@ -53,6 +54,23 @@ fn features(frame: &RgbImage, untouched: &RgbImage) -> Vec<f64> {
     features.push((total / f64::from(width * height)).sqrt());
     features.push(1.0);
     features
+}
+
+/// Where a press's change lies: the centroid (column, row) of its pixels' change beyond the
+/// camera's noise ([`NOISE_FLOOR`]), weighted by it.
+fn change_centroid(frame: &RgbImage, untouched: &RgbImage) -> [f64; 2] {
+    let (mut sum, mut weights) = ([0.0; 2], 0.0);
+    for (x, y, seen) in frame.enumerate_pixels() {
+        let base = untouched.get_pixel(x, y);
+        let change: f64 = (0..3)
+            .map(|c| (f64::from(seen[c]) - f64::from(base[c])).abs())
+            .sum();
+        let weight = (change - NOISE_FLOOR).max(0.0);
+        sum[0] += weight * (f64::from(x) + 0.5);
+        sum[1] += weight * (f64::from(y) + 0.5);
+        weights += weight;
+    }
+    sum.map(|s| s / weights.max(f64::MIN_POSITIVE))
 }
 
 /// A ridge regression from features to `[centre x, centre y, radius]`.
@@ -141,6 +159,19 @@ fn main() {
             ]
         })
         .collect();
+    let above = |centroid: [f64; 2], press: &Press| press.centre[1] - centroid[1];
+    let real_above: Vec<f64> = real
+        .iter()
+        .map(|press| above(change_centroid(&press.frame, &untouched), press))
+        .collect();
+    let yarok_off: Vec<f64> = real
+        .iter()
+        .map(|press| {
+            let image = calibration.render_press(press.centre, press.radius);
+            let [x, y] = change_centroid(&image, calibration.background());
+            (x - press.centre[0]).hypot(y - press.centre[1])
+        })
+        .collect();
     let real_features: Vec<Vec<f64>> = real
         .iter()
         .map(|press| features(&press.frame, &untouched))
@@ -151,6 +182,15 @@ fn main() {
         real.len()
     );
 
+    let (real_median, real_most) = median_and_largest(real_above.clone());
+    let (yarok_median, yarok_most) = median_and_largest(yarok_off);
+    println!(
+        "  where the change lies (its weighted centroid): real frames {real_median:.1} px above \
+         the labelled centre, median ({real_most:.1} largest; {} of {} above); yarok's image of \
+         the same press {yarok_median:.1} px from it ({yarok_most:.1} largest)",
+        real_above.iter().filter(|a| **a > 0.0).count(),
+        real.len()
+    );
     let yarok: Vec<(Vec<f64>, [f64; 3])> = random_presses
         .iter()
         .map(|&[x, y, r]| {
