@@ -461,8 +461,9 @@ fn calibrate_reports_where_the_presses_reached() {
     let rows = stdout.split(", rows ").nth(1).unwrap();
     let first_row: u32 = rows.split('-').next().unwrap().parse().unwrap();
     assert!(uncovered > 50.0 && first_row >= 90, "{stdout}");
-    // Each press's depth: a 0.8 contact circle of a 49-55 px imprint on the 4.7 mm ball at
-    // 19.58 px/mm sinks it 1.1-1.7 mm, short of its equator (2.35 mm), wider ones deeper.
+    // Each press's depth: a 0.7 contact circle of a 49-55 px imprint on the 4.7 mm ball at
+    // 19.58 px/mm sinks it 1.3-1.7 mm by Hertz's law, short of its equator (2.35 mm), wider ones
+    // deeper.
     let depths: Vec<f64> = stdout
         .lines()
         .filter(|line| line.trim_start().starts_with("press "))

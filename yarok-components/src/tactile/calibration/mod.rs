@@ -7,8 +7,10 @@
 //! (estimated from the frames) plus, per channel, a polynomial of the surface's normal and height
 //! (third degree, [`NORMAL_TERMS`]) whose coefficients are polynomials of the pixel's position
 //! (second degree, [`POSITION_TERMS`]: each light reaches each part of the gel at its own
-//! angle). The coefficients are a least-squares fit to the presses; the contact circle's scale
-//! and the spread are chosen among candidates by how well they fit. The camera's noise is
+//! angle). The coefficients are a least-squares fit to the presses, each press's indentation
+//! being the ball's by Hertz's law ([`ball_press`]); the contact circle's scale (among those
+//! that keep every press's contact circle within the ball) and the spread are chosen among
+//! candidates by how well they fit. The camera's noise is
 //! measured too ([`Calibration::noise_levels`]); images are rendered without it (the expected
 //! image), and a sensor in the world adds a fixed pattern of it when its `noise` is on.
 //!
@@ -101,17 +103,17 @@ impl Geometry {
         )
     }
 
-    /// How deep (millimetres) a press of `radius` pixels sinks the ball under this geometry:
-    /// the spherical cap whose contact circle is `contact_scale · radius`, and whether that
-    /// circle was wider than the ball, so that the press is taken as the ball sunk to its
-    /// equator.
+    /// How deep (millimetres) a press of `radius` pixels sinks the ball under this geometry, by
+    /// [`ball_press`]'s law (`a²/R` for a contact circle `a` = `contact_scale · radius` on a ball
+    /// of radius `R`), and whether that circle was wider than the ball, so that the press is
+    /// taken as the ball sunk to its equator.
     ///
     /// ```
     /// use yarok_components::tactile::calibration::Geometry;
     ///
     /// let geometry = Geometry { pixels_per_mm: 10.0, ball_diameter_mm: 4.0, contact_scale: 1.0, spread: 0.0 };
     /// let (depth, clamped) = geometry.depth_mm(12.0); // a 1.2 mm contact circle on a 2 mm ball
-    /// assert!((depth - 0.4).abs() < 1e-12 && !clamped);
+    /// assert!((depth - 0.72).abs() < 1e-12 && !clamped);
     /// assert_eq!(geometry.depth_mm(30.0), (2.0, true));
     /// ```
     pub fn depth_mm(&self, radius: f64) -> (f64, bool) {
@@ -119,7 +121,7 @@ impl Geometry {
         let contact = self.contact_scale * radius / self.pixels_per_mm;
         let clamped = contact > ball;
         let contact = contact.min(ball);
-        (ball - (ball * ball - contact * contact).sqrt(), clamped)
+        (contact * contact / ball, clamped)
     }
 
     /// [`Geometry::press`] spread, on the half-resolution grid.
@@ -282,7 +284,7 @@ impl Calibration {
         fit::fit(untouched, presses, settings)
     }
 
-    /// The calibration bundled for the DIGIT: fitted (contact scale 0.8, spread 18 pixels, as
+    /// The calibration bundled for the DIGIT: fitted (contact scale 0.7, spread 10 pixels, as
     /// its file says) to the 14 calibration presses of a real DIGIT's frames from FOTS (MIT
     /// licence; see `yarok-components/data/tactile-real/`), the other 7 held out to measure it.
     pub fn digit() -> Self {

@@ -21,15 +21,19 @@ pub struct Press {
 }
 
 /// How far (pixels) each pixel of a `width × height` gel sinks under a ball of `ball_radius`
-/// pixels pressed at `centre` (column, row) until its contact circle is `contact_radius` wide:
-/// a spherical cap, zero outside the circle. Row-major, top row first.
+/// pixels pressed at `centre` (column, row) until its contact circle is `contact_radius` wide
+/// (at most the ball's), by Hertz's law of a ball pressed into an elastic half-space: the ball
+/// sinks `a²/R` (`a` the contact radius, `R` the ball's); within the contact the gel follows the
+/// ball, `a²/R − r²/(2R)`; outside it the gel is drawn down with the ball,
+/// `a²/(πR) · ((2 − r²/a²)·asin(a/r) + √(r²/a² − 1))`, meeting it at the circle. Row-major, top
+/// row first.
 ///
 /// ```
 /// use yarok_components::tactile::calibration::ball_press;
 ///
 /// let heights = ball_press(9, 9, [4.5, 4.5], 3.0, 5.0);
-/// assert_eq!(heights[0], 0.0);
-/// assert!((heights[4 * 9 + 4] - 1.0).abs() < 1e-12); // 5 − √(5² − 3²)
+/// assert!((heights[4 * 9 + 4] - 1.8).abs() < 1e-12); // 3²/5 at the centre
+/// assert!(heights[0] > 0.0 && heights[0] < 0.9); // drawn down outside the contact, less
 /// ```
 pub fn ball_press(
     width: usize,
@@ -38,17 +42,20 @@ pub fn ball_press(
     contact_radius: f64,
     ball_radius: f64,
 ) -> Vec<f64> {
-    let contact_radius = contact_radius.min(ball_radius);
-    let deepest =
-        ball_radius - (ball_radius * ball_radius - contact_radius * contact_radius).sqrt();
+    let a = contact_radius.min(ball_radius);
+    let depth = a * a / ball_radius;
     (0..height)
         .flat_map(|y| (0..width).map(move |x| (x, y)))
         .map(|(x, y)| {
             let dx = x as f64 + 0.5 - centre[0];
             let dy = y as f64 + 0.5 - centre[1];
             let squared = dx * dx + dy * dy;
-            if squared < contact_radius * contact_radius {
-                (ball_radius * ball_radius - squared).sqrt() - (ball_radius - deepest)
+            if squared < a * a {
+                depth - squared / (2.0 * ball_radius)
+            } else if a > 0.0 {
+                let ratio = squared / (a * a);
+                depth / std::f64::consts::PI
+                    * ((2.0 - ratio) * (1.0 / ratio.sqrt()).asin() + (ratio - 1.0).sqrt())
             } else {
                 0.0
             }
