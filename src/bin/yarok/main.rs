@@ -59,7 +59,7 @@ const USAGE: &str = "usage: yarok run WORLD [--behaviour NAME] [--viewer] [--ins
                      [--calibration FILE.json] [--pixels-per-mm PX] [--depth-unit m|zbuffer]
        yarok tactile calibrate UNTOUCHED.png PRESSES.csv OUT.json --sensor NAME
                      [--ball-diameter-mm 4.7] [--pixels-per-mm 19.58]
-                     [--contact-scale 0.5,0.6,…,1] [--spread 6,10,14,18] [--hold-out N]
+                     [--contact-scale 0.5,0.6,…,1] [--spread 6,10,…,26] [--hold-out N]
   WORLD  run: a bundled world's tag (see --list); compose: a bundled component's tag, or an
          MJCF template file
   DEPTH  a 16-bit grey PNG in the unit its depth_unit_m text states (millimetres without one),
