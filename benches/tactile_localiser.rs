@@ -31,6 +31,15 @@ const NOISE_FLOOR: f64 = 20.0;
 /// Ridge regularisation, relative to the normal equations' mean diagonal.
 const RIDGE: f64 = 1e-3;
 
+/// How much a pixel changed from the untouched gel beyond the camera's noise: its channels'
+/// absolute changes summed, less [`NOISE_FLOOR`], at least zero.
+fn change_beyond_noise(seen: &image::Rgb<u8>, untouched: &image::Rgb<u8>) -> f64 {
+    let change: f64 = (0..3)
+        .map(|c| (f64::from(seen[c]) - f64::from(untouched[c])).abs())
+        .sum();
+    (change - NOISE_FLOOR).max(0.0)
+}
+
 /// The features of a press's frame: its change from the untouched gel, per block of
 /// [`BLOCK`] × [`BLOCK`] pixels, beyond the camera's noise ([`NOISE_FLOOR`]), normalised to sum to one (so that
 /// the centre is near a linear function of them), and the change's total size.
@@ -43,11 +52,8 @@ fn features(frame: &RgbImage, untouched: &RgbImage) -> Vec<f64> {
         if bx >= columns || by >= rows {
             continue;
         }
-        let base = untouched.get_pixel(x, y);
-        let change: f64 = (0..3)
-            .map(|c| (f64::from(seen[c]) - f64::from(base[c])).abs())
-            .sum();
-        blocks[(by * columns + bx) as usize] += (change - NOISE_FLOOR).max(0.0);
+        blocks[(by * columns + bx) as usize] +=
+            change_beyond_noise(seen, untouched.get_pixel(x, y));
     }
     let total: f64 = blocks.iter().sum::<f64>().max(1.0);
     let mut features: Vec<f64> = blocks.iter().map(|b| b / total).collect();
@@ -61,11 +67,7 @@ fn features(frame: &RgbImage, untouched: &RgbImage) -> Vec<f64> {
 fn change_centroid(frame: &RgbImage, untouched: &RgbImage) -> [f64; 2] {
     let (mut sum, mut weights) = ([0.0; 2], 0.0);
     for (x, y, seen) in frame.enumerate_pixels() {
-        let base = untouched.get_pixel(x, y);
-        let change: f64 = (0..3)
-            .map(|c| (f64::from(seen[c]) - f64::from(base[c])).abs())
-            .sum();
-        let weight = (change - NOISE_FLOOR).max(0.0);
+        let weight = change_beyond_noise(seen, untouched.get_pixel(x, y));
         sum[0] += weight * (f64::from(x) + 0.5);
         sum[1] += weight * (f64::from(y) + 0.5);
         weights += weight;

@@ -227,8 +227,7 @@ fn every_calibration_press_is_one_a_ball_can_make_and_deeper_presses_render_deep
 #[test]
 fn a_flat_press_changes_the_calibrated_image_evenly() {
     let (untouched, calibration_presses, _) = real_set("gelsight", "labels.csv");
-    let gelsight =
-        Calibration::fit(&untouched, &calibration_presses, &gelsight_settings()).unwrap();
+    let gelsight = calibrated("gelsight", &untouched, &calibration_presses);
     for (sensor, calibration) in [("digit", Calibration::digit()), ("gelsight", gelsight)] {
         let (largest, median) = fidelity::flat_press_changes(&calibration, 0.856e-3);
         assert!(

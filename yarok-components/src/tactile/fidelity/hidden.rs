@@ -73,7 +73,7 @@ pub fn change_correlation_by_band(
 
 /// Pairs of `presses` whose centres are within `within` pixels of each other and whose radii
 /// differ by what `radii` accepts (the difference, pixels).
-pub fn nearby_pairs<'a>(
+fn nearby_pairs<'a>(
     presses: &[&'a Press],
     within: f64,
     radii: impl Fn(f64) -> bool,

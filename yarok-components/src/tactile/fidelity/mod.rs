@@ -20,8 +20,7 @@ mod hidden;
 use image::RgbImage;
 
 pub use hidden::{
-    Band, change_correlation_by_band, depth_sensitivity, flat_press_changes, nearby_pairs,
-    ssim_ceiling,
+    Band, change_correlation_by_band, depth_sensitivity, flat_press_changes, ssim_ceiling,
 };
 
 use super::calibration::{Geometry, Press};
