@@ -54,7 +54,7 @@ fn the_bundled_digit_calibration_is_what_calibrate_makes_of_the_shipped_frames()
         "--contact-scale",
         "0.7",
         "--spread",
-        "10",
+        "6",
     ]);
     assert_eq!(status, 0, "{stdout}{stderr}");
     assert_says(&stdout, &["fitted to 14 of 21 presses"]);
@@ -96,14 +96,12 @@ struct Bounds {
     whole_ssim: f64,
     /// The least contact SSIM and the most contact MAE.
     contact: (f64, f64),
-    /// The least change correlation in any band of the gel holding a held-out press.
-    band: f64,
 }
 
 /// Checks, on the held-out presses of a set, that the calibrated model meets `bounds` and the
 /// protocol's thresholds and beats the untouched frame alone and the reference model on every
 /// measure; and, beyond the medians, that the change correlation is at least 0.95 overall and
-/// `bounds.band` in every band of the gel that holds a held-out press.
+/// 0.90 in every band of the gel that holds a held-out press.
 fn check(sensor: &str, presses: &str, params: PhongParams, surface: f64, bounds: Bounds) {
     let (untouched, calibration_presses, held_out) = real_set(sensor, presses);
     let calibration = calibrated(sensor, &untouched, &calibration_presses);
@@ -138,7 +136,7 @@ fn check(sensor: &str, presses: &str, params: PhongParams, surface: f64, bounds:
     let bands = fidelity::change_correlation_by_band(&held_out, &scores, width, height);
     for (band, median, count) in bands {
         assert!(
-            median.is_none_or(|median| median >= bounds.band),
+            median.is_none_or(|median| median >= 0.90),
             "{sensor}: {} presses in the {}: {median:?}",
             count,
             band.name()
@@ -146,13 +144,11 @@ fn check(sensor: &str, presses: &str, params: PhongParams, surface: f64, bounds:
     }
 }
 
-/// The GelSight's one held-out press in an edge band scores 0.89, short of 0.90.
 #[test]
 fn on_held_out_gelsight_presses_the_calibrated_model_meets_the_protocol() {
     let bounds = Bounds {
         whole_ssim: 0.95,
         contact: (0.932, 6.4),
-        band: 0.88,
     };
     check(
         "gelsight",
@@ -175,8 +171,7 @@ fn on_held_out_digit_presses_the_calibrated_model_meets_the_protocol() {
     assert!(pairs >= 1 && (0.8..0.95).contains(&ceiling), "{ceiling}");
     let bounds = Bounds {
         whole_ssim: 0.98 * ceiling,
-        contact: (0.871, 7.12),
-        band: 0.90,
+        contact: (0.871, 7.1),
     };
     check(
         "digit",

@@ -29,7 +29,7 @@ pub(crate) fn yarok_fails(args: &[&str], code: i32, parts: &[&str]) -> String {
 }
 
 /// The arguments of `yarok tactile calibrate UNTOUCHED PRESSES OUT --sensor digit` with one
-/// candidate geometry (contact scale 0.7, spread 10 px): a fit in a fraction of a second.
+/// candidate geometry (contact scale 0.7, spread 6 px): a fit in a fraction of a second.
 pub(crate) fn quick_calibrate(untouched: &str, presses: &str, out: &str) -> Vec<String> {
     [
         "tactile",
@@ -42,7 +42,7 @@ pub(crate) fn quick_calibrate(untouched: &str, presses: &str, out: &str) -> Vec<
         "--contact-scale",
         "0.7",
         "--spread",
-        "10",
+        "6",
     ]
     .map(str::to_owned)
     .to_vec()

@@ -64,18 +64,18 @@ impl FitSettings {
     }
 }
 
-/// Beyond how many radii of its centre a press's frame shows the untouched gel.
+/// Within how many radii of its centre a press changes its frame: beyond, the frame shows the
+/// untouched gel (and helps estimate it); within, its pixels are what the colour model is fitted
+/// to. Pixels further out would fit only the camera's noise and the gel's drift: a flat gel has
+/// no slope terms, so the model's change there is nothing by construction.
 const FAR_FIELD: f64 = 1.8;
-/// Within how many radii of its centre a press's pixels are fitted.
-const FITTED: f64 = 2.5;
 /// Within how many radii of its centre a press's fit is scored (the fidelity protocol's
 /// contact region).
 const SCORED: f64 = 1.5;
 /// How much the background estimated from the frames is smoothed (σ, pixels): the untouched
 /// gel's look changes over tens of pixels (its lights, its paint), the camera's noise from pixel
-/// to pixel, and the few frames averaged leave much of it. Measured on held-out presses, σ 2 →
-/// 4 lifts the contact SSIM (DIGIT 0.871 → 0.873, GelSight 0.930 → 0.937); 8 begins to blur
-/// the DIGIT's gel (contact MAE 7.11 → 7.17).
+/// to pixel, and the few frames averaged leave much of it; twice as much begins to blur the
+/// DIGIT's gel.
 const BACKGROUND_SMOOTHING: f64 = 4.0;
 /// Ridge regularisation, relative to the normal equations' mean diagonal.
 const RIDGE: f64 = 1e-3;
@@ -310,7 +310,7 @@ fn coefficients(
         for y in 0..height {
             let (y0, y1, fy) = between(y, half_height);
             for (x, &(x0, x1, fx)) in columns.iter().enumerate() {
-                if !within(press, x, y, FITTED) {
+                if !within(press, x, y, FAR_FIELD) {
                     continue;
                 }
                 // The image's terms: the grid's, interpolated as the model's changes are.

@@ -284,7 +284,7 @@ impl Calibration {
         fit::fit(untouched, presses, settings)
     }
 
-    /// The calibration bundled for the DIGIT: fitted (contact scale 0.7, spread 10 pixels, as
+    /// The calibration bundled for the DIGIT: fitted (contact scale 0.7, spread 6 pixels, as
     /// its file says) to the 14 calibration presses of a real DIGIT's frames from FOTS (MIT
     /// licence; see `yarok-components/data/tactile-real/`), the other 7 held out to measure it.
     pub fn digit() -> Self {
