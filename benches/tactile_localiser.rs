@@ -1,16 +1,17 @@
-//! Sim-to-real: a contact localiser (a ridge regression from the press's change image to its
-//! centre and radius) trained **only** on images a model renders — the DIGIT's bundled
-//! calibration, or the reference Phong model over the same untouched gel, each with fresh noise
-//! at the calibrated camera's levels (yarok's sensor adds a fixed pattern of the same) — at
-//! random centres and radii, then tested on the real DIGIT's 21 frames of ball presses
+//! Sim-to-real: a contact localiser (a ridge regression from the press's change image to its centre
+//! and radius) trained **only** on images a model renders — the DIGIT's bundled calibration, or the
+//! reference Phong model over the same untouched gel, each with fresh noise at the calibrated
+//! camera's levels (yarok's sensor adds a fixed pattern of the same) — at random centres and radii,
+//! then tested on the real DIGIT's 21 frames of ball presses
 //! (`yarok-components/data/tactile-real/digit`); beside them, the same localiser trained on the
-//! real frames themselves, each left out in turn. Every change is taken from the calibration's untouched gel (the data's untouched frame averaged with the
-//! calibration frames away from their press), as a sensor in use takes it from a reference frame
-//! of the day: the data's untouched frame alone was taken apart from the presses, and the gel's
-//! look drifted between them (a haze along the top of the frame). Prints the median and the
-//! largest error of the centre and of the radius, pixels; and, first, where the real frames'
-//! change lies against their labelled centres, where yarok's images of the same presses put
-//! theirs, and how far yarok's image of each real press must move to match the frame best.
+//! real frames themselves, each left out in turn. Every change is taken from the calibration's
+//! untouched gel (the data's untouched frame averaged with the calibration frames away from their
+//! press), as a sensor in use takes it from a reference frame of the day: the data's untouched
+//! frame alone was taken apart from the presses, and the gel's look drifted between them (a haze
+//! along the top of the frame). Prints the median and the largest error of the centre and of the
+//! radius, pixels; and, first, where the real frames' change lies against their labelled centres,
+//! where yarok's images of the same presses put theirs, and how far yarok's image of each real
+//! press must move to match the frame best.
 //!
 //! ```text
 //! cargo bench --bench tactile_localiser
