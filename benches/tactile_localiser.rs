@@ -19,7 +19,7 @@
 
 use image::RgbImage;
 use yarok::components::tactile::calibration::{Calibration, Press, held_out, read_presses};
-use yarok::components::tactile::fidelity::{self, Disc};
+use yarok::components::tactile::fidelity;
 use yarok::components::tactile::noise::SplitMix64;
 use yarok::components::tactile::phong::{PhongModel, PhongParams};
 use yarok::nalgebra::{DMatrix, DVector};
@@ -124,35 +124,6 @@ fn with_camera_noise(mut image: RgbImage, levels: [f64; 3], samples: &mut SplitM
             .clamp(0.0, 255.0) as u8;
     }
     image
-}
-
-/// How far (pixels, each way) yarok's image of a real press is moved in search of where it
-/// matches the real frame best.
-const SHIFTS: i32 = 8;
-
-/// The move (columns, rows) of yarok's image of a real `press` from its labelled centre at
-/// which it matches the real frame best: the least contact MAE over a disc of 1.5 radii at the
-/// labelled centre, whole pixels up to [`SHIFTS`] each way.
-fn best_shift(calibration: &Calibration, press: &Press) -> [f64; 2] {
-    let untouched = calibration.background();
-    let contact = Disc {
-        centre: press.centre,
-        radius: 1.5 * press.radius,
-    };
-    let mut best = (f64::INFINITY, [0.0; 2]);
-    for dy in -SHIFTS..=SHIFTS {
-        for dx in -SHIFTS..=SHIFTS {
-            let shift = [f64::from(dx), f64::from(dy)];
-            let centre = [press.centre[0] + shift[0], press.centre[1] + shift[1]];
-            let image = calibration.render_press(centre, press.radius);
-            let error =
-                fidelity::compare(&press.frame, untouched, &image, untouched, contact).contact_mae;
-            if error < best.0 {
-                best = (error, shift);
-            }
-        }
-    }
-    best.1
 }
 
 /// The least-squares line `y = slope · (x − crossing)` through `points` (x, y): its slope, where
@@ -262,7 +233,7 @@ fn main() {
     );
     let shifts: Vec<[f64; 2]> = real
         .iter()
-        .map(|press| best_shift(&calibration, press))
+        .map(|press| calibration.best_move(press))
         .collect();
     let across: Vec<[f64; 2]> = real
         .iter()
@@ -273,12 +244,15 @@ fn main() {
     let unexplained =
         (across.iter().map(|[_, shift]| shift * shift).sum::<f64>() / across.len() as f64).sqrt();
     let (up, _) = median_and_largest(shifts.iter().map(|shift| -shift[1]).collect());
+    let placement = geometry.placement;
     println!(
-        "  where yarok's image of a real press matches the frame best (least contact MAE): moved \
-         across by {slope:.3} × (column − {middle:.0}), that is, the real imprints lie {:.0} % \
-         further from column {middle:.0} than their labels ({left:.1} px rms about the line, \
-         {unexplained:.1} about none), and up by {up:.1} px (median)",
-        100.0 * slope
+        "  where yarok's image of a real press matches the frame best (least contact MAE), beyond \
+         the calibration's placement (imprints {:+.1} px across, {:+.1} px down, {:+.1} % further \
+         from the middle column): moved across by {slope:.3} × (column − {middle:.0}) ({left:.1} \
+         px rms about that line, {unexplained:.1} about none) and up by {up:.1} px (median)",
+        placement.shift[0],
+        placement.shift[1],
+        100.0 * placement.stretch[0]
     );
     let mut noise = SplitMix64::new(0x5e45_0123);
     let yarok: Vec<(Vec<f64>, [f64; 3])> = random_presses

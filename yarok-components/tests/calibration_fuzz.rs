@@ -148,6 +148,7 @@ fn generated_press_lists_are_read_within_their_promises_or_refused() {
                 pixels_per_mm: 1.0 + generator.below(30) as f64,
                 contact_scales: vec![0.05 + generator.below(30) as f64 / 10.0],
                 spreads: vec![generator.below(65) as f64],
+                placement: None,
             };
             let started = Instant::now();
             match Calibration::fit(&untouched, &presses, &settings) {

@@ -98,6 +98,15 @@ pub(super) fn run(args: &[String]) -> Result<(), String> {
         geometry.contact_scale,
         geometry.spread
     );
+    let placement = geometry.placement;
+    report += &format!(
+        "  the imprints lie {:+.1} px across and {:+.1} px down from their described centres, \
+         and {:+.1} % (columns) and {:+.1} % (rows) further from the gel's middle\n",
+        placement.shift[0],
+        placement.shift[1],
+        100.0 * placement.stretch[0],
+        100.0 * placement.stretch[1]
+    );
     for (name, press) in names.iter().zip(&used) {
         let (depth, clamped) = geometry.depth_mm(press.radius);
         report += &format!(

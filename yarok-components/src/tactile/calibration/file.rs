@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 use yarok_core::output::{check_replaceable, head, make_folder_for};
 
 use super::surface::{EVERYWHERE, NORMAL_TERMS, POSITION_TERMS};
-use super::{Calibration, CalibrationError, Geometry};
+use super::{Calibration, CalibrationError, Geometry, Placement};
 
 /// The format's name and version, the file's first field.
 const FORMAT: &str = "yarok tactile calibration 1";
@@ -26,6 +26,10 @@ struct CalibrationFile {
     ball_diameter_mm: f64,
     contact_scale: f64,
     spread_pixels: f64,
+    /// Where presses appear from where they are described; files before it was fitted (and
+    /// calibrations placing every press where it is described) have none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    placement: Option<PlacementFile>,
     normal_terms: Vec<String>,
     position_terms: Vec<String>,
     /// Per normal term, per position term: R, G, B.
@@ -37,6 +41,16 @@ struct CalibrationFile {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     covered: Option<[f64; 4]>,
     background_png: String,
+}
+
+/// A [`Placement`] in a calibration file.
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PlacementFile {
+    /// [`Placement::shift`], columns and rows.
+    shift_pixels: [f64; 2],
+    /// [`Placement::stretch`], columns and rows.
+    stretch: [f64; 2],
 }
 
 impl Calibration {
@@ -60,6 +74,10 @@ impl Calibration {
             ball_diameter_mm: self.geometry.ball_diameter_mm,
             contact_scale: self.geometry.contact_scale,
             spread_pixels: self.geometry.spread,
+            placement: (!self.geometry.placement.is_identity()).then_some(PlacementFile {
+                shift_pixels: self.geometry.placement.shift,
+                stretch: self.geometry.placement.stretch,
+            }),
             normal_terms: NORMAL_TERMS.map(str::to_owned).to_vec(),
             position_terms: POSITION_TERMS.map(str::to_owned).to_vec(),
             coefficients: self.coefficients.clone(),
@@ -165,6 +183,12 @@ pub(super) fn parse(text: &str, path: &str) -> Result<Calibration, CalibrationEr
         ball_diameter_mm: file.ball_diameter_mm,
         contact_scale: file.contact_scale,
         spread: file.spread_pixels,
+        placement: file
+            .placement
+            .map_or_else(Placement::default, |p| Placement {
+                shift: p.shift_pixels,
+                stretch: p.stretch,
+            }),
     };
     for (name, value) in [
         ("pixels_per_mm", geometry.pixels_per_mm),
@@ -174,6 +198,7 @@ pub(super) fn parse(text: &str, path: &str) -> Result<Calibration, CalibrationEr
     ] {
         super::fit::check_setting(name, value).map_err(format)?;
     }
+    geometry.placement.check().map_err(format)?;
     let covered = file.covered.unwrap_or(EVERYWHERE);
     let calibration = Calibration::new(
         background,

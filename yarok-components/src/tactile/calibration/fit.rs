@@ -3,13 +3,13 @@
 use image::RgbImage;
 use nalgebra::{DMatrix, SMatrix};
 
-use super::Coverage;
 use super::press::{Press, within};
 use super::surface::{
     Area, NORMAL_TERMS, POSITION_TERMS, between, half_normal_terms, half_position_terms, half_size,
     position_terms_of, spread,
 };
 use super::{Calibration, CalibrationError, Geometry};
+use super::{Coverage, Placement};
 
 /// Terms of the colour polynomial: every normal term times every position term.
 const TERMS: usize = NORMAL_TERMS.len() * POSITION_TERMS.len();
@@ -29,17 +29,22 @@ pub struct FitSettings {
     pub contact_scales: Vec<f64>,
     /// Candidates for how far (Gaussian σ, pixels) the gel around a contact sinks with it.
     pub spreads: Vec<f64>,
+    /// Where presses appear on the image from where they are described; `None` fits it: each
+    /// press's image is moved to where it matches its frame best, and the placement explaining
+    /// those moves kept (see [`Placement`]).
+    pub placement: Option<Placement>,
 }
 
 impl Default for FitSettings {
     /// A 4.70 mm ball, 19.58 px/mm, contact scales 0.5 to 1 by 0.1, spreads 6 to 26 pixels by
-    /// 4.
+    /// 4, the placement fitted.
     fn default() -> Self {
         Self {
             ball_diameter_mm: 4.7,
             pixels_per_mm: 19.58,
             contact_scales: vec![0.5, 0.6, 0.7, 0.8, 0.9, 1.0],
             spreads: vec![6.0, 10.0, 14.0, 18.0, 22.0, 26.0],
+            placement: None,
         }
     }
 }
@@ -60,6 +65,7 @@ impl FitSettings {
             pixels_per_mm: geometry.pixels_per_mm,
             contact_scales: vec![geometry.contact_scale],
             spreads: vec![geometry.spread],
+            placement: Some(geometry.placement),
         }
     }
 }
@@ -90,25 +96,83 @@ pub(super) fn fit(
     let background = background(untouched, presses);
     let noise = camera_noise(&background, presses);
     let covered = Coverage::of(presses, untouched.width(), untouched.height()).area();
+    let fitted = |geometry: Geometry| {
+        let coefficients = coefficients(&background, presses, &geometry, &covered)?;
+        Calibration::new(background.clone(), geometry, coefficients, noise, covered)
+    };
     let mut best: Option<(f64, Calibration)> = None;
     for contact_scale in possible_contact_scales(presses, settings)? {
         for &spread in &settings.spreads {
-            let geometry = Geometry {
+            let calibration = fitted(Geometry {
                 pixels_per_mm: settings.pixels_per_mm,
                 ball_diameter_mm: settings.ball_diameter_mm,
                 contact_scale,
                 spread,
-            };
-            let coefficients = coefficients(&background, presses, &geometry, &covered)?;
-            let calibration =
-                Calibration::new(background.clone(), geometry, coefficients, noise, covered)?;
+                placement: settings.placement.unwrap_or_default(),
+            })?;
             let error = mean_error(&calibration, presses);
             if best.as_ref().is_none_or(|(least, _)| error < *least) {
                 best = Some((error, calibration));
             }
         }
     }
-    Ok(best.expect("checked: at least one candidate").1)
+    let mut calibration = best.expect("checked: at least one candidate").1;
+    if settings.placement.is_none() {
+        for _ in 0..PLACEMENT_ROUNDS {
+            let (width, height) = calibration.size();
+            let moves: Vec<([f64; 2], [f64; 2])> = presses
+                .iter()
+                .map(|press| (press.centre, best_move(&calibration, press)))
+                .collect();
+            let mut geometry = calibration.geometry();
+            let found = Placement::fit(&moves, width, height);
+            geometry.placement = geometry.placement.after_moves(&found);
+            geometry.placement.check().map_err(|reason| {
+                CalibrationError::Fit(format!(
+                    "the presses' imprints lie far from their described centres ({reason}): \
+                     are the centres the frames' own, in pixels?"
+                ))
+            })?;
+            calibration = fitted(geometry)?;
+        }
+    }
+    Ok(calibration)
+}
+
+/// Rounds of fitting the placement: each moves every press's image to where it matches its frame
+/// best and refits the colour model there.
+const PLACEMENT_ROUNDS: usize = 2;
+
+/// The steps (pixels) by which [`best_move`] searches, coarse to fine.
+const MOVE_STEPS: [f64; 4] = [4.0, 2.0, 1.0, 0.5];
+
+/// [`Calibration::best_move`]: a descent on a grid refined by [`MOVE_STEPS`], scored within
+/// [`SCORED`] radii.
+pub(super) fn best_move(calibration: &Calibration, press: &Press) -> [f64; 2] {
+    let error_at = |offset: [f64; 2]| {
+        let centre = [press.centre[0] + offset[0], press.centre[1] + offset[1]];
+        scored_error(&calibration.render_press(centre, press.radius), press)
+    };
+    let mut best = ([0.0; 2], error_at([0.0; 2]));
+    for step in MOVE_STEPS {
+        loop {
+            let around = best.0;
+            for (dx, dy) in [(-1.0, -1.0), (0.0, -1.0), (1.0, -1.0), (-1.0, 0.0)]
+                .into_iter()
+                .chain([(1.0, 0.0), (-1.0, 1.0), (0.0, 1.0), (1.0, 1.0)])
+            {
+                let offset = [around[0] + dx * step, around[1] + dy * step];
+                let error = error_at(offset);
+                if error < best.1 {
+                    best = (offset, error);
+                }
+            }
+            if best.0 == around {
+                break;
+            }
+        }
+    }
+    best.0
 }
 
 /// The candidate contact scales of `settings` that keep every press's contact circle within
@@ -368,21 +432,35 @@ fn coefficients(
 /// Mean absolute error (levels) of the calibration's images of the presses within their
 /// scored regions.
 fn mean_error(calibration: &Calibration, presses: &[Press]) -> f64 {
-    let (mut sum, mut count) = (0.0, 0usize);
-    for press in presses {
+    let sums = presses.iter().map(|press| {
         let image = calibration.render_press(press.centre, press.radius);
-        for (x, y, pixel) in image.enumerate_pixels() {
-            if within(press, x as usize, y as usize, SCORED) {
-                let seen = press.frame.get_pixel(x, y).0;
-                sum += pixel
-                    .0
-                    .iter()
-                    .zip(seen)
-                    .map(|(a, b)| f64::from(a.abs_diff(b)))
-                    .sum::<f64>();
-                count += 3;
-            }
+        scored_sum(&image, press)
+    });
+    let (sum, count) = sums.fold((0.0, 0usize), |(s, c), (sum, count)| (s + sum, c + count));
+    sum / count.max(1) as f64
+}
+
+/// Mean absolute error (levels) of `image` from `press`'s frame within its scored region.
+fn scored_error(image: &RgbImage, press: &Press) -> f64 {
+    let (sum, count) = scored_sum(image, press);
+    sum / count.max(1) as f64
+}
+
+/// The absolute differences (levels) of `image` from `press`'s frame within its scored region:
+/// their sum and how many values.
+fn scored_sum(image: &RgbImage, press: &Press) -> (f64, usize) {
+    let (mut sum, mut count) = (0.0, 0usize);
+    for (x, y, pixel) in image.enumerate_pixels() {
+        if within(press, x as usize, y as usize, SCORED) {
+            let seen = press.frame.get_pixel(x, y).0;
+            sum += pixel
+                .0
+                .iter()
+                .zip(seen)
+                .map(|(a, b)| f64::from(a.abs_diff(b)))
+                .sum::<f64>();
+            count += 3;
         }
     }
-    sum / count.max(1) as f64
+    (sum, count)
 }

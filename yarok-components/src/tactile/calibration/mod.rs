@@ -10,7 +10,9 @@
 //! angle). The coefficients are a least-squares fit to the presses, each press's indentation
 //! being the ball's by Hertz's law ([`ball_press`]); the contact circle's scale (among those
 //! that keep every press's contact circle within the ball) and the spread are chosen among
-//! candidates by how well they fit. The camera's noise is
+//! candidates by how well they fit; then where each press appears on the image (its
+//! [`Placement`]: an offset, and a stretch from the gel's middle) is fitted to where each frame
+//! shows its press best, and the colour model refitted there. The camera's noise is
 //! measured too ([`Calibration::noise_levels`]); images are rendered without it (the expected
 //! image), and a sensor in the world adds a fixed pattern of it when its `noise` is on.
 //!
@@ -32,6 +34,7 @@
 mod coverage;
 mod file;
 mod fit;
+mod placement;
 mod press;
 mod surface;
 
@@ -41,6 +44,7 @@ use image::RgbImage;
 
 pub use coverage::Coverage;
 pub use fit::{FitSettings, SETTING_RANGES, check_setting};
+pub use placement::{PLACEMENT_LIMITS, Placement};
 pub use press::{Press, ball_press, held_out, read_presses, split_held_out};
 pub use surface::{Area, NORMAL_TERMS, POSITION_TERMS};
 
@@ -86,6 +90,8 @@ pub struct Geometry {
     pub contact_scale: f64,
     /// How far (Gaussian σ, pixels) the gel around a contact sinks with it.
     pub spread: f64,
+    /// Where on the image a press appears, from where it is described.
+    pub placement: Placement,
 }
 
 impl Geometry {
@@ -111,7 +117,15 @@ impl Geometry {
     /// ```
     /// use yarok_components::tactile::calibration::Geometry;
     ///
-    /// let geometry = Geometry { pixels_per_mm: 10.0, ball_diameter_mm: 4.0, contact_scale: 1.0, spread: 0.0 };
+    /// use yarok_components::tactile::calibration::Placement;
+    ///
+    /// let geometry = Geometry {
+    ///     pixels_per_mm: 10.0,
+    ///     ball_diameter_mm: 4.0,
+    ///     contact_scale: 1.0,
+    ///     spread: 0.0,
+    ///     placement: Placement::default(),
+    /// };
     /// let (depth, clamped) = geometry.depth_mm(12.0); // a 1.2 mm contact circle on a 2 mm ball
     /// assert!((depth - 0.72).abs() < 1e-12 && !clamped);
     /// assert_eq!(geometry.depth_mm(30.0), (2.0, true));
@@ -124,21 +138,34 @@ impl Geometry {
         (contact * contact / ball, clamped)
     }
 
-    /// [`Geometry::press`] spread, on the half-resolution grid.
+    /// [`Geometry::press`] on the half-resolution grid, spread and placed.
     fn heights(&self, width: usize, height: usize, centre: [f64; 2], radius: f64) -> Vec<f64> {
         let mut half = surface::halve(&self.press(width, height, centre, radius), width);
-        self.spread_half(&mut half, width, &mut Vec::new());
+        self.spread_and_place(&mut half, (width, height), &mut Vec::new(), &mut Vec::new());
         half
     }
 
-    /// Spreads a halved indentation map (pixels) of a `width`-wide image, with `scratch`.
-    fn spread_half(&self, half: &mut [f64], width: usize, scratch: &mut Vec<f64>) {
+    /// Spreads a halved indentation map (pixels) of a `width × height` image and moves it to
+    /// where its presses appear, with `scratch` and `placed` (their memory reused).
+    fn spread_and_place(
+        &self,
+        half: &mut Vec<f64>,
+        (width, height): (usize, usize),
+        scratch: &mut Vec<f64>,
+        placed: &mut Vec<f64>,
+    ) {
+        let half_width = width.div_ceil(surface::HALF);
         surface::spread_with(
             half,
-            width.div_ceil(surface::HALF),
+            half_width,
             self.spread / surface::HALF as f64,
             scratch,
         );
+        if !self.placement.is_identity() {
+            self.placement
+                .place_half(half, half_width, (width, height), placed);
+            std::mem::swap(half, placed);
+        }
     }
 }
 
@@ -150,6 +177,8 @@ pub struct RenderBuffers {
     heights: Vec<f64>,
     /// The spread's intermediate rows.
     scratch: Vec<f64>,
+    /// The spread indentation moved to where its presses appear.
+    placed: Vec<f64>,
     /// Per half-resolution point, its colour change (zero where the gel is untouched).
     changes: Vec<[f32; 3]>,
     /// Per column of the image, where it falls on the half-resolution grid.
@@ -284,6 +313,14 @@ impl Calibration {
         fit::fit(untouched, presses, settings)
     }
 
+    /// How far (columns, rows) its image of `press` must move from the press's described centre
+    /// to match the press's frame best: the least mean absolute error within 1.5 radii of the
+    /// described centre, to half a pixel. Fitting the [`Placement`] explains these moves of the
+    /// calibration presses; what is left shows how well it does.
+    pub fn best_move(&self, press: &Press) -> [f64; 2] {
+        fit::best_move(self, press)
+    }
+
     /// The calibration bundled for the DIGIT: fitted (contact scale 0.7, spread 6 pixels, as
     /// its file says) to the 14 calibration presses of a real DIGIT's frames from FOTS (MIT
     /// licence; see `yarok-components/data/tactile-real/`), the other 7 held out to measure it.
@@ -364,8 +401,12 @@ impl Calibration {
             if h.is_finite() { h } else { 0.0 }
         };
         surface::halve_into(pixels, indentation.len(), width, &mut buffers.heights);
-        self.geometry
-            .spread_half(&mut buffers.heights, width, &mut buffers.scratch);
+        self.geometry.spread_and_place(
+            &mut buffers.heights,
+            (width, height),
+            &mut buffers.scratch,
+            &mut buffers.placed,
+        );
         let RenderBuffers {
             heights,
             changes,
