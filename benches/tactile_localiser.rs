@@ -20,7 +20,7 @@
 use image::RgbImage;
 use yarok::components::tactile::calibration::{Calibration, Press, held_out, read_presses};
 use yarok::components::tactile::fidelity;
-use yarok::components::tactile::noise::SplitMix64;
+use yarok::components::tactile::noise::CameraNoise;
 use yarok::components::tactile::phong::{PhongModel, PhongParams};
 use yarok::nalgebra::{DMatrix, DVector};
 use yarok_test::generator::Generator;
@@ -114,15 +114,9 @@ impl Localiser {
     }
 }
 
-/// `image` with a camera's noise added: per value, a normal sample of its channel's `levels`
-/// (standard deviations, R, G, B).
-fn with_camera_noise(mut image: RgbImage, levels: [f64; 3], samples: &mut SplitMix64) -> RgbImage {
-    let noise = samples.normal(image.as_raw().len(), 1.0);
-    for (index, (value, sample)) in image.iter_mut().zip(noise).enumerate() {
-        *value = (f64::from(*value) + sample * levels[index % 3])
-            .round()
-            .clamp(0.0, 255.0) as u8;
-    }
+/// `image` with fresh camera noise of `levels` (standard deviations, R, G, B) drawn from `seed`.
+fn with_camera_noise(mut image: RgbImage, levels: [f64; 3], seed: u64) -> RgbImage {
+    CameraNoise::new(levels, image.as_raw().len(), seed).add(&mut image);
     image
 }
 
@@ -254,14 +248,14 @@ fn main() {
         placement.shift[1],
         100.0 * placement.stretch[0]
     );
-    let mut noise = SplitMix64::new(0x5e45_0123);
     let yarok: Vec<(Vec<f64>, [f64; 3])> = random_presses
         .iter()
-        .map(|&[x, y, r]| {
+        .zip(0..)
+        .map(|(&[x, y, r], seed)| {
             let image = with_camera_noise(
                 calibration.render_press([x, y], r),
                 calibration.noise_levels(),
-                &mut noise,
+                seed,
             );
             (features(&image, untouched), [x, y, r])
         })
@@ -292,7 +286,8 @@ fn main() {
     let flat = fidelity::phong_image(&mut phong, surface, &geometry, None, untouched);
     let phong_samples: Vec<(Vec<f64>, [f64; 3])> = random_presses
         .iter()
-        .map(|&[x, y, r]| {
+        .zip(TRAINING as u64..)
+        .map(|(&[x, y, r], seed)| {
             let press = Press {
                 frame: RgbImage::new(1, 1),
                 centre: [x, y],
@@ -301,7 +296,7 @@ fn main() {
             let image = with_camera_noise(
                 fidelity::phong_image(&mut phong, surface, &geometry, Some(&press), untouched),
                 calibration.noise_levels(),
-                &mut noise,
+                seed,
             );
             (features(&image, &flat), [x, y, r])
         })

@@ -79,7 +79,8 @@ const USAGE: &str = "usage: yarok run WORLD [--behaviour NAME] [--viewer] [--ins
          diameter 0.5-50 mm, pixels per mm 1-200, contact scales 0.05-3 (those that keep
          every press's contact circle within the ball are tried), spreads 0-64 px;
          beside OUT.json, OUT.coverage.png maps where the presses reached (beyond their
-         rectangle the model holds the nearest covered weights)";
+         rectangle the model holds the nearest covered weights); where the presses'
+         imprints appear (an offset, a stretch from the middle) is fitted and printed";
 
 /// Writes `text` to standard output; a closed standard output (`yarok … | head`) ends the
 /// output quietly, as Unix tools do.

@@ -1,4 +1,4 @@
-//! Seeded Gaussian noise, so that simulated textures are reproducible.
+//! Seeded Gaussian noise, so that simulated textures and cameras' noise are reproducible.
 
 /// A SplitMix64 generator: small, fast and the same on every platform.
 #[derive(Debug, Clone)]
@@ -43,6 +43,49 @@ impl SplitMix64 {
         }
         samples.truncate(count);
         samples
+    }
+}
+
+/// A camera's noise as a pattern drawn from a seed: per value of an RGB frame, a normal sample of
+/// its channel's level. A sensor adds one fixed pattern to every frame (as the reference model's
+/// gel texture is fixed), so that a frame depends on what presses alone; a fresh seed per image
+/// gives fresh noise.
+///
+/// ```
+/// use yarok_components::tactile::noise::CameraNoise;
+///
+/// let noise = CameraNoise::new([2.0, 2.0, 3.0], 4 * 3, 7);
+/// let mut frame = [100u8; 4 * 3];
+/// noise.add(&mut frame);
+/// assert_ne!(frame, [100; 12]);
+/// let mut again = [100u8; 4 * 3];
+/// CameraNoise::new([2.0, 2.0, 3.0], 4 * 3, 7).add(&mut again);
+/// assert_eq!(frame, again);
+/// ```
+#[derive(Debug, Clone)]
+pub struct CameraNoise {
+    /// Per value of a frame (RGB): the noise, levels.
+    pattern: Vec<f32>,
+}
+
+impl CameraNoise {
+    /// The noise of `values` values (pixels × 3) of a camera whose channels' noise has the
+    /// standard deviations `levels` (R, G, B; levels), drawn from `seed`.
+    pub fn new(levels: [f64; 3], values: usize, seed: u64) -> Self {
+        let samples = SplitMix64::new(seed).normal(values, 1.0);
+        let pattern = samples
+            .iter()
+            .enumerate()
+            .map(|(index, sample)| (sample * levels[index % 3]) as f32)
+            .collect();
+        Self { pattern }
+    }
+
+    /// Adds the noise to `pixels` (RGB), rounding and clamping to 0-255.
+    pub fn add(&self, pixels: &mut [u8]) {
+        for (pixel, noise) in pixels.iter_mut().zip(&self.pattern) {
+            *pixel = (f32::from(*pixel) + noise + 0.5).clamp(0.0, 255.0) as u8;
+        }
     }
 }
 

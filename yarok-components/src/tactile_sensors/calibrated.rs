@@ -3,7 +3,7 @@
 use super::flat_gel::FlatGelModel;
 use crate::tactile::SizeError;
 use crate::tactile::calibration::{Calibration, RenderBuffers};
-use crate::tactile::noise::SplitMix64;
+use crate::tactile::noise::CameraNoise;
 
 /// A calibration's model of a flat gel `gel_face` metres from the camera, `pixel` metres a
 /// pixel there. It draws its own untouched gel (the calibration's), not the sensor's background,
@@ -15,32 +15,6 @@ pub(super) struct CalibratedModel {
     indentation: Vec<f32>,
     buffers: RenderBuffers,
     noise: Option<CameraNoise>,
-}
-
-/// The camera's noise as a fixed pattern drawn from a seed (as the reference model's gel
-/// texture is), so that a frame depends on what presses alone, not on the frames before.
-struct CameraNoise {
-    /// Per value of a frame (RGB): the noise, levels.
-    pattern: Vec<f32>,
-}
-
-impl CameraNoise {
-    fn new(levels: [f64; 3], values: usize, seed: u64) -> Self {
-        let samples = SplitMix64::new(seed).normal(values, 1.0);
-        let pattern = samples
-            .iter()
-            .enumerate()
-            .map(|(index, sample)| (sample * levels[index % 3]) as f32)
-            .collect();
-        Self { pattern }
-    }
-
-    /// Adds the noise to `pixels` (RGB).
-    fn add(&self, pixels: &mut [u8]) {
-        for (pixel, noise) in pixels.iter_mut().zip(&self.pattern) {
-            *pixel = (f32::from(*pixel) + noise + 0.5).clamp(0.0, 255.0) as u8;
-        }
-    }
 }
 
 impl CalibratedModel {

@@ -9,7 +9,7 @@ use super::surface::{
     position_terms_of, spread,
 };
 use super::{Calibration, CalibrationError, Geometry};
-use super::{Coverage, Placement};
+use super::{Coverage, PLACEMENT_LIMITS, Placement};
 
 /// Terms of the colour polynomial: every normal term times every position term.
 const TERMS: usize = NORMAL_TERMS.len() * POSITION_TERMS.len();
@@ -147,7 +147,7 @@ const PLACEMENT_ROUNDS: usize = 2;
 const MOVE_STEPS: [f64; 4] = [4.0, 2.0, 1.0, 0.5];
 
 /// [`Calibration::best_move`]: a descent on a grid refined by [`MOVE_STEPS`], scored within
-/// [`SCORED`] radii.
+/// [`SCORED`] radii, never further than a placement's largest offset each way.
 pub(super) fn best_move(calibration: &Calibration, press: &Press) -> [f64; 2] {
     let error_at = |offset: [f64; 2]| {
         let centre = [press.centre[0] + offset[0], press.centre[1] + offset[1]];
@@ -162,6 +162,9 @@ pub(super) fn best_move(calibration: &Calibration, press: &Press) -> [f64; 2] {
                 .chain([(1.0, 0.0), (-1.0, 1.0), (0.0, 1.0), (1.0, 1.0)])
             {
                 let offset = [around[0] + dx * step, around[1] + dy * step];
+                if offset.iter().any(|o| o.abs() > PLACEMENT_LIMITS[0]) {
+                    continue;
+                }
                 let error = error_at(offset);
                 if error < best.1 {
                     best = (offset, error);

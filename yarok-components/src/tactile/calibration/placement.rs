@@ -48,7 +48,8 @@ impl Placement {
 
     /// The placement that best explains (least squares, per axis) how far each press's imprint
     /// lies from its described centre: `moves` of (described centre, move to its imprint),
-    /// pixels. An axis along which the presses' centres hardly differ gets no stretch.
+    /// pixels. An axis along which the presses' centres spread less than a tenth of the image
+    /// (standard deviation) gets no stretch: their moves cannot tell it from noise.
     pub(super) fn fit(moves: &[([f64; 2], [f64; 2])], width: usize, height: usize) -> Self {
         let middle = [width as f64 / 2.0, height as f64 / 2.0];
         let n = moves.len().max(1) as f64;
@@ -65,7 +66,12 @@ impl Placement {
                 .iter()
                 .map(|(c, m)| (from_middle(c) - mean_at) * (m[axis] - mean_move))
                 .sum();
-            let stretch = if spread > n { covariance / spread } else { 0.0 };
+            let len = [width, height][axis] as f64;
+            let stretch = if spread / n >= (len / 10.0).powi(2) {
+                covariance / spread
+            } else {
+                0.0
+            };
             placement.stretch[axis] = stretch;
             placement.shift[axis] = mean_move - stretch * mean_at;
         }
