@@ -18,7 +18,9 @@
 //! ```
 
 use image::RgbImage;
-use yarok::components::tactile::calibration::{Calibration, Press, held_out, read_presses};
+use yarok::components::tactile::calibration::{
+    Calibration, Placement, Press, held_out, read_presses,
+};
 use yarok::components::tactile::fidelity;
 use yarok::components::tactile::noise::CameraNoise;
 use yarok::components::tactile::phong::{PhongModel, PhongParams};
@@ -120,23 +122,10 @@ fn with_camera_noise(mut image: RgbImage, levels: [f64; 3], seed: u64) -> RgbIma
     image
 }
 
-/// The least-squares line `y = slope · (x − crossing)` through `points` (x, y): its slope, where
-/// it crosses zero, and the points' root-mean-square distance from it in y.
-fn line_through(points: &[[f64; 2]]) -> (f64, f64, f64) {
-    let n = points.len() as f64;
-    let [mean_x, mean_y] = [0, 1].map(|i| points.iter().map(|p| p[i]).sum::<f64>() / n);
-    let covariance: f64 = points
-        .iter()
-        .map(|p| (p[0] - mean_x) * (p[1] - mean_y))
-        .sum();
-    let spread: f64 = points.iter().map(|p| (p[0] - mean_x).powi(2)).sum();
-    let slope = covariance / spread;
-    let crossing = mean_x - mean_y / slope;
-    let squares: f64 = points
-        .iter()
-        .map(|p| (p[1] - slope * (p[0] - crossing)).powi(2))
-        .sum();
-    (slope, crossing, (squares / n).sqrt())
+/// The root mean square of `values`.
+fn root_mean_square(values: impl ExactSizeIterator<Item = f64>) -> f64 {
+    let n = values.len() as f64;
+    (values.map(|v| v * v).sum::<f64>() / n).sqrt()
 }
 
 /// The median and the largest of `values`.
@@ -229,24 +218,30 @@ fn main() {
         .iter()
         .map(|press| calibration.best_move(press))
         .collect();
-    let across: Vec<[f64; 2]> = real
+    let moves: Vec<([f64; 2], [f64; 2])> = real
         .iter()
         .zip(&shifts)
-        .map(|(press, shift)| [press.centre[0], shift[0]])
+        .map(|(press, shift)| (press.centre, *shift))
         .collect();
-    let (slope, middle, left) = line_through(&across);
-    let unexplained =
-        (across.iter().map(|[_, shift]| shift * shift).sum::<f64>() / across.len() as f64).sqrt();
+    let (size_x, size_y) = (width as usize, height as usize);
+    let left_over = Placement::fit(&moves, size_x, size_y);
+    let about_line = root_mean_square(moves.iter().map(|(centre, shift)| {
+        shift[0] - (left_over.place(*centre, size_x, size_y)[0] - centre[0])
+    }));
+    let unexplained = root_mean_square(moves.iter().map(|(_, shift)| shift[0]));
     let (up, _) = median_and_largest(shifts.iter().map(|shift| -shift[1]).collect());
     let placement = geometry.placement;
     println!(
         "  where yarok's image of a real press matches the frame best (least contact MAE), beyond \
          the calibration's placement (imprints {:+.1} px across, {:+.1} px down, {:+.1} % further \
-         from the middle column): moved across by {slope:.3} × (column − {middle:.0}) ({left:.1} \
+         from the middle column): moved across by {:+.1} px + {:.3} × (column − {}) ({about_line:.1} \
          px rms about that line, {unexplained:.1} about none) and up by {up:.1} px (median)",
         placement.shift[0],
         placement.shift[1],
-        100.0 * placement.stretch[0]
+        100.0 * placement.stretch[0],
+        left_over.shift[0],
+        left_over.stretch[0],
+        width / 2
     );
     let yarok: Vec<(Vec<f64>, [f64; 3])> = random_presses
         .iter()

@@ -8,8 +8,7 @@ use super::surface::{
     Area, NORMAL_TERMS, POSITION_TERMS, between, half_normal_terms, half_position_terms, half_size,
     position_terms_of, spread,
 };
-use super::{Calibration, CalibrationError, Geometry};
-use super::{Coverage, PLACEMENT_LIMITS, Placement};
+use super::{Calibration, CalibrationError, Coverage, Geometry, PLACEMENT_LIMITS, Placement};
 
 /// Terms of the colour polynomial: every normal term times every position term.
 const TERMS: usize = NORMAL_TERMS.len() * POSITION_TERMS.len();

@@ -2,7 +2,7 @@
 //! ball touched the gel, in the image's pixels at the nominal scale) to its imprint, fitted by the
 //! calibration as the contact scale maps a press's described radius to its contact circle.
 
-use super::surface::HALF;
+use super::surface::{HALF, on_half_line};
 
 /// How far the imprints of the presses a calibration was fitted to lie from their described
 /// centres: each by `shift` (columns, rows), and further from the image's middle by `stretch` of
@@ -50,7 +50,18 @@ impl Placement {
     /// lies from its described centre: `moves` of (described centre, move to its imprint),
     /// pixels. An axis along which the presses' centres spread less than a tenth of the image
     /// (standard deviation) gets no stretch: their moves cannot tell it from noise.
-    pub(super) fn fit(moves: &[([f64; 2], [f64; 2])], width: usize, height: usize) -> Self {
+    ///
+    /// ```
+    /// use yarok_components::tactile::calibration::Placement;
+    ///
+    /// // Presses across a 240 × 320 image, each imprint 1 px up and 5 % further out in columns.
+    /// let moves: Vec<([f64; 2], [f64; 2])> = [[40.0, 60.0], [120.0, 160.0], [200.0, 260.0]]
+    ///     .map(|c| (c, [0.05 * (c[0] - 120.0), -1.0]))
+    ///     .to_vec();
+    /// let placement = Placement::fit(&moves, 240, 320);
+    /// assert!((placement.stretch[0] - 0.05).abs() < 1e-12 && (placement.shift[1] + 1.0).abs() < 1e-12);
+    /// ```
+    pub fn fit(moves: &[([f64; 2], [f64; 2])], width: usize, height: usize) -> Self {
         let middle = [width as f64 / 2.0, height as f64 / 2.0];
         let n = moves.len().max(1) as f64;
         let mut placement = Self::default();
@@ -98,23 +109,15 @@ impl Placement {
     /// A message naming the value out of range and the limit.
     pub fn check(&self) -> Result<(), String> {
         let [most_shift, most_stretch] = PLACEMENT_LIMITS;
-        if let Some(shift) = self
-            .shift
-            .iter()
-            .find(|s| !(-most_shift..=most_shift).contains(*s))
-        {
-            return Err(format!(
-                "placement shift {shift} px is beyond ±{most_shift} px"
-            ));
-        }
-        if let Some(stretch) = self
-            .stretch
-            .iter()
-            .find(|s| !(-most_stretch..=most_stretch).contains(*s))
-        {
-            return Err(format!(
-                "placement stretch {stretch} is beyond ±{most_stretch}"
-            ));
+        for (name, values, most, unit) in [
+            ("shift", self.shift, most_shift, " px"),
+            ("stretch", self.stretch, most_stretch, ""),
+        ] {
+            if let Some(value) = values.iter().find(|v| !(-most..=most).contains(*v)) {
+                return Err(format!(
+                    "placement {name} {value}{unit} is beyond ±{most}{unit}"
+                ));
+            }
         }
         Ok(())
     }
@@ -132,15 +135,13 @@ impl Placement {
     ) {
         let half_height = half.len() / half_width;
         let middle = [width as f64 / 2.0, height as f64 / 2.0];
-        // A half point `h` is at image position `HALF·h + HALF/2`; back on the half grid.
+        // A half point `h` is at image position `HALF·h + HALF/2`.
         let scale = HALF as f64;
         let source = |h: usize, axis: usize, len: usize| {
             let at = scale * h as f64 + scale / 2.0;
             let from =
                 middle[axis] + (at - self.shift[axis] - middle[axis]) / (1.0 + self.stretch[axis]);
-            let on_grid = (from / scale - 0.5).clamp(0.0, (len - 1) as f64);
-            let first = on_grid.floor() as usize;
-            (first, (first + 1).min(len - 1), on_grid - first as f64)
+            on_half_line(from, len)
         };
         placed.clear();
         for hy in 0..half_height {

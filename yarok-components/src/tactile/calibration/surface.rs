@@ -102,7 +102,13 @@ pub(super) fn halve_into(
 /// Where pixel `x` of a line of the image falls on the half-resolution line of `half_len`
 /// points: the two points around it and the weight of the second (bilinear, edges clamped).
 pub(super) fn between(x: usize, half_len: usize) -> (usize, usize, f64) {
-    let at = ((x as f64 + 0.5) / HALF as f64 - 0.5).clamp(0.0, (half_len - 1) as f64);
+    on_half_line(x as f64 + 0.5, half_len)
+}
+
+/// [`between`] for any position `at` along a line of the image (pixels from its start; pixel
+/// `x`'s centre is at `x + 0.5`).
+pub(super) fn on_half_line(at: f64, half_len: usize) -> (usize, usize, f64) {
+    let at = (at / HALF as f64 - 0.5).clamp(0.0, (half_len - 1) as f64);
     let first = at.floor() as usize;
     (first, (first + 1).min(half_len - 1), at - first as f64)
 }
