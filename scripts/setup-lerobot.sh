@@ -3,7 +3,8 @@
 # once per machine: a venv in ${YAROK_CACHE_DIR:-~/.cache/yarok}/lerobot on Python 3.12 or
 # later (LeRobot 0.5 and later need it; pyenv's when the system has none), with LeRobot and the
 # extras its documentation names for reading datasets and training ('lerobot[dataset,training]',
-# which bring PyTorch, BSD-3-Clause) and pytest. Test-only: yarok never imports LeRobot.
+# which bring PyTorch, BSD-3-Clause), Stable-Baselines3 (MIT: the reinforcement-learning tests)
+# and pytest. Test-only: yarok never imports LeRobot or Stable-Baselines3.
 # Prints the venv's python.
 set -euo pipefail
 
@@ -24,9 +25,9 @@ if [ ! -x "$venv/bin/python" ]; then
   fi
   "$python" -m venv "$venv" >&2
 fi
-if ! "$venv/bin/python" -c "import lerobot, pytest, datasets, torch" 2>/dev/null; then
-  echo "setup: installing LeRobot 0.6.1 (with PyTorch) and pytest into $venv" >&2
+if ! "$venv/bin/python" -c "import lerobot, pytest, datasets, torch, stable_baselines3" 2>/dev/null; then
+  echo "setup: installing LeRobot 0.6.1 (with PyTorch), Stable-Baselines3 and pytest into $venv" >&2
   "$venv/bin/pip" install -q --disable-pip-version-check "lerobot[dataset,training]==0.6.1" \
-    "pytest==8.4.2" >&2
+    "stable-baselines3==2.9.2" "pytest==8.4.2" >&2
 fi
 echo "$venv/bin/python"

@@ -650,6 +650,12 @@ impl Data {
         }
     }
 
+    /// How many times MuJoCo has raised each kind of warning since this state was made or
+    /// reset: compared before and after a step, what went wrong in it.
+    pub fn warnings(&self) -> crate::Warnings {
+        crate::Warnings::of(self.raw())
+    }
+
     /// The raw `mjData`, for what the safe layer does not cover yet.
     pub fn ffi(&self) -> &sys::mjData {
         self.raw()

@@ -9,6 +9,8 @@ mod worker;
 mod world;
 mod worlds;
 
+use std::sync::{Mutex, MutexGuard, TryLockError};
+
 use pyo3::prelude::*;
 use yarok::components::demos;
 
@@ -26,9 +28,22 @@ fn _native(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_class::<world::World>()?;
     module.add_class::<worlds::Worlds>()?;
     module.add_function(wrap_pyfunction!(run::run, module)?)?;
+    module.add_function(wrap_pyfunction!(after_fork_in_child, module)?)?;
     module.add("DIGIT_WORLD_START_REGION", demos::START_REGION)?;
     module.add("DIGIT_WORLD_START_YAW", demos::START_YAW)?;
+    module.add(
+        "UR_JOINT_SPEED",
+        yarok::components::robots::ur::UR_JOINT_SPEED,
+    )?;
     Ok(())
+}
+
+/// Called in a forked child (registered with `os.register_at_fork` on import): a world made
+/// in a fork of a process that had worlds is refused at once, naming the start method to use,
+/// instead of hanging on the parent's rendering locks.
+#[pyfunction]
+fn after_fork_in_child() {
+    worker::forked();
 }
 
 /// Whether Ctrl-C (or another signal Python handles) arrived: checked with the GIL, while a
@@ -43,6 +58,19 @@ fn interrupted(pending: &mut Option<PyErr>) -> impl FnMut() -> bool + '_ {
             }
         })
     }
+}
+
+/// The lock of a world (or worlds) a call works on, taken at once: a world stepped from two
+/// Python threads raises in the second (it would wait with the GIL held for the first, which
+/// needs the GIL to finish: a deadlock).
+fn exclusive<'a, T>(lock: &'a Mutex<T>, what: &str) -> PyResult<MutexGuard<'a, T>> {
+    lock.try_lock().map_err(|failure| match failure {
+        TryLockError::WouldBlock => error(format!(
+            "{what} is busy with a call from another thread: step a world from one thread at a \
+             time (give each thread a world of its own, or use yarok.Worlds)"
+        )),
+        TryLockError::Poisoned(_) => error(format!("{what} was left broken by an earlier failure")),
+    })
 }
 
 /// yarok's error text as a Python exception.

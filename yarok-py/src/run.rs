@@ -9,7 +9,7 @@ use std::sync::mpsc::{RecvTimeoutError, channel};
 use pyo3::prelude::*;
 use yarok::core::suggest::did_you_mean;
 
-use crate::worker::{POLL, bundled};
+use crate::worker::{POLL, bundled, starting};
 use crate::{error, interrupted};
 
 /// Runs the bundled world `world` with its demo behaviour `behaviour` (its default when
@@ -32,6 +32,7 @@ pub(crate) fn run(
     config: Vec<String>,
     dataset: Option<PathBuf>,
 ) -> PyResult<()> {
+    starting().map_err(error)?;
     let demo = bundled(world).map_err(error)?;
     let chosen = demo.behaviour(behaviour).ok_or_else(|| {
         let names: Vec<&str> = demo.behaviours.iter().map(|b| b.name).collect();

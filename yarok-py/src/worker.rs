@@ -12,6 +12,7 @@ use yarok::components::demos::{self, Demo};
 use yarok::components::plugins::features::{Features, Observation};
 use yarok::core::runtime::Platform;
 use yarok::core::suggest::did_you_mean;
+use yarok::mjc::{SimBackend, Warnings};
 
 /// How a world is made: a bundled world's tag, the environment, and the command line's
 /// settings (`--set`, `--config`).
@@ -45,12 +46,39 @@ pub(crate) struct WorldInfo {
     pub(crate) timestep: f64,
 }
 
+impl WorldInfo {
+    /// Whether the world takes `action` as far as its names and ranges go: checked for every
+    /// world of a vector before any is sent its action, so that one refusal leaves all as
+    /// they were.
+    pub(crate) fn check_action(&self, action: &[f64]) -> Result<(), String> {
+        if action.len() != self.action_names.len() {
+            return Err(format!(
+                "the action has {} numbers; this world's has {} ({})",
+                action.len(),
+                self.action_names.len(),
+                self.action_names.join(", ")
+            ));
+        }
+        let named = self.action_names.iter().zip(&self.action_ranges);
+        for ((name, [lowest, highest]), value) in named.zip(action) {
+            if !(lowest..=highest).contains(&value) {
+                return Err(format!(
+                    "the target of {name} is {value}, outside its range {lowest} to {highest}"
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
 /// An observation with the platform time and tick it was taken at.
 #[derive(Debug)]
 pub(crate) struct Observed {
     pub(crate) observation: Observation,
     pub(crate) time: f64,
     pub(crate) ticks: u64,
+    /// What MuJoCo warned of in the steps since the last observation, in words.
+    pub(crate) warnings: Vec<&'static str>,
 }
 
 enum Request {
@@ -85,6 +113,36 @@ pub(crate) struct Worker {
     closed: bool,
 }
 
+/// Whether this process has started a world (its thread, and EGL's).
+static WORLDS_STARTED: AtomicBool = AtomicBool::new(false);
+
+/// Whether this process is a fork of one that had started worlds: their threads are not here,
+/// and the locks they held (EGL's, Mesa's) stay held for good.
+static FORKED_AFTER_WORLDS: AtomicBool = AtomicBool::new(false);
+
+/// Notes that this process was just forked (called in the child, by `os.register_at_fork`).
+pub(crate) fn forked() {
+    if WORLDS_STARTED.load(Ordering::Relaxed) {
+        FORKED_AFTER_WORLDS.store(true, Ordering::Relaxed);
+    }
+}
+
+/// Notes that a world is starting in this process; refused in a fork of a process that had
+/// started worlds.
+pub(crate) fn starting() -> Result<(), String> {
+    if FORKED_AFTER_WORLDS.load(Ordering::Relaxed) {
+        return Err(
+            "this process was forked from one that had started yarok worlds, whose \
+                        threads and rendering locks a fork does not carry: start processes with \
+                        multiprocessing's \"spawn\" method (gymnasium.make_vec(…, \
+                        vectorization_mode=\"async\", vector_kwargs={\"context\": \"spawn\"}))"
+                .into(),
+        );
+    }
+    WORLDS_STARTED.store(true, Ordering::Relaxed);
+    Ok(())
+}
+
 /// How long a wait for the world's thread lasts before the caller looks for Ctrl-C.
 pub(crate) const POLL: Duration = Duration::from_millis(50);
 
@@ -95,6 +153,7 @@ impl Worker {
         spec: WorldSpec,
         interrupted: &mut dyn FnMut() -> bool,
     ) -> Result<Self, String> {
+        starting()?;
         let (requests, inbox) = channel();
         let (outbox, replies) = channel();
         let (started, start_reply) = channel();
@@ -193,6 +252,12 @@ impl Worker {
                 }
             }
         }
+    }
+
+    /// Asks the world to stop at its next tick, without waiting: a long step under way ends
+    /// there (devices left safe as the platform stops). [`Worker::close`] then waits for it.
+    pub(crate) fn interrupt(&self) {
+        self.stop.store(true, Ordering::Relaxed);
     }
 
     /// Stops the world — devices left safe — and waits for its thread: how the run ended.
@@ -378,8 +443,16 @@ fn act(platform: &Platform, features: &Features, action: Option<Vec<f64>>) -> Re
     }
 }
 
+/// MuJoCo's warning counts now, in `sim`.
+fn warnings(platform: &Platform) -> Option<Warnings> {
+    let world = platform.world();
+    let sim = world.backend::<SimBackend>()?;
+    Some(sim.data().warnings())
+}
+
 /// Advances `ticks` ticks, then observes; whether the world ended.
 fn advance(platform: &mut Platform, features: &mut Features, ticks: u64) -> (Reply, bool) {
+    let before = warnings(platform);
     for _ in 0..ticks {
         match platform.step() {
             Ok(true) => {}
@@ -394,6 +467,10 @@ fn advance(platform: &mut Platform, features: &mut Features, ticks: u64) -> (Rep
             observation,
             time: platform.pl().time(),
             ticks: platform.pl().ticks(),
+            warnings: match (warnings(platform), before) {
+                (Some(now), Some(before)) => now.since(&before),
+                _ => Vec::new(),
+            },
         });
     let ended = observed.is_err();
     (observed, ended)

@@ -7,7 +7,7 @@ use pyo3::types::PyDict;
 
 use crate::features::Features;
 use crate::worker::{Placement, Worker, WorldInfo, WorldSpec};
-use crate::{error, interrupted, observation};
+use crate::{error, exclusive, interrupted, observation};
 
 /// A yarok world: a bundled world by its tag (`yarok run --list`), in `sim`, `mock` or
 /// `real`, with the command line's settings (`settings=["/arm/gripper/force=200"]`,
@@ -23,6 +23,7 @@ pub(crate) struct World {
     worker: Mutex<Worker>,
     info: WorldInfo,
     time: Mutex<(f64, u64)>,
+    warnings: Mutex<Vec<&'static str>>,
 }
 
 /// A reset's placements from Python: `[(body, (x, y, z), (qw, qx, qy, qz)), …]`.
@@ -55,10 +56,7 @@ impl World {
         py: Python<'py>,
         send: impl FnOnce(&Worker) -> Result<(), String> + Send,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let mut guard = self
-            .worker
-            .lock()
-            .map_err(|_| error("the world was left broken by an earlier failure".into()))?;
+        let mut guard = exclusive(&self.worker, "the world")?;
         let worker: &mut Worker = &mut guard;
         let mut pending = None;
         let reply = py.detach(|| {
@@ -72,6 +70,8 @@ impl World {
             Some(Ok(observed)) => {
                 *self.time.lock().map_err(|_| error("poisoned".into()))? =
                     (observed.time, observed.ticks);
+                *self.warnings.lock().map_err(|_| error("poisoned".into()))? =
+                    observed.warnings.clone();
                 observation::to_dict(py, &self.info, observed)
             }
             Some(Err(text)) => Err(error(text)),
@@ -107,6 +107,7 @@ impl World {
             worker: Mutex::new(worker),
             info,
             time: Mutex::new((0.0, 0)),
+            warnings: Mutex::new(Vec::new()),
         })
     }
 
@@ -169,10 +170,7 @@ impl World {
     /// Stops the world: plugins end, devices are left safe. Raises how the run ended if it
     /// failed. Calling it again does nothing.
     fn close(&self, py: Python<'_>) -> PyResult<()> {
-        let mut guard = self
-            .worker
-            .lock()
-            .map_err(|_| error("the world was left broken by an earlier failure".into()))?;
+        let mut guard = exclusive(&self.worker, "the world")?;
         let worker: &mut Worker = &mut guard;
         py.detach(|| worker.close()).map_err(error)
     }
@@ -201,6 +199,17 @@ impl World {
     #[getter]
     fn time(&self) -> PyResult<f64> {
         Ok(self.time.lock().map_err(|_| error("poisoned".into()))?.0)
+    }
+
+    /// What MuJoCo warned of while the last call stepped the world, in words (an unstable
+    /// state it reset, a full contact buffer): empty when the steps went as they should.
+    #[getter]
+    fn warnings(&self) -> PyResult<Vec<&'static str>> {
+        Ok(self
+            .warnings
+            .lock()
+            .map_err(|_| error("poisoned".into()))?
+            .clone())
     }
 
     /// Ticks since the start at the last observation.

@@ -8,7 +8,7 @@ use pyo3::types::PyDict;
 use crate::features::Features;
 use crate::worker::{Observed, Worker, WorldInfo, WorldSpec};
 use crate::world::{Placements, placements, start, ticks_for};
-use crate::{error, interrupted, observation};
+use crate::{error, exclusive, interrupted, observation};
 
 /// What sends one world its request.
 type SendRequest = Box<dyn FnOnce(&Worker) -> Result<(), String> + Send>;
@@ -20,6 +20,8 @@ type SendRequest = Box<dyn FnOnce(&Worker) -> Result<(), String> + Send>;
 pub(crate) struct Worlds {
     workers: Mutex<Vec<Worker>>,
     info: WorldInfo,
+    /// What MuJoCo warned of in each world's last steps.
+    warnings: Mutex<Vec<Vec<&'static str>>>,
 }
 
 impl Worlds {
@@ -29,15 +31,13 @@ impl Worlds {
         py: Python<'py>,
         requests: Vec<(usize, SendRequest)>,
     ) -> PyResult<Vec<Bound<'py, PyDict>>> {
-        let mut guard = self
-            .workers
-            .lock()
-            .map_err(|_| error("the worlds were left broken by an earlier failure".into()))?;
+        let mut guard = exclusive(&self.workers, "the worlds")?;
         let workers: &mut Vec<Worker> = &mut guard;
         let count = workers.len();
         if let Some((index, _)) = requests.iter().find(|(index, _)| *index >= count) {
             return Err(error(format!("no world {index}: there are {count}")));
         }
+        let indices: Vec<usize> = requests.iter().map(|(index, _)| *index).collect();
         let mut pending = None;
         let replies = py.detach(|| {
             let mut sent = Vec::with_capacity(requests.len());
@@ -56,13 +56,22 @@ impl Worlds {
             Ok(replies)
         });
         if let Some(interrupt) = pending {
+            // Every world stops at its next tick, then each is waited for.
+            for worker in workers.iter() {
+                worker.interrupt();
+            }
             for worker in workers.iter_mut() {
                 let _ = py.detach(|| worker.close());
             }
             return Err(interrupt);
         }
+        let replies = replies.map_err(error)?;
+        let mut warnings = self.warnings.lock().map_err(|_| error("poisoned".into()))?;
+        for (index, observed) in indices.iter().zip(&replies) {
+            warnings[*index] = observed.warnings.clone();
+        }
+        drop(warnings);
         replies
-            .map_err(error)?
             .into_iter()
             .map(|observed| observation::to_dict(py, &self.info, observed))
             .collect()
@@ -100,6 +109,7 @@ impl Worlds {
             .collect::<PyResult<Vec<_>>>()?;
         let info = workers[0].info().clone();
         Ok(Self {
+            warnings: Mutex::new(vec![Vec::new(); workers.len()]),
             workers: Mutex::new(workers),
             info,
         })
@@ -125,7 +135,8 @@ impl Worlds {
     }
 
     /// Sets each world's action (`None`: keep its targets) and advances every world
-    /// `seconds`; their observations, in order.
+    /// `seconds`; their observations, in order. Every action is checked first: one refused
+    /// raises, naming its world, and no world advances.
     fn advance<'py>(
         &self,
         py: Python<'py>,
@@ -133,6 +144,13 @@ impl Worlds {
         actions: Vec<Option<Vec<f64>>>,
     ) -> PyResult<Vec<Bound<'py, PyDict>>> {
         let ticks = ticks_for(seconds, self.info.timestep)?;
+        for (index, action) in actions.iter().enumerate() {
+            if let Some(action) = action {
+                self.info.check_action(action).map_err(|refused| {
+                    error(format!("world {index}: {refused}; no world was advanced"))
+                })?;
+            }
+        }
         let requests = actions
             .into_iter()
             .enumerate()
@@ -146,10 +164,7 @@ impl Worlds {
 
     /// Stops every world, devices left safe; raises the first failure.
     fn close(&self, py: Python<'_>) -> PyResult<()> {
-        let mut guard = self
-            .workers
-            .lock()
-            .map_err(|_| error("the worlds were left broken by an earlier failure".into()))?;
+        let mut guard = exclusive(&self.workers, "the worlds")?;
         let workers: &mut Vec<Worker> = &mut guard;
         let outcomes: Vec<Result<(), String>> =
             py.detach(|| workers.iter_mut().map(Worker::close).collect());
@@ -165,12 +180,19 @@ impl Worlds {
         Features(self.info.clone())
     }
 
-    /// How many worlds.
-    fn __len__(&self) -> PyResult<usize> {
+    /// What MuJoCo warned of while each world was last stepped, in words: empty where the
+    /// steps went as they should.
+    #[getter]
+    fn warnings(&self) -> PyResult<Vec<Vec<&'static str>>> {
         Ok(self
-            .workers
+            .warnings
             .lock()
             .map_err(|_| error("poisoned".into()))?
-            .len())
+            .clone())
+    }
+
+    /// How many worlds.
+    fn __len__(&self) -> PyResult<usize> {
+        Ok(exclusive(&self.workers, "the worlds")?.len())
     }
 }

@@ -113,11 +113,203 @@ def test_the_vector_env_steps_worlds_on_threads_and_resets_them_the_next_step():
         actions = np.tile(np.array([0.0, 0.0, -1.9, 1.9, -1.57, -1.57, 0.0], dtype=np.float32), (2, 1))
         _, _, _, truncated, _ = envs.step(actions)
         assert not truncated.any()
-        _, _, _, truncated, _ = envs.step(actions)
+        _, _, _, truncated, infos = envs.step(actions)
         assert truncated.all()
-        # Next-step autoreset: this step resets, reward 0, not done, a new start.
-        after, rewards, terminated, truncated, _ = envs.step(actions)
+        assert infos["_is_success"].all() and infos["is_success"].shape == (2,)
+        # Next-step autoreset: this step resets, reward 0, not done, a new start; its infos'
+        # masks say no world reported a step.
+        after, rewards, terminated, truncated, infos = envs.step(actions)
         assert not (terminated | truncated).any() and (rewards == 0).all()
+        assert not infos["_is_success"].any()
         assert after["observation.images.arm.gripper.left_digit.image"].shape == (2, 320, 240, 3)
     finally:
         envs.close()
+
+
+@pytest.mark.parametrize("env_id", sorted(ENVIRONMENTS))
+def test_every_action_in_the_space_is_taken_and_random_ones_keep_the_world_steady(env_id):
+    env = gymnasium.make(env_id)
+    try:
+        env.reset(seed=0)
+        # The bounds themselves, which float32 rounds (2π becomes 6.2831854820251465).
+        for action in (env.action_space.high, env.action_space.low):
+            env.step(action)
+        # The world's own ranges and beyond are clipped to them, never refused.
+        env.step(env.action_space.high.astype(np.float64) + 1.0)
+        env.action_space.seed(1)
+        features = env.unwrapped.world.features
+        arm = [features.state_names.index(name) for name in features.action_names
+               if name.startswith("arm/") and name != "arm/gripper/position"]
+        period = 1.0 / env.unwrapped.task.control_hz
+        # Streamed targets go through the arm's speed limit (180°/s): the joints move no
+        # further than that in a step but when the arm strikes something (the table, a block),
+        # and MuJoCo never goes unstable (it would warn, reset the world and end the episode).
+        most = yarok.UR_JOINT_SPEED * period + 1e-3
+        faster = 0
+        observation, _ = env.reset(seed=1)
+        for _ in range(1000):
+            before = observation["observation.state"]
+            observation, _, terminated, truncated, info = env.step(env.action_space.sample())
+            assert "warnings" not in info, info
+            moved = np.abs(observation["observation.state"][arm] - before[arm])
+            faster += bool((moved > most).any())
+            assert np.isfinite(observation["observation.state"]).all()
+            if terminated or truncated:
+                observation, _ = env.reset()
+        assert faster <= 10, f"{faster} of 1000 steps moved a joint faster than 180°/s"
+    finally:
+        env.close()
+
+
+def test_tactile_press_holds_its_goal_in_the_observation():
+    env = gymnasium.make("yarok/TactilePress-v0")
+    try:
+        firsts = [env.reset(seed=seed)[0] for seed in range(5)]
+        goals = {float(first["observation.desired_goal"][0]) for first in firsts}
+        assert len(goals) == 5, "five seeds, five targets to press to"
+        assert all(first["observation.achieved_goal"][0] == 0.0 for first in firsts)
+        task = env.unwrapped.task
+        assert all(2.0 <= goal <= 6.0 for goal in goals)
+        assert float(firsts[-1]["observation.desired_goal"][0]) == pytest.approx(task.target)
+        assert env.observation_space["observation.desired_goal"].contains(
+            firsts[0]["observation.desired_goal"]
+        )
+    finally:
+        env.close()
+
+
+@pytest.mark.parametrize("env_id", sorted(ENVIRONMENTS))
+def test_for_learners_keys_observations_without_dots_or_empty_features(env_id):
+    env = yarok.for_learners(gymnasium.make(env_id))
+    try:
+        observation, _ = env.reset(seed=0)
+        assert set(observation) == set(env.observation_space.spaces)
+        for key, space in env.observation_space.spaces.items():
+            assert "." not in key and np.prod(space.shape) > 0, key
+            assert space.contains(observation[key]), key
+        flat = gymnasium.wrappers.FlattenObservation(yarok.for_learners(env.env, images=False))
+        vector, _ = flat.reset(seed=0)
+        assert vector.ndim == 1 and flat.observation_space.contains(vector)
+    finally:
+        env.close()
+
+
+def test_a_refused_action_in_a_vector_env_advances_no_world():
+    envs = yarok.YarokVectorEnv(yarok.tasks.PickPlace(), num_envs=2)
+    try:
+        envs.reset(seed=[5, 5])
+        actions = np.tile(np.array([0.0, 0.0, -1.8, 1.8, -1.57, -1.57, 0.0]), (2, 1))
+        refused = actions.copy()
+        refused[1, 3] = np.nan
+        with pytest.raises(yarok.YarokError, match="world 1: .*arm/elbow.*no world was advanced"):
+            envs.step(refused)
+        after, *_ = envs.step(actions)
+        # The same start and the same actions: the two worlds are still one step for one step.
+        for key, value in after.items():
+            assert np.array_equal(value[0], value[1]), key
+    finally:
+        envs.close()
+
+
+def test_a_world_stepped_from_a_second_thread_raises_there_instead_of_deadlocking():
+    import threading
+    import time
+
+    with yarok.World("digit_world") as world:
+        world.reset(0)
+        stepping = threading.Thread(target=lambda: world.advance(3.0))
+        stepping.start()
+        time.sleep(0.3)
+        with pytest.raises(yarok.YarokError, match="busy with a call from another thread"):
+            world.advance(0.01)
+        stepping.join(timeout=120)
+        assert not stepping.is_alive()
+        world.advance(0.01)
+
+
+def test_a_world_in_a_fork_of_a_process_with_worlds_is_refused_naming_spawn_which_works(capfd):
+    import time
+
+    # Gymnasium's async vector env makes one environment in this process, then forks: each
+    # child's world is refused at once (the child says why; the parent sees its pipe break).
+    started = time.monotonic()
+    with pytest.raises(Exception):
+        envs = gymnasium.make_vec("yarok/TactilePress-v0", num_envs=2, vectorization_mode="async")
+        try:
+            envs.reset(seed=0)
+        finally:
+            envs.close(terminate=True)
+    assert time.monotonic() - started < 30
+    assert 'multiprocessing\'s "spawn" method' in capfd.readouterr().err
+    envs = gymnasium.make_vec(
+        "yarok/TactilePress-v0",
+        num_envs=2,
+        vectorization_mode="async",
+        vector_kwargs={"context": "spawn"},
+    )
+    try:
+        observations, _ = envs.reset(seed=0)
+        observations, *_ = envs.step(envs.action_space.sample())
+        assert observations["observation.desired_goal"].shape == (2, 1)
+    finally:
+        envs.close()
+
+
+CTRL_C_IN_WORLDS = """
+import yarok
+worlds = yarok.Worlds("digit_world", 2)
+worlds.reset([(0, 0, []), (1, 1, [])])
+print("stepping", flush=True)
+worlds.advance(600.0, [None, None])
+"""
+
+
+def test_ctrl_c_in_worlds_advance_stops_every_world_within_2_s():
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    python = subprocess.Popen(
+        [sys.executable, "-c", CTRL_C_IN_WORLDS], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+    )
+    assert python.stdout.readline().strip() == "stepping"
+    time.sleep(1.0)
+    sent = time.monotonic()
+    python.send_signal(signal.SIGINT)
+    _, errors = python.communicate(timeout=60)
+    took = time.monotonic() - sent
+    assert "KeyboardInterrupt" in errors, errors
+    assert took < 2.0, f"{took:.1f} s from Ctrl-C to the end of the run"
+
+
+def test_what_mujoco_warns_of_in_a_step_is_reported_and_ends_the_episode_truncated():
+    with yarok.World("digit_world") as world:
+        world.reset(0)
+        assert world.warnings == []
+        # A body placed beyond MuJoCo's largest position: it resets the state and warns.
+        world.reset(1, [("medium/block", (1e11, 0.0, 0.5), (1.0, 0.0, 0.0, 0.0))])
+        assert any("position" in warning for warning in world.warnings), world.warnings
+        world.advance(0.05)
+        assert world.warnings == []
+
+    env = gymnasium.make("yarok/PickPlace-v0")
+    try:
+        env.reset(seed=0)
+        world = env.unwrapped.world
+
+        class Warned:
+            """The env's world, whose last steps MuJoCo warned of."""
+
+            warnings = ["an unstable acceleration, not a number or too large (the state was reset)"]
+
+            def __getattr__(self, name):
+                return getattr(world, name)
+
+        env.unwrapped.world = Warned()
+        _, _, terminated, truncated, info = env.step(env.action_space.sample())
+        assert truncated and not terminated
+        assert info["warnings"] == Warned.warnings
+        env.unwrapped.world = world
+    finally:
+        env.close()

@@ -82,12 +82,19 @@ def test_actions_reach_the_real_arm_as_servoj_at_the_control_rate_and_close_stop
 
     scripts = [line.removeprefix("script ") for line in said if line.startswith("script ")]
     servos = [line for line in scripts if line.startswith("servoj(")]
-    # One servoj per action, each the action's joint targets, with the control period as t.
+    # One servoj per action, with the control period as t, each toward where the approach to
+    # the action's joint targets is due: never asking a joint beyond its speed limit, and, once
+    # the arm has sped up to the targets' pace, the action's targets themselves.
     assert len(servos) == STEPS, scripts
-    for servo, action in zip(servos, sent):
+    periods = [float(re.search(r"t=([0-9.e-]+)", servo).group(1)) for servo in servos]
+    assert all(abs(period - 0.05) < 0.005 for period in periods[1:]), periods
+    before = start
+    for servo, period in zip(servos, periods):
+        asked = np.abs(np.array(joints_of(servo)) - before).max() / period
+        assert asked <= yarok.UR_JOINT_SPEED + 1e-6, (servo, asked)
+        before = np.array(joints_of(servo))
+    for servo, action in list(zip(servos, sent))[STEPS // 2 :]:
         assert np.allclose(joints_of(servo), action[1:], atol=1e-5), servo
-    periods = [float(re.search(r"t=([0-9.e-]+)", servo).group(1)) for servo in servos[1:]]
-    assert all(abs(period - 0.05) < 0.005 for period in periods), periods
     # Closed: stopj after the last servoj.
     assert any(line.startswith("stopj(") for line in scripts[scripts.index(servos[-1]) :]), scripts
     # The gripper was asked for position 100 (Robotiq's POS register).
@@ -108,7 +115,15 @@ env.unwrapped.world.advance(600.0)
 """
 
 
-def test_ctrl_c_raises_keyboard_interrupt_and_stops_the_real_arm(fake_controller):
+@pytest.mark.parametrize(
+    "signum, said",
+    [
+        (signal.SIGINT, "KeyboardInterrupt"),
+        (signal.SIGTERM, ""),
+        (signal.SIGHUP, ""),
+    ],
+)
+def test_ctrl_c_sigterm_and_sighup_end_the_run_and_stop_the_real_arm(fake_controller, signum, said):
     host = fake_controller.stdout.readline().split()[1]
     python = subprocess.Popen(
         [sys.executable, "-c", CTRL_C_SCRIPT, host],
@@ -117,10 +132,12 @@ def test_ctrl_c_raises_keyboard_interrupt_and_stops_the_real_arm(fake_controller
         text=True,
     )
     assert python.stdout.readline().strip() == "stepping"
-    python.send_signal(signal.SIGINT)
+    python.send_signal(signum)
     _, errors = python.communicate(timeout=20)
     assert python.returncode != 0
-    assert "KeyboardInterrupt" in errors, errors
+    if signum != signal.SIGINT:
+        assert python.returncode == 128 + signum, (python.returncode, errors)
+    assert said in errors, errors
     fake_controller.stdin.close()
     said = fake_controller.stdout.read().splitlines()
     scripts = [line.removeprefix("script ") for line in said if line.startswith("script ")]

@@ -268,13 +268,19 @@ impl Features {
         })
     }
 
-    /// The action the world follows now: each actuation's targets, then (`sim`) the raw
-    /// actuators' controls.
-    pub fn action(&self, world: &World<'_>) -> Vec<f64> {
+    /// The action that takes the world from now to `ahead` seconds on as it is going: each
+    /// actuation's targets `ahead` seconds from now ([`NamedActuation::target`]: a streamed
+    /// target, where a motion is due then), then (`sim`) the raw actuators' controls. A
+    /// dataset's `action` of a frame, `ahead` its period: given to [`Features::act`] at the
+    /// frame, it leads to the next frame's state, as the command of a leader arm leads its
+    /// follower in LeRobot's datasets.
+    ///
+    /// [`NamedActuation::target`]: yarok_core::component::NamedActuation::target
+    pub fn action(&self, world: &World<'_>, ahead: f64) -> Vec<f64> {
         let mut action: Vec<f64> = world
             .actuations()
             .iter()
-            .flat_map(|actuation| actuation.target())
+            .flat_map(|actuation| actuation.target(ahead))
             .collect();
         if let Some(sim) = world.backend::<SimBackend>() {
             let data = sim.data();
@@ -288,6 +294,8 @@ impl Features {
     }
 
     /// Sets the action: each actuation's share of `action`, then the raw actuators' controls.
+    /// Every share is checked against its names and ranges before any is set, so that an
+    /// action refused for one component changes none.
     ///
     /// # Errors
     ///
@@ -303,11 +311,17 @@ impl Features {
             )
             .into());
         }
+        let actuations = world.actuations();
+        let mut shares = Vec::with_capacity(actuations.len());
         let mut rest = action;
-        for actuation in world.actuations() {
+        for actuation in actuations {
             let (share, after) = rest.split_at(actuation.names().len());
-            actuation.set(share)?;
+            actuation.check(share)?;
+            shares.push(share);
             rest = after;
+        }
+        for (actuation, share) in actuations.iter().zip(shares) {
+            actuation.set(share)?;
         }
         if let Some(sim) = world.backend::<SimBackend>() {
             let mut data = sim.data_mut();

@@ -13,7 +13,7 @@ pub struct Actuators {
     pub(crate) names: Vec<String>,
     pub(crate) ranges: Vec<[f64; 2]>,
     pub(crate) measured: Box<dyn Fn() -> Vec<f64>>,
-    pub(crate) target: Box<dyn Fn() -> Vec<f64>>,
+    pub(crate) target: Box<dyn Fn(f64) -> Vec<f64>>,
     pub(crate) set: SetTargets,
 }
 
@@ -47,10 +47,12 @@ impl NamedActuation {
         (self.function().measured)()
     }
 
-    /// The targets the actuators follow now (an arm's commanded joint positions, a gripper's
-    /// commanded position), one per name.
-    pub fn target(&self) -> Vec<f64> {
-        (self.function().target)()
+    /// The targets the actuators are commanded to reach `ahead` seconds from now, one per
+    /// name: a streamed target (a policy's action), where a motion under way is due then (an
+    /// arm's joints), a commanded position (a gripper's). What a policy must output now for
+    /// the next `ahead` seconds to go as they are going: a dataset's `action`.
+    pub fn target(&self, ahead: f64) -> Vec<f64> {
+        (self.function().target)(ahead)
     }
 
     /// Sets new targets, one per name, which the actuators follow from the next tick.
@@ -61,6 +63,17 @@ impl NamedActuation {
     /// number, or the component refuses them, naming the actuation
     /// (`actuation /arm/action: …`).
     pub fn set(&self, targets: &[f64]) -> Result<(), BoxError> {
+        self.check(targets)?;
+        (self.function().set)(targets).map_err(|e| format!("actuation {}: {e}", self.path()).into())
+    }
+
+    /// Whether [`NamedActuation::set`] would take `targets` as far as the names and ranges go:
+    /// how a world's action is checked whole before any component's share is set.
+    ///
+    /// # Errors
+    ///
+    /// As [`NamedActuation::set`]'s, but for the component's own refusal.
+    pub fn check(&self, targets: &[f64]) -> Result<(), BoxError> {
         let names = self.names();
         if targets.len() != names.len() {
             return Err(format!(
@@ -84,6 +97,6 @@ impl NamedActuation {
             )
             .into());
         }
-        (self.function().set)(targets).map_err(|e| format!("actuation {}: {e}", self.path()).into())
+        Ok(())
     }
 }

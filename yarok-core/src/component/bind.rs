@@ -394,7 +394,9 @@ impl<E: Environment> Bind<E> {
     /// the composed model names it (`arm/shoulder_pan`), with the range of its target, lowest
     /// first (targets outside are refused before `set` sees them): `measured` reads where they
     /// are now (what a policy observes of them, in `sim` and on hardware alike), `target` the
-    /// targets they follow now (what a dataset records as the action), `set` sets new ones
+    /// targets they are commanded to reach a given number of seconds ahead (what a dataset
+    /// records as the action of a frame: what a policy must output for the next period to
+    /// go as it went; a motion's reference that far along, a streamed target), `set` sets new ones
     /// (what a policy's action does). Listed to plugins by
     /// [`World::actuations`](crate::runtime::World::actuations); a world's action is every
     /// component's, in binding order.
@@ -413,7 +415,7 @@ impl<E: Environment> Bind<E> {
     ///     bind.actuation(
     ///         [("slide/motor".to_owned(), [-1.0, 1.0])],
     ///         move || vec![at.get()],
-    ///         move || vec![read.get()],
+    ///         move |_ahead| vec![read.get()],
     ///         move |targets| {
     ///             set.set(targets[0]);
     ///             Ok(())
@@ -426,7 +428,7 @@ impl<E: Environment> Bind<E> {
         &mut self,
         actuators: impl IntoIterator<Item = (String, [f64; 2])>,
         measured: impl Fn() -> Vec<f64> + 'static,
-        target: impl Fn() -> Vec<f64> + 'static,
+        target: impl Fn(f64) -> Vec<f64> + 'static,
         set: impl Fn(&[f64]) -> Result<(), BoxError> + 'static,
     ) {
         let (names, ranges) = actuators.into_iter().unzip();

@@ -11,25 +11,33 @@ driven on real hardware) by yarok's Rust runtime, as Gymnasium environments.
 
 Gymnasium environments are registered as ``yarok/PickPlace-v0`` and ``yarok/TactilePress-v0``;
 ``yarok.YarokEnv`` makes any world an environment with your own task (reward, success, reset),
-and ``yarok.YarokVectorEnv`` steps N copies on N Rust threads.
+and ``yarok.YarokVectorEnv`` steps N copies on N Rust threads; ``yarok.for_learners(env)``
+keys an environment's observations as Stable-Baselines3 and CleanRL-style loops take them.
 """
 
-from ._native import World, Worlds, YarokError, run
+import os
+
+from ._native import UR_JOINT_SPEED, World, Worlds, YarokError, after_fork_in_child, run
 from .env import Task, YarokEnv
 from .vector import YarokVectorEnv
+from .wrappers import LearnerKeys, for_learners
 from . import tasks
 from .registration import register_environments
 
 __all__ = [
+    "LearnerKeys",
     "Task",
+    "UR_JOINT_SPEED",
     "World",
     "Worlds",
     "YarokEnv",
     "YarokError",
     "YarokVectorEnv",
+    "for_learners",
     "register_environments",
     "run",
     "tasks",
 ]
 
 register_environments()
+os.register_at_fork(after_in_child=after_fork_in_child)

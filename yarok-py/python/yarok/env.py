@@ -3,7 +3,11 @@ and randomised start."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+import atexit
+import signal
+import threading
+import weakref
+from dataclasses import dataclass
 from typing import Any, Sequence
 
 import gymnasium
@@ -44,6 +48,17 @@ class Task:
     def success(self, observation: dict[str, np.ndarray]) -> bool:
         return False
 
+    def goal_spaces(self) -> dict[str, gymnasium.spaces.Box]:
+        """Observations the task adds to the world's (a goal-conditioned task's goal), by key:
+        ``observation.desired_goal`` and ``observation.achieved_goal`` by Gymnasium-Robotics'
+        convention. None by default."""
+        return {}
+
+    def goals(self, observation: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+        """The values of ``goal_spaces()``' keys for ``observation``: called on every
+        observation, the reset's first, after ``placements``."""
+        return {}
+
 
 def observation_space(world) -> gymnasium.spaces.Dict:
     """The observation space of a world's ``features``: the LeRobot dataset's features, same keys and shapes."""
@@ -60,12 +75,23 @@ def observation_space(world) -> gymnasium.spaces.Dict:
     return gymnasium.spaces.Dict(spaces)
 
 
+def action_ranges(world) -> np.ndarray:
+    """A world's ``features``' action ranges, lowest and highest per number (float64)."""
+    return np.array(world.action_ranges, dtype=np.float64).reshape(-1, 2)
+
+
 def action_space(world) -> gymnasium.spaces.Box:
-    """The action space of a world's ``features``: ``action``'s numbers within their ranges."""
-    ranges = np.array(world.action_ranges, dtype=np.float64).reshape(-1, 2)
-    return gymnasium.spaces.Box(
-        ranges[:, 0].astype(np.float32), ranges[:, 1].astype(np.float32), dtype=np.float32
+    """The action space of a world's ``features``: ``action``'s numbers within their ranges,
+    as float32 bounds that lie inside them (a bound rounded to float32 can fall just outside
+    a float64 limit, as 2π does), so that every action in the space is taken."""
+    ranges = action_ranges(world)
+    low = ranges[:, 0].astype(np.float32)
+    high = ranges[:, 1].astype(np.float32)
+    low = np.where(low.astype(np.float64) < ranges[:, 0], np.nextafter(low, np.float32(np.inf)), low)
+    high = np.where(
+        high.astype(np.float64) > ranges[:, 1], np.nextafter(high, np.float32(-np.inf)), high
     )
+    return gymnasium.spaces.Box(low, high, dtype=np.float32)
 
 
 class YarokEnv(gymnasium.Env):
@@ -75,12 +101,17 @@ class YarokEnv(gymnasium.Env):
     ``observation.environment_state``, ``observation.images.*``), the action its ``action``
     (each component's targets: an arm's joints in radians, a gripper's position 0-255), so a
     policy trained on a dataset ``yarok run WORLD --dataset DIR`` wrote takes them unchanged.
-    Each step sets the action (clipped to the action space) and advances ``1 / control_hz``
-    seconds of platform time. ``reset(seed=s)`` puts the world back to its start and places
-    the task's bodies as drawn from ``s``: the same seed, the same episode, bit for bit.
+    Each step sets the action (clipped to the world's ranges: any action is taken, the
+    space's bounds and beyond) and advances ``1 / control_hz`` seconds of platform time; a step
+    in which MuJoCo warned (an unstable state it reset, a full contact buffer) ends the episode
+    truncated, with ``info["warnings"]`` saying what. ``reset(seed=s)`` puts the world back to
+    its start and places the task's bodies as drawn from ``s``: the same seed, the same
+    episode, bit for bit.
 
     ``env="real"`` drives the real robot through yarok's drivers with the same actions;
-    ``close()`` stops it (devices left safe).
+    ``close()`` stops it (devices left safe), as do an exception, Ctrl-C, SIGTERM and SIGHUP
+    (raised as ``SystemExit`` where the program set no handler of its own) and the end of the
+    program. A safety stop of the arm raises ``YarokError`` naming it at the next ``step``.
     """
 
     metadata = {"render_modes": ["rgb_array"], "render_fps": 20}
@@ -101,6 +132,8 @@ class YarokEnv(gymnasium.Env):
             raise ValueError(f"render_mode {render_mode!r}: yarok renders 'rgb_array' only")
         self.render_mode = render_mode
         self.environment = env
+        if env == "real":
+            _stop_on_termination()
         self.world = World(
             self.task.world,
             env=env,
@@ -109,17 +142,20 @@ class YarokEnv(gymnasium.Env):
             cameras=cameras,
             camera_size=tuple(self.task.camera_size),
         )
+        if env == "real":
+            _REAL_ENVS.add(self)
         self.task.bind(self.world.features)
         spaces = observation_space(self.world.features).spaces
         if self.task.render_camera is not None and self.task.render_camera not in self.task.cameras:
             spaces.pop(f"observation.images.{self.task.render_camera}", None)
+        spaces.update(self.task.goal_spaces())
         self.observation_space = gymnasium.spaces.Dict(spaces)
         self._observed_keys = set(spaces)
         self.action_space = action_space(self.world.features)
         # Read once: each read of `World.features` copies every name.
         self._timestep = self.world.features.timestep
-        self._low = self.action_space.low.astype(np.float64)
-        self._high = self.action_space.high.astype(np.float64)
+        ranges = action_ranges(self.world.features)
+        self._low, self._high = ranges[:, 0], ranges[:, 1]
         self.metadata = {**self.metadata, "render_fps": self.task.control_hz}
         self._episodes = 0
         self._start_tick = 0
@@ -127,7 +163,9 @@ class YarokEnv(gymnasium.Env):
 
     def _keep(self, observation: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
         self._last = observation
-        return {key: value for key, value in observation.items() if key in self._observed_keys}
+        kept = {key: value for key, value in observation.items() if key in self._observed_keys}
+        kept.update(self.task.goals(observation))
+        return kept
 
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
         super().reset(seed=seed)
@@ -147,7 +185,13 @@ class YarokEnv(gymnasium.Env):
         success = bool(self.task.success(observation))
         time = (self.world.ticks - self._start_tick) * self._timestep
         info = {"is_success": success, "time": time}
-        return self._keep(observation), reward, success, False, info
+        # MuJoCo went wrong in the step (an unstable state it reset, a full contact buffer):
+        # the episode ends there, truncated, and says why, rather than going on from a world
+        # that moved without a cause.
+        warnings = self.world.warnings
+        if warnings:
+            info["warnings"] = warnings
+        return self._keep(observation), reward, success, bool(warnings), info
 
     @property
     def task_description(self) -> str:
@@ -170,3 +214,32 @@ def _render_key(task: Task, observation: dict[str, np.ndarray]) -> str | None:
         return f"observation.images.{task.render_camera}"
     images = [key for key in observation if key.startswith("observation.images.")]
     return images[0] if images else None
+
+
+_REAL_ENVS: "weakref.WeakSet[YarokEnv]" = weakref.WeakSet()
+
+
+@atexit.register
+def _close_real_envs() -> None:
+    """A run that ends with a real environment open stops its devices (the arm's ``stopj``)."""
+    for env in list(_REAL_ENVS):
+        try:
+            env.close()
+        except Exception:  # noqa: BLE001 - closing the others matters more at exit
+            pass
+
+
+def _terminate(signum, _frame) -> None:
+    raise SystemExit(128 + signum)
+
+
+def _stop_on_termination() -> None:
+    """SIGTERM and SIGHUP end a run that drives real hardware as Ctrl-C does, as the command
+    line's ``yarok run`` does: raised in Python (``SystemExit``), so that a world waited on
+    stops its devices and the open environments are closed. A handler the program set itself
+    is left as it is."""
+    if threading.current_thread() is not threading.main_thread():
+        return
+    for signum in (signal.SIGTERM, signal.SIGHUP):
+        if signal.getsignal(signum) is signal.SIG_DFL:
+            signal.signal(signum, _terminate)

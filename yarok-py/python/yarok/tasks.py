@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import gymnasium
 import numpy as np
 
 from ._native import DIGIT_WORLD_START_REGION, DIGIT_WORLD_START_YAW
@@ -94,6 +95,10 @@ class TactilePress(Task):
     changes by a target amount (mean absolute change of its pixels from the first frame of the
     episode, in grey levels), drawn from the seed between 2 and 6. The action is the printer
     head's target (millimetres). Won when the change is within 0.5 of the target.
+
+    Goal-conditioned: the observation holds the target as ``observation.desired_goal`` and the
+    change now as ``observation.achieved_goal`` (one number each, grey levels), so that one
+    policy learns every target.
     """
 
     world: str = "tactile_rig_world"
@@ -122,3 +127,13 @@ class TactilePress(Task):
 
     def success(self, observation) -> bool:
         return abs(self.change(observation) - self.target) < self.tolerance
+
+    def goal_spaces(self):
+        change = gymnasium.spaces.Box(0.0, 255.0, (1,), np.float32)
+        return {"observation.desired_goal": change, "observation.achieved_goal": change}
+
+    def goals(self, observation):
+        return {
+            "observation.desired_goal": np.array([self.target], dtype=np.float32),
+            "observation.achieved_goal": np.array([self.change(observation)], dtype=np.float32),
+        }

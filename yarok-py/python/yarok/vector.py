@@ -11,7 +11,7 @@ from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
 from ._native import Worlds
-from .env import Task, action_space, observation_space
+from .env import Task, action_ranges, action_space, observation_space
 
 
 class YarokVectorEnv(VectorEnv):
@@ -46,10 +46,14 @@ class YarokVectorEnv(VectorEnv):
         )
         for each in self.tasks:
             each.bind(self.worlds.features)
-        self.single_observation_space = observation_space(self.worlds.features)
+        spaces = observation_space(self.worlds.features).spaces
+        spaces.update(task.goal_spaces())
+        self.single_observation_space = gymnasium.spaces.Dict(spaces)
         self.single_action_space = action_space(self.worlds.features)
         self.observation_space = batch_space(self.single_observation_space, num_envs)
         self.action_space = batch_space(self.single_action_space, num_envs)
+        ranges = action_ranges(self.worlds.features)
+        self._low, self._high = ranges[:, 0], ranges[:, 1]
         self.max_episode_steps = max_episode_steps
         self._episodes = 0
         self._steps = np.zeros(num_envs, dtype=np.int64)
@@ -57,6 +61,8 @@ class YarokVectorEnv(VectorEnv):
         self._rngs: list[np.random.Generator] = [np.random.default_rng() for _ in range(num_envs)]
 
     def _stack(self, observations: list[dict[str, np.ndarray]]) -> dict[str, np.ndarray]:
+        for task, observation in zip(self.tasks, observations):
+            observation.update(task.goals(observation))
         return {
             key: np.stack([observation[key] for observation in observations])
             for key in self.single_observation_space.spaces
@@ -80,11 +86,7 @@ class YarokVectorEnv(VectorEnv):
         return self._stack(observations), {}
 
     def step(self, actions):
-        actions = np.clip(
-            np.asarray(actions, dtype=np.float64),
-            self.single_action_space.low,
-            self.single_action_space.high,
-        )
+        actions = np.clip(np.asarray(actions, dtype=np.float64), self._low, self._high)
         resetting = np.flatnonzero(self._needs_reset)
         seconds = 1.0 / self.tasks[0].control_hz
         stepped = self.worlds.advance(
@@ -100,18 +102,26 @@ class YarokVectorEnv(VectorEnv):
         terminated = np.zeros(self.num_envs, dtype=bool)
         truncated = np.zeros(self.num_envs, dtype=bool)
         successes = np.zeros(self.num_envs, dtype=bool)
+        warnings = self.worlds.warnings
         for index in range(self.num_envs):
             if self._needs_reset[index]:
                 continue
+            # MuJoCo went wrong in the step: that world's episode ends there, truncated.
+            if warnings[index]:
+                truncated[index] = True
             task, observation = self.tasks[index], stepped[index]
             self._steps[index] += 1
             rewards[index] = task.reward(observation, actions[index])
             successes[index] = terminated[index] = task.success(observation)
-            truncated[index] = (
+            truncated[index] |= (
                 self.max_episode_steps is not None and self._steps[index] >= self.max_episode_steps
             )
+        stepped_now = ~self._needs_reset
         self._needs_reset = terminated | truncated
-        return self._stack(stepped), rewards, terminated, truncated, {"is_success": successes}
+        # Gymnasium's vector infos: each key beside its `_key` mask of the worlds that set it
+        # (a world that was reset this step reports nothing).
+        infos = {"is_success": successes, "_is_success": stepped_now}
+        return self._stack(stepped), rewards, terminated, truncated, infos
 
     def close_extras(self, **kwargs):
         self.worlds.close()

@@ -58,7 +58,7 @@ pub(super) fn expose<E: Environment>(bind: &mut Bind<E>, gripper: &ParallelGripp
     bind.actuation(
         [(name, [0.0, 255.0])],
         move || vec![f64::from(measured.position())],
-        move || vec![read.requested().position],
+        move |_ahead| vec![read.requested().position],
         move |targets| {
             let position = targets[0].round();
             let request = requested.requested();

@@ -76,8 +76,11 @@ const KEYFRAME_INTERVAL: u32 = 2;
 /// - the world's [`Features`], as a policy sees them in the world (yarok's Gymnasium
 ///   environments observe the same): `observation.state` (every hinge's and slide's
 ///   position), `observation.environment_state` (every free body's pose), `action` (each
-///   component's actuation, as the behaviour commands it: an arm's joint targets, a gripper's
-///   position) and `observation.images.{probe}` for every RGB probe
+///   component's actuation as the behaviour commands it for the period that follows: an
+///   arm's joint targets where its motion is due at the next frame, a gripper's position —
+///   so that `action` given at a frame leads to the next frame's state, as a leader arm's
+///   command leads its follower in LeRobot's datasets; see [`Features::action`]) and
+///   `observation.images.{probe}` for every RGB probe
 ///   (`observation.images.arm.gripper.left_digit.image`: a tactile sensor's image) and
 ///   `observation.images.{camera}` for each camera asked for: H.264 MP4 videos (`yuv420p`, a
 ///   keyframe every 2 frames, `crf` as set), through `ffmpeg`;
@@ -290,7 +293,7 @@ impl DatasetRecorder {
             .as_mut()
             .ok_or("the dataset's features have not been found")?;
         let observation = observed.observe(world)?;
-        let action = observed.action(world);
+        let action = observed.action(world, 1.0 / f64::from(self.settings.fps));
         let task = match self.task {
             Some(task) => task,
             None => {

@@ -53,7 +53,7 @@ pub(super) fn expose<E: Environment>(bind: &mut Bind<E>, printer: &AnetA30) {
     bind.actuation(
         axes,
         move || measured.at().to_vec(),
-        move || read.get().unwrap_or_else(|| shown.at()).to_vec(),
+        move |_ahead| read.get().unwrap_or_else(|| shown.at()).to_vec(),
         move |targets| {
             let to = [targets[0], targets[1], targets[2]];
             if sent.replace(Some(to)) != Some(to) {

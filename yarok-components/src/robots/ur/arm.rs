@@ -16,6 +16,7 @@ use super::kinematics::{Joints, Kinematics, pose_from_vector};
 use super::mock::FollowingJoints;
 use super::payload::Payload;
 use super::sim::Servos;
+use super::streaming::ServoLimits;
 use crate::robots::motion::MotionControl;
 use crate::robots::motions::{ARRIVED_RAD, within};
 
@@ -96,9 +97,13 @@ impl Arm {
         let put_back = drive.is_put_back_at_restart();
         let controller = Rc::new(Controller::new(bind.clock(), kinematics, drive, start));
         controller.command();
+        let restarting = Rc::clone(&controller);
         if put_back {
-            let restarting = Rc::clone(&controller);
             bind.on_restart(move || restarting.restart(start));
+        } else {
+            // Hardware stays where it is: the next episode's first target is approached from
+            // where the arm is measured then.
+            bind.on_restart(move || restarting.end_stream());
         }
         let ticking = Rc::clone(&controller);
         bind.on_tick(move || {
@@ -200,26 +205,56 @@ impl Arm {
         self.controller.unlock_protective_stop().await
     }
 
-    /// Streams a joint target, as URScript's `servoj` does: the arm holds `target` from the
-    /// next step (a motion under way ends as stopped) and the next target is expected within
-    /// `seconds` (a policy's control period). What a policy's action sets.
+    /// Streams a joint target, as URScript's `servoj` does: a motion under way ends as
+    /// stopped, and from the next step the arm approaches `target`, due `seconds` later (a
+    /// policy's control period), within its [servo limits](Arm::servo_limits): a target
+    /// farther than the period allows is approached at the limits and reached at rest; a
+    /// target not followed by another is held. A stream begins where the arm is measured.
+    /// What a policy's action sets. [`Arm::stop`] brings it to rest within the limits.
+    ///
+    /// A real arm is ordered each target's `servoj` toward where the approach will be when the
+    /// target is due, so that it is never asked beyond the limits either; only the latest is
+    /// sent when the link falls behind.
     ///
     /// # Errors
     ///
     /// [`MotionError::InvalidTarget`](super::MotionError::InvalidTarget) when a joint is
-    /// beyond its limits or not a number.
+    /// beyond its limits or not a number; the reason the arm cannot move
+    /// ([`MotionError::SafetyStop`](super::MotionError::SafetyStop),
+    /// [`MotionError::NotRunning`](super::MotionError::NotRunning)) while it cannot: the stream
+    /// ends, and the next target after the stop clears begins one where the arm is.
     pub fn servo_j(&self, target: Joints, seconds: f64) -> Result<(), super::MotionError> {
         self.controller.servo(target, seconds)
     }
 
-    /// The joint angles commanded for the next step: where a motion is due, or the last
-    /// streamed target.
+    /// The joint angles commanded for the next step: where a motion is due, or where a
+    /// streamed target's approach is.
     pub fn commanded(&self) -> Joints {
         self.controller.setpoint()
     }
 
+    /// Where the joints are commanded to be `seconds` from now: the streamed target being
+    /// approached ([`Arm::servo_j`]), or where the motion under way is due then, or where the
+    /// arm is held. What a policy would stream now to go on as the arm goes: a dataset's
+    /// `action` for a frame, `seconds` the frame period.
+    pub fn target_in(&self, seconds: f64) -> Joints {
+        self.controller.target_in(seconds)
+    }
+
+    /// The per-joint speed and acceleration limits streamed targets are approached within
+    /// (by default the arm's datasheet speed, 180°/s, and 360°/s²).
+    pub fn servo_limits(&self) -> ServoLimits {
+        self.controller.servo_limits()
+    }
+
+    /// Sets the limits streamed targets are approached within, from the next step.
+    pub fn set_servo_limits(&self, limits: ServoLimits) {
+        self.controller.set_servo_limits(limits);
+    }
+
     /// Stops the motion under way: it decelerates along its path (a line stays a line) at its
     /// own acceleration; its awaiting future ends with [`MotionError::Stopped`](super::MotionError::Stopped).
+    /// A stream of targets ([`Arm::servo_j`]) comes to rest within the servo limits.
     pub fn stop(&self) {
         self.controller.stop(None);
     }

@@ -2,7 +2,7 @@
 //! joints due along the motion's path, fed to the servos with their speed and acceleration —
 //! and tells how each motion ended.
 
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::rc::Rc;
 
 use nalgebra::Isometry3;
@@ -16,6 +16,7 @@ use super::error::MotionError;
 use super::kinematics::{IkError, Joints, Kinematics};
 use super::path::Path;
 use super::payload::Payload;
+use super::streaming::{ServoLimits, Stream};
 use crate::robots::profile::Profile;
 
 /// Where a motion goes, and how.
@@ -33,6 +34,7 @@ pub(super) struct Controller {
     kinematics: Kinematics,
     clock: Clock,
     drive: Rc<dyn ArmDrive>,
+    servo_limits: Cell<ServoLimits>,
     state: RefCell<State>,
 }
 
@@ -41,6 +43,8 @@ struct State {
     /// [`Controller::set_payload`].
     setpoint: Setpoint,
     motions: Motions<Path, Joints, MotionError>,
+    /// The streamed target being approached, when no motion is under way.
+    stream: Option<Stream>,
 }
 
 /// The joints `t` seconds into `motion` (by inverse kinematics near `near` on a line), and
@@ -71,6 +75,7 @@ impl Controller {
             kinematics,
             clock,
             drive,
+            servo_limits: Cell::new(ServoLimits::default()),
             state: RefCell::new(State {
                 setpoint: Setpoint {
                     q: start,
@@ -79,6 +84,7 @@ impl Controller {
                     payload: None,
                 },
                 motions: Motions::new(),
+                stream: None,
             }),
         }
     }
@@ -113,10 +119,12 @@ impl Controller {
         self.command();
     }
 
-    /// Moves the reference to where the motion is due at `now` plus a step.
+    /// Moves the reference to where the motion, or the streamed target's approach, is due at
+    /// `now` plus a step.
     fn advance(&self, now: f64) {
         let mut state = self.state.borrow_mut();
         let Some(motion) = state.motions.take() else {
+            self.approach(&mut state, now);
             return;
         };
         let dt = self.clock.timestep();
@@ -155,6 +163,36 @@ impl Controller {
         }
     }
 
+    /// Moves the setpoint a step toward the streamed target, within the servo limits; a drive
+    /// that cannot move ends the stream where the arm is.
+    fn approach(&self, state: &mut State, now: f64) {
+        let Some(stream) = state.stream else {
+            return;
+        };
+        if self.drive.halt().is_some() {
+            state.stream = None;
+            let measured = self.drive.q(&state.setpoint);
+            let setpoint = &mut state.setpoint;
+            setpoint.q = measured;
+            setpoint.speed = [0.0; 6];
+            setpoint.acceleration = [0.0; 6];
+            return;
+        }
+        let dt = self.clock.timestep();
+        let setpoint = &mut state.setpoint;
+        let (q, speed) = stream.step(
+            &setpoint.q,
+            &setpoint.speed,
+            now,
+            dt,
+            &self.servo_limits.get(),
+            &self.kinematics.limits,
+        );
+        setpoint.acceleration = std::array::from_fn(|i| (speed[i] - setpoint.speed[i]) / dt);
+        setpoint.q = q;
+        setpoint.speed = speed;
+    }
+
     /// `miss` as the drive explains it: a motion whose connection dropped on the way is lost
     /// to that, not merely short of its target.
     fn explained(&self, miss: MotionError) -> MotionError {
@@ -173,24 +211,101 @@ impl Controller {
         self.command();
     }
 
-    /// Ends a motion under way as stopped and holds `q` at rest.
+    /// Ends a stream of targets: the next target begins one from where the arm is measured.
+    pub(super) fn end_stream(&self) {
+        self.state.borrow_mut().stream = None;
+    }
+
+    /// Ends a motion under way as stopped, and a stream, and holds `q` at rest.
     fn hold(&self, q: Joints) {
         let mut state = self.state.borrow_mut();
         state.motions.abandon();
+        state.stream = None;
         let setpoint = &mut state.setpoint;
         setpoint.q = q;
         setpoint.speed = [0.0; 6];
         setpoint.acceleration = [0.0; 6];
     }
 
-    /// Holds `target` from the next step, as URScript's `servoj` streamed every `seconds`
-    /// does: a motion under way ends as stopped, and the servos are set to the target at once.
+    /// Streams `target`, due in `seconds`, as URScript's `servoj` does: a motion under way
+    /// ends as stopped, and from the next step the setpoint approaches the target within the
+    /// servo limits (a stream begins where the arm is measured, at rest, unless it takes over
+    /// a motion's setpoint). The drive is ordered where the setpoint will be when it is due.
+    /// Refused, the stream ended, while the drive cannot move (a real arm's safety stop): the
+    /// next target after it clears begins a new stream where the arm is.
     pub(super) fn servo(&self, target: Joints, seconds: f64) -> Result<(), MotionError> {
         self.joint_path(target, target)?;
-        self.hold(target);
-        self.drive.order(Order::ServoJ { target, seconds });
+        if let Some(halted) = self.drive.halt() {
+            self.state.borrow_mut().stream = None;
+            return Err(halted);
+        }
+        let now = self.clock.time();
+        let dt = self.clock.timestep();
+        let mut state = self.state.borrow_mut();
+        let took_over_a_motion = state.motions.is_moving();
+        state.motions.abandon();
+        if state.stream.is_none() && !took_over_a_motion {
+            let measured = self.drive.q(&state.setpoint);
+            let setpoint = &mut state.setpoint;
+            setpoint.q = measured;
+            setpoint.speed = [0.0; 6];
+            setpoint.acceleration = [0.0; 6];
+        }
+        let stream = Stream::next(
+            state.stream.as_ref(),
+            target,
+            now,
+            seconds,
+            dt,
+            &self.servo_limits.get(),
+        );
+        state.stream = Some(stream);
+        let due = stream.due_from(
+            &state.setpoint.q,
+            &state.setpoint.speed,
+            now,
+            dt,
+            &self.servo_limits.get(),
+            &self.kinematics.limits,
+        );
+        drop(state);
+        self.drive.order(Order::ServoJ {
+            target: due,
+            seconds,
+        });
         self.command();
         Ok(())
+    }
+
+    /// The limits streamed targets are approached within.
+    pub(super) fn servo_limits(&self) -> ServoLimits {
+        self.servo_limits.get()
+    }
+
+    /// Sets the limits streamed targets are approached within, from the next step.
+    pub(super) fn set_servo_limits(&self, limits: ServoLimits) {
+        self.servo_limits.set(limits);
+    }
+
+    /// Where the joints are commanded to be `ahead` seconds from now: a streamed target, or
+    /// where the motion under way is due then (its end, past it), or the setpoint held.
+    pub(super) fn target_in(&self, ahead: f64) -> Joints {
+        let mut state = self.state.borrow_mut();
+        if let Some(stream) = state.stream {
+            return stream.target();
+        }
+        let Some(motion) = state.motions.take() else {
+            return state.setpoint.q;
+        };
+        let t = (self.clock.time() + ahead - motion.started).min(motion.profile.duration());
+        let (along, _) = motion.profile.at(t);
+        let due = Path::joints_at(
+            motion.path.point(along),
+            &self.kinematics,
+            &state.setpoint.q,
+        );
+        state.motions.keep(motion);
+        due.unwrap_or(state.setpoint.q)
     }
 
     /// The joints commanded for the next step.
@@ -276,9 +391,25 @@ impl MotionControl for Controller {
         Ok(id)
     }
 
-    /// Stops the motion under way (only motion `id`, if given).
+    /// Stops the motion under way (only motion `id`, if given), or a stream (when no `id` is
+    /// given): it decelerates to rest within the servo limits.
     fn stop(&self, id: Option<u64>) {
         let mut state = self.state.borrow_mut();
+        if let (None, Some(stream)) = (id, state.stream) {
+            let setpoint = &state.setpoint;
+            let stopping = stream.stopping(&setpoint.q, &setpoint.speed, &self.servo_limits.get());
+            state.stream = Some(stopping);
+            drop(state);
+            self.drive.order(Order::StopJ {
+                deceleration: self
+                    .servo_limits
+                    .get()
+                    .acceleration()
+                    .into_iter()
+                    .fold(f64::MAX, f64::min),
+            });
+            return;
+        }
         if let Some(motion) = state.motions.stop(id, self.clock.time()) {
             let deceleration = motion.profile.acceleration();
             self.drive.order(match motion.path {

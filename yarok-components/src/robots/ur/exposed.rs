@@ -1,6 +1,9 @@
 //! What an [`Arm`] shows any plugin: its state (`state`), the motions it takes (`command`) and
 //! the joint targets a policy streams (its actuation).
 
+use std::cell::Cell;
+use std::rc::Rc;
+
 use yarok_core::BoxError;
 use yarok_core::component::{Bind, Environment};
 
@@ -51,14 +54,25 @@ pub(super) fn expose<E: Environment>(bind: &mut Bind<E>, arm: &Arm) {
         (format!("{prefix}/{}", ACTUATORS[i]), limits[i].into())
     });
     let (measured, read, streamed, clock) = (arm.clone(), arm.clone(), arm.clone(), bind.clock());
-    let last_target = std::cell::Cell::new(f64::NEG_INFINITY);
+    // When the previous target was given: a stream's period. An episode's first target has
+    // none (the same start, the same stream, episode after episode).
+    let last_target = Rc::new(Cell::new(f64::NEG_INFINITY));
+    let forgotten = Rc::clone(&last_target);
+    bind.on_restart(move || forgotten.set(f64::NEG_INFINITY));
     bind.actuation(
         actuators,
         move || measured.q().to_vec(),
-        move || read.commanded().to_vec(),
+        move |ahead| read.target_in(ahead).to_vec(),
         move |targets| {
             let now = clock.time();
-            let since = (now - last_target.replace(now)).min(LONGEST_SERVO_S);
+            let previous = last_target.replace(now);
+            // An episode's first target has no period: it is reached as soon as the servo
+            // limits allow.
+            let since = if previous.is_finite() {
+                (now - previous).min(LONGEST_SERVO_S)
+            } else {
+                0.0
+            };
             let target = std::array::from_fn(|i| targets[i]);
             streamed.servo_j(target, since.max(clock.timestep()))?;
             Ok(())

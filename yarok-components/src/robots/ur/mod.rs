@@ -16,6 +16,7 @@ mod path;
 mod payload;
 mod real;
 mod sim;
+mod streaming;
 
 pub use crate::robots::motions::{ARRIVED_RAD, SETTLE_SECONDS};
 pub use arm::{ARRIVED_M, Arm, MOVE_J_DEFAULTS, MOVE_L_DEFAULTS};
@@ -32,5 +33,6 @@ pub use measured::{MeasuredKinematics, isometry_of};
 pub type Move<'a> = crate::robots::Motion<'a, MotionError>;
 pub use path::PathError;
 pub use payload::Payload;
+pub use streaming::{ServoLimits, UR_JOINT_ACCELERATION, UR_JOINT_SPEED};
 
 pub use component::{Ur5, Ur5Model, Ur5e, Ur5eModel, UrArm, UrModel};

@@ -142,6 +142,8 @@ struct Measured {
 /// What the arm's driver task is asked to do.
 enum Request {
     Script(String),
+    /// A streamed target's `servoj`: only the latest is sent, never a queue of stale ones.
+    Servo(String),
     UnlockProtectiveStop(oneshot::Sender<Result<(), String>>),
 }
 
@@ -176,7 +178,12 @@ impl RealLink {
     }
 
     fn request(&self, request: Request) {
-        self.requests.borrow_mut().push_back(request);
+        let mut requests = self.requests.borrow_mut();
+        if matches!(request, Request::Servo(_)) {
+            requests.retain(|queued| !matches!(queued, Request::Servo(_)));
+        }
+        requests.push_back(request);
+        drop(requests);
         self.wake.notify_one();
     }
 }
@@ -210,7 +217,10 @@ impl ArmDrive for RealLink {
                 acceleration,
             ),
             Order::ServoJ { target, seconds } => {
-                script::servoj(&target, seconds, SERVO_LOOKAHEAD_S, SERVO_GAIN)
+                self.dropped_since_order.take();
+                let servo = script::servoj(&target, seconds, SERVO_LOOKAHEAD_S, SERVO_GAIN);
+                self.request(Request::Servo(servo));
+                return;
             }
             Order::StopJ { deceleration } => script::stopj(deceleration),
             Order::StopL { deceleration } => script::stopl(deceleration),
@@ -510,7 +520,7 @@ async fn drive(
                 let requests: Vec<Request> = link.requests.borrow_mut().drain(..).collect();
                 for request in requests {
                     match request {
-                        Request::Script(script) => {
+                        Request::Script(script) | Request::Servo(script) => {
                             if remote_checked.elapsed() >= REMOTE_CHECK {
                                 remote_checked = Instant::now();
                                 still_in_remote_control(host, reply).await?;

@@ -1,0 +1,192 @@
+"""A success rate, measured: yarok's scripted demonstrations → LeRobot's training, unchanged →
+LeRobot's own evaluation in ``yarok/PickPlace-v0`` on held-out seeds, beside the untrained
+policy and the scripted demonstrations.
+
+Run by ``bash scripts/bench-learning.sh`` (LeRobot from ``scripts/setup-lerobot.sh``). The
+steps, each timed:
+
+1. ``--demos`` demonstrations (``yarok.run("digit_world", "demonstrate", …)``, seed 1, at the
+   environment's 20 Hz), each ending with the block on its target;
+2. the images removed with ``lerobot-edit-dataset`` (the policy sees ``observation.state`` and
+   ``observation.environment_state``);
+3. ``lerobot-train`` with ACT (the hyper-parameters below) for ``--steps`` steps on the CPU;
+4. LeRobot's ``eval_policy`` on ``--episodes`` seeds from 100 000 (the environment draws its
+   starts with numpy from the seed; the demonstrations were drawn by yarok's own generator from
+   seed 1: none is a start the policy was trained on), for the trained policy and for the same
+   ACT untrained.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import yarok
+import yarok.lerobot
+
+FPS = 20
+HELD_OUT_SEED = 100_000
+IMAGES = [
+    "observation.images.arm.gripper.left_digit.image",
+    "observation.images.arm.gripper.right_digit.image",
+]
+ACT = [
+    "--policy.type=act",
+    "--policy.device=cpu",
+    "--policy.push_to_hub=false",
+    "--policy.chunk_size=10",
+    "--policy.n_action_steps=1",
+    "--policy.temporal_ensemble_coeff=0.01",
+    "--policy.dim_model=128",
+    "--policy.dim_feedforward=512",
+    "--policy.n_encoder_layers=2",
+    "--policy.n_decoder_layers=1",
+    "--policy.use_vae=false",
+    "--batch_size=64",
+    "--num_workers=0",
+    "--wandb.enable=false",
+]
+
+
+def command(name: str) -> str:
+    found = shutil.which(name, path=str(Path(sys.executable).parent))
+    if found is None:
+        sys.exit(f"{name} is not installed beside this Python: run scripts/setup-lerobot.sh")
+    return found
+
+
+def timed(what: str, run) -> float:
+    start = time.perf_counter()
+    run()
+    seconds = time.perf_counter() - start
+    print(f"{what}: {seconds / 60:.1f} min", flush=True)
+    return seconds
+
+
+def evaluate(checkpoint: Path | None, train_dir: Path, episodes: int) -> dict:
+    """LeRobot's ``eval_policy`` of the checkpoint (``None``: ACT as configured, untrained)."""
+    import torch
+    from lerobot.policies.act.modeling_act import ACTPolicy
+    from lerobot.policies.factory import make_pre_post_processors
+    from lerobot.processor import PolicyProcessorPipeline
+    from lerobot.scripts.lerobot_eval import eval_policy
+
+    trained = train_dir / "checkpoints/last/pretrained_model"
+    policy = ACTPolicy.from_pretrained(trained)
+    if checkpoint is None:
+        torch.manual_seed(0)
+        policy = ACTPolicy(policy.config)
+        policy.eval()
+    pre, post = make_pre_post_processors(policy.config, pretrained_path=str(trained))
+    identity = PolicyProcessorPipeline(steps=[])
+    env = yarok.lerobot.make_vector_env("yarok/PickPlace-v0", n_envs=1)
+    try:
+        results = eval_policy(
+            env,
+            policy,
+            identity,
+            identity,
+            pre,
+            post,
+            n_episodes=episodes,
+            start_seed=HELD_OUT_SEED,
+        )
+    finally:
+        env.close()
+    return results["aggregated"]
+
+
+def demonstrations_placed(demos: Path) -> int:
+    """How many recorded episodes end as ``PickPlace`` counts a success (their last frame)."""
+    import numpy as np
+    import pandas
+
+    task = yarok.tasks.PickPlace()
+    with yarok.World("digit_world") as world:
+        task.bind(world.features)
+    frames = pandas.read_parquet(demos / "data")
+    placed = 0
+    for _, rows in frames.groupby("episode_index"):
+        last = rows.sort_values("frame_index").iloc[-1]
+        observation = {
+            key: np.asarray(last[key])
+            for key in ("observation.state", "observation.environment_state")
+        }
+        placed += task.success(observation)
+    return placed
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--demos", type=int, default=100)
+    parser.add_argument("--steps", type=int, default=6000)
+    parser.add_argument("--episodes", type=int, default=50)
+    parser.add_argument("--out", type=Path, default=Path("out/bench-learning"))
+    arguments = parser.parse_args()
+    out: Path = arguments.out
+    shutil.rmtree(out, ignore_errors=True)
+    out.mkdir(parents=True)
+    demos, states, train = out / "demos", out / "demos_states", out / "train"
+
+    timed(
+        f"{arguments.demos} demonstrations",
+        lambda: yarok.run(
+            "digit_world",
+            "demonstrate",
+            settings=[
+                f"behaviour/episodes={arguments.demos}",
+                "behaviour/seed=1",
+                f"plugins/dataset/fps={FPS}",
+            ],
+            dataset=demos,
+        ),
+    )
+    subprocess.run(
+        [
+            command("lerobot-edit-dataset"),
+            "--repo_id=yarok/demos",
+            f"--root={demos}",
+            "--new_repo_id=yarok/demos_states",
+            f"--new_root={states}",
+            "--operation.type=remove_feature",
+            f"--operation.feature_names={json.dumps(IMAGES)}",
+        ],
+        check=True,
+        capture_output=True,
+    )
+    training = timed(
+        f"training ACT {arguments.steps} steps on the CPU",
+        lambda: subprocess.run(
+            [
+                command("lerobot-train"),
+                "--dataset.repo_id=yarok/demos_states",
+                f"--dataset.root={states}",
+                *ACT,
+                f"--steps={arguments.steps}",
+                f"--save_freq={arguments.steps}",
+                "--log_freq=500",
+                f"--output_dir={train}",
+            ],
+            check=True,
+        ),
+    )
+    trained = evaluate(train / "checkpoints/last/pretrained_model", train, arguments.episodes)
+    untrained = evaluate(None, train, arguments.episodes)
+    print(
+        f"\nyarok/PickPlace-v0, {arguments.episodes} held-out seeds from {HELD_OUT_SEED}, "
+        f"ACT on the state features, {arguments.demos} demonstrations, "
+        f"{arguments.steps} training steps ({training / 60:.1f} CPU-min on this machine):"
+    )
+    print(f"  trained   success {trained['pc_success']:.0f} %  avg reward {trained['avg_sum_reward']:.2f}")
+    print(f"  untrained success {untrained['pc_success']:.0f} %  avg reward {untrained['avg_sum_reward']:.2f}")
+    placed = demonstrations_placed(demos)
+    print(f"  scripted demonstrations: {placed} of {arguments.demos} end as the task's success")
+
+
+if __name__ == "__main__":
+    main()
