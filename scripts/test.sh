@@ -63,11 +63,11 @@ rm -rf "$fresh"
 # The tests run in the project's venv (pinned Gymnasium and pytest), with the same package.
 "$cache/python/bin/pip" install -q --disable-pip-version-check --force-reinstall --no-deps ./yarok-py
 (cd yarok-py && "$cache/python/bin/python" -m pytest -q -p no:cacheprovider tests)
-echo "== the learning loop with LeRobot: demonstrations, lerobot-train, LeRobot's own evaluation"
+echo "== the learning loop with LeRobot and Stable-Baselines3: demonstrations, lerobot-train, LeRobot's own evaluation, PPO"
 lerobot_python="$(bash scripts/setup-lerobot.sh)"
 "$(dirname "$lerobot_python")/pip" install -q --disable-pip-version-check --force-reinstall --no-deps ./yarok-py
 (cd yarok-py && YAROK_REQUIRE_LEROBOT=1 "$lerobot_python" -m pytest -q -p no:cacheprovider \
-  tests/test_lerobot_loop.py)
+  tests/test_lerobot_loop.py tests/test_learners.py)
 echo "== your own crate: examples/own_crate, a crate outside yarok's workspace, as the README sets it up"
 (
   export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$PWD/target}"
