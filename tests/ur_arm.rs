@@ -310,3 +310,41 @@ fn mock_arms_follow_their_motions() {
         .run()
         .unwrap();
 }
+
+/// A streamed target 2.5 rad away, given every 50 ms as a policy gives its actions: the arm
+/// approaches it under gravity at its servo limits — the base turning no faster than 180°/s
+/// and speeding up no faster than 360°/s² — and holds it.
+#[test]
+fn a_streamed_jump_is_approached_at_the_servo_limits_and_held() {
+    yarok::platform()
+        .world::<ArmWorld<Ur5e>>()
+        .behaviour(|pl| async move {
+            let arm: Ur5e = pl.get("/arm")?;
+            let start = arm.q();
+            let mut target = start;
+            target[0] += 2.5;
+            let limits = arm.servo_limits();
+            let (mut fastest, mut hardest, mut before) = (0.0_f64, 0.0_f64, 0.0);
+            for _ in 0..40 {
+                arm.servo_j(target, 0.05)?;
+                for _ in 0..25 {
+                    pl.tick().await?;
+                    let speed = arm.qd()[0];
+                    fastest = fastest.max(speed.abs());
+                    hardest = hardest.max(((speed - before) / pl.timestep()).abs());
+                    before = speed;
+                }
+            }
+            assert!((arm.q()[0] - target[0]).abs() < 2e-3, "{:?}", arm.q());
+            // The servos track the setpoint closely; their own ripple adds a little.
+            assert!(fastest <= limits.speed()[0] * 1.02, "{fastest} rad/s");
+            assert!(fastest >= limits.speed()[0] * 0.95, "{fastest} rad/s");
+            assert!(
+                hardest <= limits.acceleration()[0] * 1.5,
+                "{hardest} rad/s²"
+            );
+            Ok(())
+        })
+        .run()
+        .unwrap();
+}

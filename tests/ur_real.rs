@@ -483,3 +483,111 @@ fn a_controller_switched_to_local_control_mid_run_is_named() {
     );
     assert!(!error.contains("did not reach"), "{error}");
 }
+
+/// The joints of a `servoj(...)` line and its `t`.
+fn servoj(line: &str) -> Option<([f64; 6], f64)> {
+    let inside = line.strip_prefix("servoj([")?;
+    let (joints, rest) = inside.split_once(']')?;
+    let joints: Vec<f64> = joints
+        .split(',')
+        .map(|n| n.trim().parse().unwrap())
+        .collect();
+    let t = rest
+        .split("t=")
+        .nth(1)?
+        .split(',')
+        .next()?
+        .trim()
+        .parse()
+        .ok()?;
+    Some((std::array::from_fn(|i| joints[i]), t))
+}
+
+/// The fastest any joint is asked to turn by the `servoj`s among `scripts`, each from where
+/// the one before asked (the first from `start`), rad/s.
+fn fastest_asked(scripts: &[String], start: [f64; 6]) -> (f64, usize) {
+    let mut before = start;
+    let mut fastest: f64 = 0.0;
+    let mut count = 0;
+    for (joints, t) in scripts.iter().filter_map(|line| servoj(line)) {
+        let far = (0..6)
+            .map(|i| (joints[i] - before[i]).abs())
+            .fold(0.0, f64::max);
+        fastest = fastest.max(far / t);
+        before = joints;
+        count += 1;
+    }
+    (fastest, count)
+}
+
+/// A policy's target 2.5 rad from where the arm is, streamed at 20 Hz: the arm is never asked
+/// beyond its joints' 180°/s (each `servoj` goes where the approach at the limits is due), and
+/// arrives.
+#[test]
+fn a_streamed_jump_is_approached_within_the_joint_speed_limit() {
+    let fake = fake_ur5e();
+    let target = [2.5, -1.3, 1.2, -1.5, -1.57, 0.0];
+    real::<Ur5eAlone>(&fake)
+        .behaviour(move |pl| async move {
+            let arm: Ur5e = pl.get("/arm")?;
+            for _ in 0..50 {
+                arm.servo_j(target, 0.05)?;
+                pl.wait_seconds(0.05).await?;
+            }
+            assert!(
+                (arm.q()[0] - target[0]).abs() < 0.01,
+                "the arm is at {:?}",
+                arm.q()
+            );
+            Ok(())
+        })
+        .run()
+        .unwrap();
+    let (fastest, count) = fastest_asked(&fake.scripts(), START);
+    assert!(count >= 45, "{count} servoj sent");
+    let limit = yarok::components::robots::ur::UR_JOINT_SPEED;
+    assert!(fastest <= limit + 1e-3, "a servoj asked {fastest} rad/s");
+    assert!(
+        fastest > 0.9 * limit,
+        "the approach went at the limit: {fastest} rad/s"
+    );
+}
+
+/// A dashboard that answers 0.3 s late (the once-a-second remote-control check) delays no
+/// `servoj` of a 20 Hz stream: none arrives more than 0.15 s after the one before, and none
+/// in a burst.
+#[test]
+fn a_late_dashboard_does_not_stall_the_stream() {
+    let fake = fake_ur5e();
+    fake.set_dashboard_delay(Duration::from_millis(300));
+    real::<Ur5eAlone>(&fake)
+        .behaviour(move |pl| async move {
+            let arm: Ur5e = pl.get("/arm")?;
+            for step in 0..60 {
+                let mut target = START;
+                target[0] += 0.005 * f64::from(step);
+                arm.servo_j(target, 0.05)?;
+                pl.wait_seconds(0.05).await?;
+            }
+            Ok(())
+        })
+        .run()
+        .unwrap();
+    let arrivals: Vec<std::time::Instant> = fake
+        .scripts_arrived()
+        .into_iter()
+        .filter(|(_, line)| line.starts_with("servoj("))
+        .map(|(arrived, _)| arrived)
+        .collect();
+    assert!(arrivals.len() >= 55, "{} servoj arrived", arrivals.len());
+    // From the second on: the behaviour's first wait may end early, as the platform's clock
+    // catches up with connecting.
+    let gaps: Vec<f64> = arrivals[1..]
+        .windows(2)
+        .map(|pair| (pair[1] - pair[0]).as_secs_f64())
+        .collect();
+    let longest = gaps.iter().copied().fold(0.0, f64::max);
+    let shortest = gaps.iter().copied().fold(f64::MAX, f64::min);
+    assert!(longest < 0.15, "the stream stalled {longest} s");
+    assert!(shortest > 0.01, "a burst: two servoj {shortest} s apart");
+}

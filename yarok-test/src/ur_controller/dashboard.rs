@@ -80,6 +80,8 @@ pub(super) async fn serve_dashboard(stream: TcpStream, shared: Arc<Shared>) {
             let _ = writer.write_all(b"Disconnected\n").await;
             return;
         }
+        let delay = *shared.dashboard_delay.lock().unwrap();
+        tokio::time::sleep(delay).await;
         let reply = format!("{}\n", shared.dashboard(command));
         if writer.write_all(reply.as_bytes()).await.is_err() {
             return;

@@ -108,8 +108,10 @@ struct Shared {
     asked: Mutex<Vec<String>>,
     arm: Mutex<Arm>,
     fingers: Mutex<Fingers>,
-    /// URScript lines clients sent.
-    scripts: Mutex<Vec<String>>,
+    /// URScript lines clients sent, each with when it arrived.
+    scripts: Mutex<Vec<(Instant, String)>>,
+    /// How late the dashboard answers each command.
+    dashboard_delay: Mutex<Duration>,
     /// The TCP the last `set_tcp` set.
     tcp: Mutex<[f64; 6]>,
     /// Bumped to drop every RTDE, secondary and gripper connection.
@@ -196,6 +198,7 @@ impl FakeController {
             started: Instant::now(),
             motion: Mutex::new(motion),
             scripts: Mutex::new(Vec::new()),
+            dashboard_delay: Mutex::new(Duration::ZERO),
             tcp: Mutex::new([0.0; 6]),
             inputs: Mutex::new(HashMap::new()),
             asked: Mutex::new(Vec::new()),
@@ -298,7 +301,18 @@ impl FakeController {
 
     /// The URScript clients sent, a line each.
     pub fn scripts(&self) -> Vec<String> {
+        let scripts = self.shared.scripts.lock().unwrap();
+        scripts.iter().map(|(_, line)| line.clone()).collect()
+    }
+
+    /// The URScript clients sent, a line each, with when it arrived.
+    pub fn scripts_arrived(&self) -> Vec<(Instant, String)> {
         self.shared.scripts.lock().unwrap().clone()
+    }
+
+    /// Makes the dashboard answer each command `delay` late, as a busy controller does.
+    pub fn set_dashboard_delay(&self, delay: Duration) {
+        *self.shared.dashboard_delay.lock().unwrap() = delay;
     }
 
     /// Turns the arm off, as `power off` on the dashboard does.

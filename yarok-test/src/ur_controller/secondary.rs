@@ -30,7 +30,11 @@ impl Shared {
     /// arm, it is not running (powered off, brakes locked) or the controller is in local
     /// control; other lines (`def`, `end`, …) are kept only.
     pub(super) fn run_script(&self, line: &str) {
-        self.scripts.lock().unwrap().push(line.to_owned());
+        let arrived = std::time::Instant::now();
+        self.scripts
+            .lock()
+            .unwrap()
+            .push((arrived, line.to_owned()));
         let arm = self.arm.lock().unwrap().clone();
         if arm.safety != "NORMAL" || arm.robot_mode != "RUNNING" || !arm.remote_control {
             return;

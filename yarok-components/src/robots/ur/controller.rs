@@ -16,7 +16,7 @@ use super::error::MotionError;
 use super::kinematics::{IkError, Joints, Kinematics};
 use super::path::Path;
 use super::payload::Payload;
-use super::streaming::{ServoLimits, Stream};
+use super::streaming::{ServoLimits, Stream, within_speed};
 use crate::robots::profile::Profile;
 
 /// Where a motion goes, and how.
@@ -45,6 +45,8 @@ struct State {
     motions: Motions<Path, Joints, MotionError>,
     /// The streamed target being approached, when no motion is under way.
     stream: Option<Stream>,
+    /// Where the last `servoj` of the stream told the arm's own controller to go.
+    ordered: Joints,
 }
 
 /// The joints `t` seconds into `motion` (by inverse kinematics near `near` on a line), and
@@ -85,6 +87,7 @@ impl Controller {
                 },
                 motions: Motions::new(),
                 stream: None,
+                ordered: start,
             }),
         }
     }
@@ -230,7 +233,8 @@ impl Controller {
     /// Streams `target`, due in `seconds`, as URScript's `servoj` does: a motion under way
     /// ends as stopped, and from the next step the setpoint approaches the target within the
     /// servo limits (a stream begins where the arm is measured, at rest, unless it takes over
-    /// a motion's setpoint). The drive is ordered where the setpoint will be when it is due.
+    /// a motion's setpoint). The drive is ordered where the setpoint will be when it is due,
+    /// no farther from its last order than the speed limits reach in `seconds`.
     /// Refused, the stream ended, while the drive cannot move (a real arm's safety stop): the
     /// next target after it clears begins a new stream where the arm is.
     pub(super) fn servo(&self, target: Joints, seconds: f64) -> Result<(), MotionError> {
@@ -244,12 +248,15 @@ impl Controller {
         let mut state = self.state.borrow_mut();
         let took_over_a_motion = state.motions.is_moving();
         state.motions.abandon();
-        if state.stream.is_none() && !took_over_a_motion {
-            let measured = self.drive.q(&state.setpoint);
-            let setpoint = &mut state.setpoint;
-            setpoint.q = measured;
-            setpoint.speed = [0.0; 6];
-            setpoint.acceleration = [0.0; 6];
+        if state.stream.is_none() {
+            if !took_over_a_motion {
+                let measured = self.drive.q(&state.setpoint);
+                let setpoint = &mut state.setpoint;
+                setpoint.q = measured;
+                setpoint.speed = [0.0; 6];
+                setpoint.acceleration = [0.0; 6];
+            }
+            state.ordered = state.setpoint.q;
         }
         let stream = Stream::next(
             state.stream.as_ref(),
@@ -268,9 +275,13 @@ impl Controller {
             &self.servo_limits.get(),
             &self.kinematics.limits,
         );
+        // However late this target came, the arm's own controller is asked no faster than the
+        // limits from where the last `servoj` sent it.
+        let ordered = within_speed(&state.ordered, &due, seconds, &self.servo_limits.get());
+        state.ordered = ordered;
         drop(state);
         self.drive.order(Order::ServoJ {
-            target: due,
+            target: ordered,
             seconds,
         });
         self.command();

@@ -486,9 +486,26 @@ async fn drive(
     let reply = Duration::try_from_secs_f64(settings.reply_seconds).unwrap_or_default();
     let host = settings.host.as_str();
     let secondary_again = async || secondary_stream(host, reply).await;
-    let mut remote_checked = Instant::now();
+    // The remote-control check runs beside the stream, never in its way: a dashboard that
+    // answers late delays nothing that is sent.
+    let mut remote_check: Pin<Box<dyn Future<Output = Result<(), yarok_core::BoxError>> + '_>> =
+        Box::pin(std::future::pending());
+    let mut checking = false;
+    let mut sent_since_check = false;
+    let mut next_check = tokio::time::interval(REMOTE_CHECK);
+    next_check.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Delay);
     loop {
         tokio::select! {
+            _ = next_check.tick(), if !checking && sent_since_check => {
+                remote_check = Box::pin(still_in_remote_control(host, reply));
+                checking = true;
+                sent_since_check = false;
+            }
+            checked = &mut remote_check, if checking => {
+                checking = false;
+                remote_check = Box::pin(std::future::pending());
+                checked?;
+            }
             values = rtde.receive() => match values {
                 Ok(values) => {
                     if let Some(now) = measured(&values) {
@@ -521,10 +538,7 @@ async fn drive(
                 for request in requests {
                     match request {
                         Request::Script(script) | Request::Servo(script) => {
-                            if remote_checked.elapsed() >= REMOTE_CHECK {
-                                remote_checked = Instant::now();
-                                still_in_remote_control(host, reply).await?;
-                            }
+                            sent_since_check = true;
                             if let Err(error) = secondary.send_script(&script).await {
                                 secondary =
                                     reconnect("secondary interface", host, reply, error, secondary_again)
@@ -544,7 +558,8 @@ async fn drive(
 }
 
 /// How often, at most, the driver asks the dashboard whether the controller still takes
-/// scripts (a controller switched to local control mid-run ignores them without a word).
+/// scripts (a controller switched to local control mid-run ignores them without a word): once
+/// a period in which scripts were sent, beside the sending.
 const REMOTE_CHECK: Duration = Duration::from_secs(1);
 
 /// An error naming it when the controller at `host` has been switched to local control.

@@ -181,12 +181,11 @@ impl Stream {
             };
             // The most from which steps of `dt`, slowing by the acceleration limit each, end
             // at the target (at the targets' own speed, while they move).
+            // (√(b² + c) − b, written as c / (√(b² + c) + b): a joint a hair from its target
+            // must not round to 0 and hold the others back.)
             let braking = limits.acceleration[i] * dt / 2.0;
-            let stoppable = (braking.powi(2)
-                + along.max(0.0).powi(2)
-                + 2.0 * limits.acceleration[i] * error[i].abs())
-            .sqrt()
-                - braking;
+            let reach = along.max(0.0).powi(2) + 2.0 * limits.acceleration[i] * error[i].abs();
+            let stoppable = reach / ((braking.powi(2) + reach).sqrt() + braking);
             let most = limits.speed[i].min(stoppable);
             if wanted[i].abs() > most {
                 scale = scale.min(most / wanted[i].abs());
@@ -232,6 +231,25 @@ impl Stream {
         }
         q
     }
+}
+
+/// `to`, or the point toward it from `from` that no joint needs more than its speed limit to
+/// reach in `seconds` (along the line, so that the joints stay together).
+pub(super) fn within_speed(
+    from: &Joints,
+    to: &Joints,
+    seconds: f64,
+    limits: &ServoLimits,
+) -> Joints {
+    let mut scale = 1.0_f64;
+    for i in 0..6 {
+        let far = (to[i] - from[i]).abs();
+        let reach = limits.speed[i] * seconds;
+        if far > reach {
+            scale = scale.min(reach / far);
+        }
+    }
+    std::array::from_fn(|i| from[i] + scale * (to[i] - from[i]))
 }
 
 /// The step `time` falls on, in steps of `dt`.
@@ -381,6 +399,23 @@ mod tests {
         assert!(speed.iter().all(|v| v.abs() < 1e-6), "{speed:?}");
         // From full speed (π rad/s) at 360°/s², π/4 rad.
         assert!((q[0] - before - PI / 4.0).abs() < 0.02, "{}", q[0] - before);
+    }
+
+    #[test]
+    fn a_joint_a_hair_from_its_target_does_not_hold_the_others_back() {
+        let limits = ServoLimits::default();
+        let q = [0.0, -1.3, 1.2, -1.5, -1.57, 3e-21];
+        let stream = Stream::next(
+            None,
+            [2.5, -1.3, 1.2, -1.5, -1.57, 0.0],
+            0.0,
+            0.05,
+            0.01,
+            &limits,
+        );
+        let due = stream.due_from(&q, &[0.0; 6], 0.0, 0.01, &limits, &RANGE);
+        // Five steps of 10 ms from rest at 360°/s²: a hair short of 0.01 rad.
+        assert!((due[0] - 0.0094).abs() < 1e-4, "{due:?}");
     }
 
     #[test]
