@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender, channel};
+use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender, TryRecvError, channel};
 use std::thread::JoinHandle;
 use std::time::Duration;
 
@@ -372,7 +372,33 @@ fn serve(
     if started.send(Ok(info(&platform, &features))).is_err() {
         return;
     }
-    while let Ok(request) = inbox.recv() {
+    // Hardware does not wait for Python: between requests a real world goes on ticking (its
+    // drivers reading the devices, the arm holding or approaching its last target), so that a
+    // policy that thinks long finds fresh observations and no stalled connection.
+    let free_running = spec.environment == "real";
+    // The tick the last reply was taken at: a free-running world's step ends a whole number of
+    // ticks after it (the ticks run meanwhile count), keeping the control rate.
+    let mut last_reply = platform.pl().ticks();
+    loop {
+        let request = if free_running {
+            match inbox.try_recv() {
+                Ok(request) => request,
+                Err(TryRecvError::Empty) => match platform.step() {
+                    Ok(true) => continue,
+                    Ok(false) => break,
+                    Err(error) => {
+                        let _ = outbox.send(Err(error.to_string()));
+                        break;
+                    }
+                },
+                Err(TryRecvError::Disconnected) => break,
+            }
+        } else {
+            match inbox.recv() {
+                Ok(request) => request,
+                Err(_) => break,
+            }
+        };
         // A refused action or placement leaves the world as it was; a failed tick ends it.
         let (reply, ended) = match request {
             Request::Reset {
@@ -387,6 +413,18 @@ fn serve(
                 ticks,
                 periods,
             } => match act(&platform, &features, action) {
+                Ok(()) if free_running => {
+                    let mut reply = (Err("no period".into()), false);
+                    for period in 1..=periods {
+                        let due = last_reply + period * ticks;
+                        let left = due.saturating_sub(platform.pl().ticks()).max(1);
+                        reply = advance(&mut platform, &mut features, left);
+                        if reply.1 {
+                            break;
+                        }
+                    }
+                    reply
+                }
                 Ok(()) => {
                     let mut reply = advance(&mut platform, &mut features, ticks);
                     for _ in 1..periods {
@@ -401,6 +439,7 @@ fn serve(
             },
             Request::Close => break,
         };
+        last_reply = platform.pl().ticks();
         if outbox.send(reply).is_err() || ended {
             break;
         }

@@ -6,6 +6,7 @@ from __future__ import annotations
 import atexit
 import signal
 import threading
+import time
 import weakref
 from dataclasses import dataclass
 from typing import Any, Sequence
@@ -13,7 +14,7 @@ from typing import Any, Sequence
 import gymnasium
 import numpy as np
 
-from ._native import World
+from ._native import World, YarokError
 
 
 @dataclass
@@ -112,6 +113,11 @@ class YarokEnv(gymnasium.Env):
     ``close()`` stops it (devices left safe), as do an exception, Ctrl-C, SIGTERM and SIGHUP
     (raised as ``SystemExit`` where the program set no handler of its own) and the end of the
     program. A safety stop of the arm raises ``YarokError`` naming it at the next ``step``.
+    The robot does not wait for the policy: the real world goes on between steps, each step
+    ends one control period after the last one ended, and a step that comes after its period
+    ended says how late in ``info["late_seconds"]`` (the arm held its last target meanwhile;
+    the observation is the newest measured), raising ``YarokError`` beyond
+    ``max_late_seconds`` when that is given.
     """
 
     metadata = {"render_modes": ["rgb_array"], "render_fps": 20}
@@ -123,6 +129,7 @@ class YarokEnv(gymnasium.Env):
         settings: Sequence[str] = (),
         config: Sequence[str] = (),
         render_mode: str | None = None,
+        max_late_seconds: float | None = None,
     ):
         self.task = task if task is not None else Task()
         cameras = list(self.task.cameras)
@@ -159,6 +166,8 @@ class YarokEnv(gymnasium.Env):
         self.metadata = {**self.metadata, "render_fps": self.task.control_hz}
         self._episodes = 0
         self._start_tick = 0
+        self._max_late = max_late_seconds
+        self._stepped_at = time.monotonic()
         self._last: dict[str, np.ndarray] | None = None
 
     def _keep(self, observation: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
@@ -174,23 +183,39 @@ class YarokEnv(gymnasium.Env):
             # Outside `sim` nothing moves a body by itself: the objects are where they are.
             placements = []
         observation = self.world.reset(self._episodes, placements)
+        self._stepped_at = time.monotonic()
         self._episodes += 1
         self._start_tick = self.world.ticks
         return self._keep(observation), {"time": 0.0}
 
     def step(self, action):
         action = np.clip(np.asarray(action, dtype=np.float64), self._low, self._high)
-        observation = self.world.advance(1.0 / self.task.control_hz, action.tolist())
+        period = 1.0 / self.task.control_hz
+        late = 0.0
+        if self.environment != "sim":
+            # The robot does not wait while the policy thinks: a real world goes on between
+            # steps, a step ends a period after the last one did (the control rate kept), and
+            # a step that comes after its period ended is late.
+            late = time.monotonic() - self._stepped_at - period
+            if self._max_late is not None and late > self._max_late:
+                raise YarokError(
+                    f"the step came {late:.3f} s after its control period ({period} s) ended, "
+                    f"over max_late_seconds={self._max_late}: the robot held its last target"
+                )
+        observation = self.world.advance(period, action.tolist())
+        self._stepped_at = time.monotonic()
         reward = float(self.task.reward(observation, action))
         success = bool(self.task.success(observation))
-        time = (self.world.ticks - self._start_tick) * self._timestep
-        info = {"is_success": success, "time": time}
+        elapsed = (self.world.ticks - self._start_tick) * self._timestep
+        info = {"is_success": success, "time": elapsed}
         # MuJoCo went wrong in the step (an unstable state it reset, a full contact buffer):
         # the episode ends there, truncated, and says why, rather than going on from a world
         # that moved without a cause.
         warnings = self.world.warnings
         if warnings:
             info["warnings"] = warnings
+        if late > 0.0:
+            info["late_seconds"] = late
         return self._keep(observation), reward, success, bool(warnings), info
 
     @property

@@ -3,7 +3,8 @@
 //! its URCap socket, on a loopback address of its own.
 //!
 //! Prints `host ADDRESS` once it listens, then a line for everything clients ask, as they ask
-//! it: `script LINE` for each URScript line, `gripper COMMAND` for each gripper `SET`. Ends when
+//! it: `script SECONDS LINE` for each URScript line (when it arrived, from the fake's start),
+//! `gripper COMMAND` for each gripper `SET`. Ends when
 //! its standard input closes.
 
 use std::io::{BufRead, Write};
@@ -13,6 +14,7 @@ use std::time::Duration;
 use yarok_test::ur_controller::{FakeController, Profile};
 
 fn main() {
+    let started = std::time::Instant::now();
     let fake = FakeController::start(Profile::ESeries);
     let mut out = std::io::stdout().lock();
     let _ = writeln!(out, "host {}", fake.host);
@@ -28,9 +30,10 @@ fn main() {
             Err(RecvTimeoutError::Timeout) => false,
             Ok(()) | Err(RecvTimeoutError::Disconnected) => true,
         };
-        let seen = fake.scripts();
-        for line in &seen[scripts..] {
-            let _ = writeln!(out, "script {}", line.replace('\n', "\\n"));
+        let seen = fake.scripts_arrived();
+        for (arrived, line) in &seen[scripts..] {
+            let at = arrived.duration_since(started).as_secs_f64();
+            let _ = writeln!(out, "script {at:.6} {}", line.replace('\n', "\\n"));
         }
         scripts = seen.len();
         let asked = fake.fingers().commands;

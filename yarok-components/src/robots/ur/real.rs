@@ -506,7 +506,7 @@ async fn drive(
                 remote_check = Box::pin(std::future::pending());
                 checked?;
             }
-            values = rtde.receive() => match values {
+            values = rtde.receive() => match newest(&mut rtde, values).await {
                 Ok(values) => {
                     if let Some(now) = measured(&values) {
                         report_a_halt(&link, &now, host, reply).await;
@@ -553,6 +553,23 @@ async fn drive(
                     }
                 }
             }
+        }
+    }
+}
+
+/// The newest of the packages RTDE has sent: `received`'s, or the last of those already
+/// waiting to be read after it. When the platform was not stepped for a while (a policy that
+/// took long to think), the joints are then where the arm is now, not where it was then.
+async fn newest(
+    rtde: &mut Rtde<TcpStream>,
+    received: Result<Vec<Value>, RtdeError>,
+) -> Result<Vec<Value>, RtdeError> {
+    let mut values = received?;
+    loop {
+        tokio::select! {
+            biased;
+            next = rtde.receive() => values = next?,
+            () = std::future::ready(()) => return Ok(values),
         }
     }
 }
