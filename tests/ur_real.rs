@@ -591,3 +591,83 @@ fn a_late_dashboard_does_not_stall_the_stream() {
     assert!(longest < 0.15, "the stream stalled {longest} s");
     assert!(shortest > 0.01, "a burst: two servoj {shortest} s apart");
 }
+
+/// A protective stop while a policy streams at 20 Hz: the next target is refused naming the
+/// stop, within 0.5 s of it; no `servoj` goes out from then on, not even once the stop is
+/// unlocked, until the stream is re-armed — and then it starts from where the arm is.
+#[test]
+fn a_protective_stop_ends_a_stream_until_it_is_rearmed() {
+    use std::sync::{Arc, Mutex};
+    use std::time::Instant;
+
+    let fake = Arc::new(fake_ur5e());
+    let stopping = Arc::clone(&fake);
+    // When the stop happened, when a target was first refused, when the stream was re-armed
+    // and where the arm was then.
+    let times: Arc<Mutex<[Option<Instant>; 3]>> = Arc::default();
+    let rearmed_at = Arc::new(Mutex::new(START));
+    let (recorded, at) = (Arc::clone(&times), Arc::clone(&rearmed_at));
+    real::<Ur5eAlone>(&fake)
+        .behaviour(move |pl| async move {
+            let arm: Ur5e = pl.get("/arm")?;
+            let mut target = START;
+            for step in 0..40 {
+                if step == 10 {
+                    // Long enough ago that the dashboard lets it be unlocked.
+                    stopping.protective_stop(Duration::from_secs(6));
+                    recorded.lock().unwrap()[0] = Some(Instant::now());
+                }
+                target[0] += 0.005;
+                match arm.servo_j(target, 0.05) {
+                    Ok(()) => assert!(recorded.lock().unwrap()[1].is_none(), "streamed again"),
+                    Err(error) => {
+                        assert!(error.to_string().contains("PROTECTIVE_STOP"), "{error}");
+                        recorded.lock().unwrap()[1].get_or_insert(Instant::now());
+                    }
+                }
+                if step == 25 {
+                    arm.unlock_protective_stop().await?;
+                    let after = arm.servo_j(target, 0.05).unwrap_err();
+                    assert!(
+                        matches!(after, MotionError::StreamStopped { .. }),
+                        "{after}"
+                    );
+                }
+                pl.wait_seconds(0.05).await?;
+            }
+            arm.rearm();
+            recorded.lock().unwrap()[2] = Some(Instant::now());
+            *at.lock().unwrap() = arm.q();
+            arm.servo_j(arm.q(), 0.05)?;
+            pl.wait_seconds(0.2).await?;
+            Ok(())
+        })
+        .run()
+        .unwrap();
+    let [Some(stopped), Some(refused), Some(rearmed)] = *times.lock().unwrap() else {
+        panic!("{:?}", times.lock().unwrap());
+    };
+    assert!(
+        refused - stopped < Duration::from_millis(500),
+        "{:?}",
+        refused - stopped
+    );
+    let servos: Vec<(Instant, String)> = fake
+        .scripts_arrived()
+        .into_iter()
+        .filter(|(_, line)| line.starts_with("servoj("))
+        .collect();
+    let quiet = refused + Duration::from_millis(20)..rearmed;
+    let meanwhile = servos
+        .iter()
+        .filter(|(arrived, _)| quiet.contains(arrived))
+        .count();
+    assert_eq!(meanwhile, 0, "servoj sent while the stream was stopped");
+    let (_, resumed) = servos.last().unwrap();
+    let (joints, _) = servoj(resumed).unwrap();
+    let held = *rearmed_at.lock().unwrap();
+    assert!(
+        (0..6).all(|i| (joints[i] - held[i]).abs() < 1e-3),
+        "{resumed} from {held:?}"
+    );
+}

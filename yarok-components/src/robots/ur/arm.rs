@@ -222,7 +222,8 @@ impl Arm {
     /// beyond its limits or not a number; the reason the arm cannot move
     /// ([`MotionError::SafetyStop`](super::MotionError::SafetyStop),
     /// [`MotionError::NotRunning`](super::MotionError::NotRunning)) while it cannot: the stream
-    /// ends, and the next target after the stop clears begins one where the arm is.
+    /// ends; after it, [`MotionError::StreamStopped`](super::MotionError::StreamStopped) until
+    /// [`Arm::rearm`] (or an episode's begin), even once the stop has cleared.
     pub fn servo_j(&self, target: Joints, seconds: f64) -> Result<(), super::MotionError> {
         self.controller.servo(target, seconds)
     }
@@ -239,6 +240,13 @@ impl Arm {
     /// `action` for a frame, `seconds` the frame period.
     pub fn target_in(&self, seconds: f64) -> Joints {
         self.controller.target_in(seconds)
+    }
+
+    /// Re-arms a stream of targets that a stop ended ([`MotionError::StreamStopped`](super::MotionError::StreamStopped)):
+    /// the next target begins a stream from where the arm is measured then. Beginning an
+    /// episode does the same.
+    pub fn rearm(&self) {
+        self.controller.end_stream();
     }
 
     /// The per-joint speed and acceleration limits streamed targets are approached within

@@ -47,6 +47,9 @@ struct State {
     stream: Option<Stream>,
     /// Where the last `servoj` of the stream told the arm's own controller to go.
     ordered: Joints,
+    /// What stopped a stream (a real arm's safety stop, its power): streamed targets are
+    /// refused with it until the stream is re-armed, even once the stop has cleared.
+    stopped: Option<MotionError>,
 }
 
 /// The joints `t` seconds into `motion` (by inverse kinematics near `near` on a line), and
@@ -88,6 +91,7 @@ impl Controller {
                 motions: Motions::new(),
                 stream: None,
                 ordered: start,
+                stopped: None,
             }),
         }
     }
@@ -172,8 +176,9 @@ impl Controller {
         let Some(stream) = state.stream else {
             return;
         };
-        if self.drive.halt().is_some() {
+        if let Some(halted) = self.drive.halt() {
             state.stream = None;
+            state.stopped = Some(halted);
             let measured = self.drive.q(&state.setpoint);
             let setpoint = &mut state.setpoint;
             setpoint.q = measured;
@@ -214,9 +219,12 @@ impl Controller {
         self.command();
     }
 
-    /// Ends a stream of targets: the next target begins one from where the arm is measured.
+    /// Ends a stream of targets, and re-arms one a stop ended: the next target begins one from
+    /// where the arm is measured.
     pub(super) fn end_stream(&self) {
-        self.state.borrow_mut().stream = None;
+        let mut state = self.state.borrow_mut();
+        state.stream = None;
+        state.stopped = None;
     }
 
     /// Ends a motion under way as stopped, and a stream, and holds `q` at rest.
@@ -224,6 +232,7 @@ impl Controller {
         let mut state = self.state.borrow_mut();
         state.motions.abandon();
         state.stream = None;
+        state.stopped = None;
         let setpoint = &mut state.setpoint;
         setpoint.q = q;
         setpoint.speed = [0.0; 6];
@@ -235,13 +244,21 @@ impl Controller {
     /// servo limits (a stream begins where the arm is measured, at rest, unless it takes over
     /// a motion's setpoint). The drive is ordered where the setpoint will be when it is due,
     /// no farther from its last order than the speed limits reach in `seconds`.
-    /// Refused, the stream ended, while the drive cannot move (a real arm's safety stop): the
-    /// next target after it clears begins a new stream where the arm is.
+    /// Refused, the stream ended, while the drive cannot move (a real arm's safety stop), and
+    /// after that until [`Controller::end_stream`] re-arms it: the stream then begins again
+    /// where the arm is.
     pub(super) fn servo(&self, target: Joints, seconds: f64) -> Result<(), MotionError> {
         self.joint_path(target, target)?;
         if let Some(halted) = self.drive.halt() {
-            self.state.borrow_mut().stream = None;
+            let mut state = self.state.borrow_mut();
+            state.stream = None;
+            state.stopped = Some(halted.clone());
             return Err(halted);
+        }
+        if let Some(stopped) = self.state.borrow().stopped.clone() {
+            return Err(MotionError::StreamStopped {
+                cause: Box::new(stopped),
+            });
         }
         let now = self.clock.time();
         let dt = self.clock.timestep();

@@ -76,6 +76,18 @@ pub enum MotionError {
         /// The controller's robot mode.
         mode: &'static str,
     },
+    /// A stream of targets ([`Arm::servo_j`](super::Arm::servo_j)) was ended by `cause` (a
+    /// safety stop, the power), and stays ended after the stop clears until it is re-armed
+    /// ([`Arm::rearm`](super::Arm::rearm), or an episode's begin): nothing a policy sends
+    /// meanwhile reaches the arm.
+    #[error(
+        "streaming stopped: {cause}; once it is cleared, re-arm the stream (Arm::rearm, or \
+         begin an episode) to stream from where the arm is"
+    )]
+    StreamStopped {
+        /// What stopped it.
+        cause: Box<MotionError>,
+    },
     /// The platform stopped, or a timeout passed.
     #[error(transparent)]
     Wait(#[from] WaitError),
