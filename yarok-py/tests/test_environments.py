@@ -217,7 +217,7 @@ def test_a_world_stepped_from_a_second_thread_raises_there_instead_of_deadlockin
 
     with yarok.World("digit_world") as world:
         world.reset(0)
-        stepping = threading.Thread(target=lambda: world.advance(3.0))
+        stepping = threading.Thread(target=lambda: world.advance(60.0))
         stepping.start()
         time.sleep(0.3)
         with pytest.raises(yarok.YarokError, match="busy with a call from another thread"):

