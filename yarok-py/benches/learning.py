@@ -68,21 +68,21 @@ def timed(what: str, run) -> float:
     return seconds
 
 
-def evaluate(checkpoint: Path | None, train_dir: Path, episodes: int) -> dict:
-    """LeRobot's ``eval_policy`` of the checkpoint (``None``: ACT as configured, untrained)."""
+def evaluate(train_dir: Path, episodes: int, trained: bool) -> dict:
+    """LeRobot's ``eval_policy`` of the policy ``train_dir`` holds, or of the same ACT untrained."""
     import torch
     from lerobot.policies.act.modeling_act import ACTPolicy
     from lerobot.policies.factory import make_pre_post_processors
     from lerobot.processor import PolicyProcessorPipeline
     from lerobot.scripts.lerobot_eval import eval_policy
 
-    trained = train_dir / "checkpoints/last/pretrained_model"
-    policy = ACTPolicy.from_pretrained(trained)
-    if checkpoint is None:
+    checkpoint = train_dir / "checkpoints/last/pretrained_model"
+    policy = ACTPolicy.from_pretrained(checkpoint)
+    if not trained:
         torch.manual_seed(0)
         policy = ACTPolicy(policy.config)
         policy.eval()
-    pre, post = make_pre_post_processors(policy.config, pretrained_path=str(trained))
+    pre, post = make_pre_post_processors(policy.config, pretrained_path=str(checkpoint))
     identity = PolicyProcessorPipeline(steps=[])
     env = yarok.lerobot.make_vector_env("yarok/PickPlace-v0", n_envs=1)
     try:
@@ -199,8 +199,8 @@ def main() -> None:
             check=True,
         ),
     )
-    trained = evaluate(train / "checkpoints/last/pretrained_model", train, arguments.episodes)
-    untrained = evaluate(None, train, arguments.episodes)
+    trained = evaluate(train, arguments.episodes, trained=True)
+    untrained = evaluate(train, arguments.episodes, trained=False)
     print(
         f"\nyarok/PickPlace-v0, {arguments.episodes} held-out seeds from {HELD_OUT_SEED}, "
         f"ACT on the state features, {arguments.demos} demonstrations, "

@@ -9,7 +9,7 @@ use std::thread::JoinHandle;
 use std::time::Duration;
 
 use yarok::components::demos::{self, Demo};
-use yarok::components::plugins::features::{Features, Observation};
+use yarok::components::plugins::features::{Features, Observation, check_action_length};
 use yarok::core::runtime::Platform;
 use yarok::core::suggest::did_you_mean;
 use yarok::mjc::{SimBackend, Warnings};
@@ -51,14 +51,7 @@ impl WorldInfo {
     /// world of a vector before any is sent its action, so that one refusal leaves all as
     /// they were.
     pub(crate) fn check_action(&self, action: &[f64]) -> Result<(), String> {
-        if action.len() != self.action_names.len() {
-            return Err(format!(
-                "the action has {} numbers; this world's has {} ({})",
-                action.len(),
-                self.action_names.len(),
-                self.action_names.join(", ")
-            ));
-        }
+        check_action_length(&self.action_names, action)?;
         let named = self.action_names.iter().zip(&self.action_ranges);
         for ((name, [lowest, highest]), value) in named.zip(action) {
             if !(lowest..=highest).contains(&value) {
@@ -132,10 +125,10 @@ pub(crate) fn forked() {
 pub(crate) fn starting() -> Result<(), String> {
     if FORKED_AFTER_WORLDS.load(Ordering::Relaxed) {
         return Err(
-            "this process was forked from one that had started yarok worlds, whose \
-                        threads and rendering locks a fork does not carry: start processes with \
-                        multiprocessing's \"spawn\" method (gymnasium.make_vec(…, \
-                        vectorization_mode=\"async\", vector_kwargs={\"context\": \"spawn\"}))"
+            "this process was forked from one that had started yarok worlds, whose threads and \
+             rendering locks a fork does not carry: start processes with multiprocessing's \
+             \"spawn\" method (gymnasium.make_vec(…, vectorization_mode=\"async\", \
+             vector_kwargs={\"context\": \"spawn\"}))"
                 .into(),
         );
     }

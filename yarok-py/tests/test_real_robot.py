@@ -44,6 +44,19 @@ def fake_controller():
         process.wait()
 
 
+def real_env(fake_controller, **kwargs):
+    """``yarok/PickPlace-v0`` on the real robot, its arm and gripper the fake controller's
+    (whose first line names its address)."""
+    host = fake_controller.stdout.readline().split()[1]
+    return gymnasium.make(
+        "yarok/PickPlace-v0",
+        env="real",
+        task_kwargs={"world": "pick_and_place_world"},
+        settings=[f'interfaces/arm/host="{host}"', f'interfaces/arm/gripper/host="{host}"'],
+        **kwargs,
+    )
+
+
 def script_line(said: str) -> str:
     """The URScript of the fake's ``script SECONDS LINE``."""
     return said.split(" ", 2)[2]
@@ -66,14 +79,7 @@ def joints_of(script: str) -> list[float]:
 def test_actions_reach_the_real_arm_as_servoj_at_the_control_rate_and_close_stops_it(
     fake_controller,
 ):
-    host = fake_controller.stdout.readline().split()[1]
-    env = gymnasium.make(
-        "yarok/PickPlace-v0",
-        env="real",
-        task_kwargs={"world": "pick_and_place_world"},
-        settings=[f'interfaces/arm/host="{host}"', f'interfaces/arm/gripper/host="{host}"'],
-        max_episode_steps=STEPS,
-    )
+    env = real_env(fake_controller, max_episode_steps=STEPS)
     observation, _ = env.reset(seed=0)
     # Nothing measures the blocks on hardware; the arm's joints are measured.
     assert observation["observation.environment_state"].shape == (0,)
@@ -126,13 +132,7 @@ def test_a_stalled_or_slow_policy_gets_fresh_observations_and_the_arm_no_burst(f
     """Ten steps at 20 Hz, a 2 s stall (a model warming up), ten more at 20 Hz, then ten at
     12.5 Hz: every ``servoj`` asks no joint beyond its speed limit, none comes in a burst, the
     step after the stall says how late it was, and its observation is where the arm is then."""
-    host = fake_controller.stdout.readline().split()[1]
-    env = gymnasium.make(
-        "yarok/PickPlace-v0",
-        env="real",
-        task_kwargs={"world": "pick_and_place_world"},
-        settings=[f'interfaces/arm/host="{host}"', f'interfaces/arm/gripper/host="{host}"'],
-    )
+    env = real_env(fake_controller)
     observation, _ = env.reset(seed=0)
     start = observation["observation.state"][1:7].astype(np.float64)
     sent, lates = [], []

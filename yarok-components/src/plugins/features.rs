@@ -77,6 +77,24 @@ pub fn image_key(path: &str) -> String {
     )
 }
 
+/// Whether `action` has one number per name of a world's `action_names`; else what it should
+/// have, in words.
+///
+/// # Errors
+///
+/// When the counts differ, naming the action's numbers.
+pub fn check_action_length(action_names: &[String], action: &[f64]) -> Result<(), String> {
+    if action.len() == action_names.len() {
+        return Ok(());
+    }
+    Err(format!(
+        "the action has {} numbers; this world's has {} ({})",
+        action.len(),
+        action_names.len(),
+        action_names.join(", ")
+    ))
+}
+
 impl Features {
     /// The features of `world`, a world that has started, with the model's `cameras` rendered
     /// at `size` (with MuJoCo's shadows and reflections when `quality`).
@@ -302,15 +320,7 @@ impl Features {
     /// When `action` has not one number per name, or a component refuses its share (naming
     /// it).
     pub fn act(&self, world: &World<'_>, action: &[f64]) -> Result<(), BoxError> {
-        if action.len() != self.action_names.len() {
-            return Err(format!(
-                "the action has {} numbers; this world's has {} ({})",
-                action.len(),
-                self.action_names.len(),
-                self.action_names.join(", ")
-            )
-            .into());
-        }
+        check_action_length(&self.action_names, action)?;
         let actuations = world.actuations();
         let mut shares = Vec::with_capacity(actuations.len());
         let mut rest = action;

@@ -262,6 +262,7 @@ impl Controller {
         }
         let now = self.clock.time();
         let dt = self.clock.timestep();
+        let limits = self.servo_limits.get();
         let mut state = self.state.borrow_mut();
         let took_over_a_motion = state.motions.is_moving();
         state.motions.abandon();
@@ -275,26 +276,19 @@ impl Controller {
             }
             state.ordered = state.setpoint.q;
         }
-        let stream = Stream::next(
-            state.stream.as_ref(),
-            target,
-            now,
-            seconds,
-            dt,
-            &self.servo_limits.get(),
-        );
+        let stream = Stream::next(state.stream.as_ref(), target, now, seconds, dt, &limits);
         state.stream = Some(stream);
         let due = stream.due_from(
             &state.setpoint.q,
             &state.setpoint.speed,
             now,
             dt,
-            &self.servo_limits.get(),
+            &limits,
             &self.kinematics.limits,
         );
         // However late this target came, the arm's own controller is asked no faster than the
         // limits from where the last `servoj` sent it.
-        let ordered = within_speed(&state.ordered, &due, seconds, &self.servo_limits.get());
+        let ordered = within_speed(&state.ordered, &due, seconds, &limits);
         state.ordered = ordered;
         drop(state);
         self.drive.order(Order::ServoJ {

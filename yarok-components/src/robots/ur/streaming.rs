@@ -170,10 +170,8 @@ impl Stream {
         let now = step_at(now, dt);
         let remaining = (self.due - now).max(1) as f64 * dt;
         let held = now >= self.due;
-        let mut wanted: Joints = std::array::from_fn(|i| error[i] / remaining);
-        // Slowed as a whole, so that the joints keep to the line toward the target.
-        let mut scale = 1.0_f64;
-        for i in 0..6 {
+        let wanted: Joints = std::array::from_fn(|i| error[i] / remaining);
+        let fastest: Joints = std::array::from_fn(|i| {
             let along = if held {
                 0.0
             } else {
@@ -186,23 +184,14 @@ impl Stream {
             let braking = limits.acceleration[i] * dt / 2.0;
             let reach = along.max(0.0).powi(2) + 2.0 * limits.acceleration[i] * error[i].abs();
             let stoppable = reach / ((braking.powi(2) + reach).sqrt() + braking);
-            let most = limits.speed[i].min(stoppable);
-            if wanted[i].abs() > most {
-                scale = scale.min(most / wanted[i].abs());
-            }
-        }
-        for v in &mut wanted {
-            *v *= scale;
-        }
+            limits.speed[i].min(stoppable)
+        });
+        // Slowed as a whole, so that the joints keep to the line toward the target.
+        let scale = fitting(&wanted, &fastest);
+        let wanted: Joints = std::array::from_fn(|i| wanted[i] * scale);
         // The change of speed, too, is cut as a whole: a motion along the line stays on it.
-        let mut cut = 1.0_f64;
-        for i in 0..6 {
-            let change = (wanted[i] - speed[i]).abs();
-            let most = limits.acceleration[i] * dt;
-            if change > most {
-                cut = cut.min(most / change);
-            }
-        }
+        let change: Joints = std::array::from_fn(|i| wanted[i] - speed[i]);
+        let cut = fitting(&change, &limits.acceleration.map(|a| a * dt));
         let mut next_q = *q;
         let mut next_speed = *speed;
         for i in 0..6 {
@@ -241,15 +230,20 @@ pub(super) fn within_speed(
     seconds: f64,
     limits: &ServoLimits,
 ) -> Joints {
-    let mut scale = 1.0_f64;
-    for i in 0..6 {
-        let far = (to[i] - from[i]).abs();
-        let reach = limits.speed[i] * seconds;
-        if far > reach {
-            scale = scale.min(reach / far);
-        }
-    }
-    std::array::from_fn(|i| from[i] + scale * (to[i] - from[i]))
+    let far: Joints = std::array::from_fn(|i| to[i] - from[i]);
+    let scale = fitting(&far, &limits.speed.map(|v| v * seconds));
+    std::array::from_fn(|i| from[i] + scale * far[i])
+}
+
+/// The largest factor, at most 1, that brings every joint's `wanted` within its `most`: how a
+/// motion is slowed as a whole, keeping its joints together.
+fn fitting(wanted: &Joints, most: &Joints) -> f64 {
+    wanted
+        .iter()
+        .zip(most)
+        .filter(|(wanted, most)| wanted.abs() > **most)
+        .map(|(wanted, most)| most / wanted.abs())
+        .fold(1.0, f64::min)
 }
 
 /// The step `time` falls on, in steps of `dt`.
