@@ -41,14 +41,22 @@ const KINDS: [(sys::mjtWarning, &str); 7] = [
 ///
 /// # Examples
 ///
-/// ```no_run
-/// # fn check(data: &mut yarok_mjc::Data) {
+/// ```
+/// use std::sync::Arc;
+/// use yarok_mjc::{Data, Model};
+///
+/// let model = Arc::new(Model::from_xml_str(
+///     r#"<mujoco><worldbody><body><joint name="hinge"/><geom size="0.1"/></body>
+///        </worldbody><actuator><motor name="push" joint="hinge"/></actuator></mujoco>"#,
+/// )?);
+/// let mut data = Data::new(&model)?;
 /// let before = data.warnings();
+/// data.set_ctrl(model.actuator("push")?, f64::NAN);
 /// data.step();
-/// for warning in data.warnings().since(&before) {
-///     eprintln!("the step went wrong: {warning}");
-/// }
-/// # }
+/// let raised = data.warnings().since(&before);
+/// assert_eq!(raised.len(), 1, "a NaN control is reported: {raised:?}");
+/// assert!(raised[0].contains("control"));
+/// # Ok::<(), yarok_mjc::ModelError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Warnings([i32; KINDS.len()]);
