@@ -18,7 +18,7 @@ use support::simulated_ur;
 use yarok_test::ur_controller;
 
 use simulated_ur::{SimulatedArm, Ur5Alone, Ur5eAlone};
-use ur_controller::{FakeController, Profile};
+use ur_controller::{FakeController, Profile, ProgramEvent};
 use yarok_test::assert_says;
 
 /// Where the arms start.
@@ -37,6 +37,9 @@ fn real<W: Component>(fake: &FakeController) -> yarok::core::runtime::PlatformBu
             "real".to_owned(),
             "--set".to_owned(),
             format!("interfaces/arm/host=\"{}\"", fake.host),
+            // Any free port for the streaming program: tests run side by side.
+            "--set".to_owned(),
+            "interfaces/arm/reverse_port=0".to_owned(),
         ])
         .unwrap()
 }
@@ -484,45 +487,26 @@ fn a_controller_switched_to_local_control_mid_run_is_named() {
     assert!(!error.contains("did not reach"), "{error}");
 }
 
-/// The joints of a `servoj(...)` line and its `t`.
-fn servoj(line: &str) -> Option<([f64; 6], f64)> {
-    let inside = line.strip_prefix("servoj([")?;
-    let (joints, rest) = inside.split_once(']')?;
-    let joints: Vec<f64> = joints
-        .split(',')
-        .map(|n| n.trim().parse().unwrap())
-        .collect();
-    let t = rest
-        .split("t=")
-        .nth(1)?
-        .split(',')
-        .next()?
-        .trim()
-        .parse()
-        .ok()?;
-    Some((std::array::from_fn(|i| joints[i]), t))
-}
-
-/// The fastest any joint is asked to turn by the `servoj`s among `scripts`, each from where
-/// the one before asked (the first from `start`), rad/s.
-fn fastest_asked(scripts: &[String], start: [f64; 6]) -> (f64, usize) {
+/// The fastest any joint was asked to turn by the targets the streaming programs read, each
+/// from the one before (the first from `start`) over its period, rad/s; and how many there
+/// were.
+fn fastest_asked(fake: &FakeController, start: [f64; 6]) -> (f64, usize) {
     let mut before = start;
     let mut fastest: f64 = 0.0;
-    let mut count = 0;
-    for (joints, t) in scripts.iter().filter_map(|line| servoj(line)) {
+    let targets = fake.program_targets();
+    for (_, joints, period) in &targets {
         let far = (0..6)
             .map(|i| (joints[i] - before[i]).abs())
             .fold(0.0, f64::max);
-        fastest = fastest.max(far / t);
-        before = joints;
-        count += 1;
+        fastest = fastest.max(far / period);
+        before = *joints;
     }
-    (fastest, count)
+    (fastest, targets.len())
 }
 
-/// A policy's target 2.5 rad from where the arm is, streamed at 20 Hz: the arm is never asked
-/// beyond its joints' 180°/s (each `servoj` goes where the approach at the limits is due), and
-/// arrives.
+/// A policy's target 2.5 rad from where the arm is, streamed at 20 Hz: one streaming program
+/// runs for the whole stream; the arm is never asked beyond its joints' 180°/s (each target
+/// is where the approach at the limits is due), and arrives.
 #[test]
 fn a_streamed_jump_is_approached_within_the_joint_speed_limit() {
     let fake = fake_ur5e();
@@ -543,10 +527,16 @@ fn a_streamed_jump_is_approached_within_the_joint_speed_limit() {
         })
         .run()
         .unwrap();
-    let (fastest, count) = fastest_asked(&fake.scripts(), START);
-    assert!(count >= 45, "{count} servoj sent");
+    let (fastest, count) = fastest_asked(&fake, START);
+    assert!(count >= 45, "{count} targets sent");
+    let programs = fake.scripts();
+    let programs: Vec<&String> = programs
+        .iter()
+        .filter(|s| s.starts_with("def yarok_stream():"))
+        .collect();
+    assert_eq!(programs.len(), 1, "one program for the stream");
     let limit = yarok::components::robots::ur::UR_JOINT_SPEED;
-    assert!(fastest <= limit + 1e-3, "a servoj asked {fastest} rad/s");
+    assert!(fastest <= limit + 1e-3, "a target asked {fastest} rad/s");
     assert!(
         fastest > 0.9 * limit,
         "the approach went at the limit: {fastest} rad/s"
@@ -554,8 +544,8 @@ fn a_streamed_jump_is_approached_within_the_joint_speed_limit() {
 }
 
 /// A dashboard that answers 0.3 s late (the once-a-second remote-control check) delays no
-/// `servoj` of a 20 Hz stream: none arrives more than 0.15 s after the one before, and none
-/// in a burst.
+/// target of a 20 Hz stream: none reaches the streaming program more than 0.15 s after the one
+/// before, and none in a burst.
 #[test]
 fn a_late_dashboard_does_not_stall_the_stream() {
     let fake = fake_ur5e();
@@ -574,12 +564,11 @@ fn a_late_dashboard_does_not_stall_the_stream() {
         .run()
         .unwrap();
     let arrivals: Vec<std::time::Instant> = fake
-        .scripts_arrived()
+        .program_targets()
         .into_iter()
-        .filter(|(_, line)| line.starts_with("servoj("))
-        .map(|(arrived, _)| arrived)
+        .map(|(arrived, _, _)| arrived)
         .collect();
-    assert!(arrivals.len() >= 55, "{} servoj arrived", arrivals.len());
+    assert!(arrivals.len() >= 55, "{} targets arrived", arrivals.len());
     // From the second on: the behaviour's first wait may end early, as the platform's clock
     // catches up with connecting.
     let gaps: Vec<f64> = arrivals[1..]
@@ -589,12 +578,13 @@ fn a_late_dashboard_does_not_stall_the_stream() {
     let longest = gaps.iter().copied().fold(0.0, f64::max);
     let shortest = gaps.iter().copied().fold(f64::MAX, f64::min);
     assert!(longest < 0.15, "the stream stalled {longest} s");
-    assert!(shortest > 0.01, "a burst: two servoj {shortest} s apart");
+    assert!(shortest > 0.01, "a burst: two targets {shortest} s apart");
 }
 
-/// A protective stop while a policy streams at 20 Hz: the next target is refused naming the
-/// stop, within 0.5 s of it; no `servoj` goes out from then on, not even once the stop is
-/// unlocked, until the stream is re-armed — and then it starts from where the arm is.
+/// A protective stop while a policy streams at 20 Hz: the streaming program ends, the next
+/// target is refused naming the stop, within 0.5 s of it; no target goes out from then on, not
+/// even once the stop is unlocked, until the stream is re-armed — and then a new program
+/// starts from where the arm is.
 #[test]
 fn a_protective_stop_ends_a_stream_until_it_is_rearmed() {
     use std::sync::{Arc, Mutex};
@@ -652,22 +642,153 @@ fn a_protective_stop_ends_a_stream_until_it_is_rearmed() {
         "{:?}",
         refused - stopped
     );
-    let servos: Vec<(Instant, String)> = fake
-        .scripts_arrived()
-        .into_iter()
-        .filter(|(_, line)| line.starts_with("servoj("))
-        .collect();
+    let targets = fake.program_targets();
     let quiet = refused + Duration::from_millis(20)..rearmed;
-    let meanwhile = servos
+    let meanwhile = targets
         .iter()
-        .filter(|(arrived, _)| quiet.contains(arrived))
+        .filter(|(arrived, _, _)| quiet.contains(arrived))
         .count();
-    assert_eq!(meanwhile, 0, "servoj sent while the stream was stopped");
-    let (_, resumed) = servos.last().unwrap();
-    let (joints, _) = servoj(resumed).unwrap();
+    assert_eq!(meanwhile, 0, "targets sent while the stream was stopped");
+    let (_, resumed, _) = targets.last().unwrap();
     let held = *rearmed_at.lock().unwrap();
     assert!(
-        (0..6).all(|i| (joints[i] - held[i]).abs() < 1e-3),
-        "{resumed} from {held:?}"
+        (0..6).all(|i| (resumed[i] - held[i]).abs() < 1e-3),
+        "{resumed:?} from {held:?}"
     );
+    let ends = fake.program_ends();
+    assert!(
+        ends.first()
+            .is_some_and(|(at, why)| why.contains("PROTECTIVE_STOP") && *at < refused),
+        "{ends:?}"
+    );
+    let started = fake
+        .program_events()
+        .iter()
+        .filter(|(_, event)| *event == ProgramEvent::Started)
+        .count();
+    assert_eq!(started, 2, "a new program after re-arming");
+}
+
+/// yarok falls silent mid-stream (its thread blocked 0.6 s, as a hung process or a cut
+/// network would): the streaming program's watchdog stops the arm within its time (0.2 s, and
+/// a controller step); the next target is refused naming the program's end, until the stream
+/// is re-armed, when a new program streams again.
+#[test]
+fn a_silent_sender_is_stopped_by_the_programs_watchdog() {
+    use std::sync::{Arc, Mutex};
+    use std::time::Instant;
+
+    let fake = fake_ur5e();
+    let silent_from: Arc<Mutex<Option<Instant>>> = Arc::default();
+    let noted = Arc::clone(&silent_from);
+    let refused: Arc<Mutex<Option<Result<(), MotionError>>>> = Arc::default();
+    let refusal = Arc::clone(&refused);
+    real::<Ur5eAlone>(&fake)
+        .behaviour(move |pl| async move {
+            let arm: Ur5e = pl.get("/arm")?;
+            let mut target = START;
+            for _ in 0..10 {
+                target[0] += 0.01;
+                arm.servo_j(target, 0.05)?;
+                pl.wait_seconds(0.05).await?;
+            }
+            *noted.lock().unwrap() = Some(Instant::now());
+            std::thread::sleep(Duration::from_millis(600));
+            // The platform's clock catches up at once after a block: wait in wall time.
+            let woke = Instant::now();
+            while woke.elapsed() < Duration::from_millis(150) {
+                pl.wait_seconds(0.01).await?;
+            }
+            *refusal.lock().unwrap() = Some(arm.servo_j(target, 0.05));
+            arm.rearm();
+            arm.servo_j(arm.q(), 0.05)?;
+            pl.wait_seconds(0.3).await?;
+            Ok(())
+        })
+        .run()
+        .unwrap();
+    let silent_from = silent_from.lock().unwrap().unwrap();
+    let ends = fake.program_ends();
+    match refused.lock().unwrap().take() {
+        // Refused as the program's end, or as the stream that end stopped.
+        Some(Err(MotionError::StreamStopped { cause }))
+            if matches!(*cause, MotionError::ProgramStopped { .. }) =>
+        {
+            assert!(cause.to_string().contains("watchdog"), "{cause}")
+        }
+        Some(Err(error @ MotionError::ProgramStopped { .. })) => {
+            assert!(error.to_string().contains("watchdog"), "{error}")
+        }
+        other => panic!("{other:?} after the program ended: {ends:?}"),
+    }
+    let (ended_at, why) = ends.first().expect("the program ended");
+    assert!(why.contains("watchdog"), "{why}");
+    let late = ended_at.duration_since(silent_from).as_secs_f64();
+    assert!(
+        late < 0.2 + 0.05,
+        "the watchdog stopped the arm {late} s after the last word"
+    );
+    let steps_after = fake
+        .program_steps()
+        .iter()
+        .filter(|(at, _)| at > ended_at && *at < silent_from + Duration::from_millis(600))
+        .count();
+    assert_eq!(steps_after, 0, "the stopped program moved the arm");
+    let started = fake
+        .program_events()
+        .iter()
+        .filter(|(_, event)| *event == ProgramEvent::Started)
+        .count();
+    assert_eq!(started, 2, "a new program after re-arming");
+}
+
+/// A behaviour that streams at 20 Hz, pauses 2 s (a model warming up), streams at 20 Hz again,
+/// then at 12.5 Hz: one streaming program throughout (kept alive through the pause), no target
+/// asks beyond the joint speed limit, none comes in a burst, and the arm follows.
+#[test]
+fn a_paused_then_slower_stream_keeps_one_program_within_the_limits() {
+    let fake = fake_ur5e();
+    real::<Ur5eAlone>(&fake)
+        .behaviour(move |pl| async move {
+            let arm: Ur5e = pl.get("/arm")?;
+            let mut target = START;
+            for step in 0..40 {
+                if step == 10 {
+                    pl.wait_seconds(2.0).await?;
+                }
+                let period = if step >= 25 { 0.08 } else { 0.05 };
+                target[0] += 0.02;
+                arm.servo_j(target, period)?;
+                pl.wait_seconds(period).await?;
+            }
+            pl.wait_seconds(0.3).await?;
+            assert!(
+                (arm.q()[0] - target[0]).abs() < 0.01,
+                "the arm is at {:?}",
+                arm.q()
+            );
+            Ok(())
+        })
+        .run()
+        .unwrap();
+    let (fastest, count) = fastest_asked(&fake, START);
+    assert_eq!(count, 40, "one target per step");
+    let limit = yarok::components::robots::ur::UR_JOINT_SPEED;
+    assert!(fastest <= limit + 1e-3, "a target asked {fastest} rad/s");
+    let arrivals: Vec<std::time::Instant> = fake
+        .program_targets()
+        .into_iter()
+        .map(|(arrived, _, _)| arrived)
+        .collect();
+    let shortest = arrivals
+        .windows(2)
+        .map(|pair| (pair[1] - pair[0]).as_secs_f64())
+        .fold(f64::MAX, f64::min);
+    assert!(shortest > 0.01, "a burst: two targets {shortest} s apart");
+    let ends = fake.program_ends();
+    let before_the_end: Vec<_> = ends
+        .iter()
+        .filter(|(at, _)| *at < *arrivals.last().unwrap())
+        .collect();
+    assert!(before_the_end.is_empty(), "{ends:?}");
 }

@@ -174,6 +174,9 @@ pub(super) async fn serve_gripper(stream: TcpStream, shared: Arc<Shared>) {
         tokio::select! {
             line = lines.next_line() => {
                 let Ok(Some(command)) = line else { return };
+                if shared.gripper_mute.load(Ordering::Relaxed) {
+                    continue;
+                }
                 let reply = format!("{}\n", shared.gripper(command.trim()));
                 if writer.write_all(reply.as_bytes()).await.is_err() {
                     return;

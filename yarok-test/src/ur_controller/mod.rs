@@ -25,6 +25,7 @@ use tokio::net::TcpListener;
 use yarok_hw::ur::rtde::{ControllerVersion, Value};
 
 mod dashboard;
+mod external_control;
 mod gripper;
 pub mod motion;
 mod realtime;
@@ -32,6 +33,8 @@ mod rtde;
 mod secondary;
 
 use motion::{ArmCommand, ArmMotion, Interpolated};
+
+pub use external_control::ProgramEvent;
 
 use dashboard::serve_dashboard;
 use gripper::{Fingers, serve_gripper};
@@ -108,8 +111,12 @@ struct Shared {
     asked: Mutex<Vec<String>>,
     arm: Mutex<Arm>,
     fingers: Mutex<Fingers>,
-    /// URScript lines clients sent, each with when it arrived.
+    /// URScript lines clients sent (a program whole), each with when it arrived.
     scripts: Mutex<Vec<(Instant, String)>>,
+    /// The streaming programs' runs: each message, each controller step, each end.
+    program_events: Mutex<Vec<(Instant, ProgramEvent)>>,
+    /// Set to end the streaming program running, if one runs.
+    running_program: Mutex<Option<Arc<std::sync::atomic::AtomicBool>>>,
     /// How late the dashboard answers each command.
     dashboard_delay: Mutex<Duration>,
     /// The TCP the last `set_tcp` set.
@@ -122,6 +129,8 @@ struct Shared {
     rtde_mute: std::sync::atomic::AtomicBool,
     /// Set while the secondary interface sends no robot state (its connections stay open).
     secondary_mute: std::sync::atomic::AtomicBool,
+    /// Set while the gripper socket answers nothing (its connections stay open).
+    gripper_mute: std::sync::atomic::AtomicBool,
     /// Set when the fake is dropped: its sessions end.
     closed: std::sync::atomic::AtomicBool,
 }
@@ -198,6 +207,8 @@ impl FakeController {
             started: Instant::now(),
             motion: Mutex::new(motion),
             scripts: Mutex::new(Vec::new()),
+            program_events: Mutex::new(Vec::new()),
+            running_program: Mutex::new(None),
             dashboard_delay: Mutex::new(Duration::ZERO),
             tcp: Mutex::new([0.0; 6]),
             inputs: Mutex::new(HashMap::new()),
@@ -206,6 +217,7 @@ impl FakeController {
             rtde_connections: AtomicU32::new(0),
             rtde_mute: std::sync::atomic::AtomicBool::new(false),
             secondary_mute: std::sync::atomic::AtomicBool::new(false),
+            gripper_mute: std::sync::atomic::AtomicBool::new(false),
             closed: std::sync::atomic::AtomicBool::new(false),
             arm: Mutex::new(Arm {
                 robot_mode: "RUNNING",
@@ -310,6 +322,46 @@ impl FakeController {
         self.shared.scripts.lock().unwrap().clone()
     }
 
+    /// What the streaming programs did, each with when: started, each message read, each
+    /// controller step's joints, and why each ended.
+    pub fn program_events(&self) -> Vec<(Instant, ProgramEvent)> {
+        self.shared.program_events.lock().unwrap().clone()
+    }
+
+    /// The joints each controller step of the streaming programs commanded, with when.
+    pub fn program_steps(&self) -> Vec<(Instant, [f64; 6])> {
+        let events = self.shared.program_events.lock().unwrap();
+        let steps = events.iter().filter_map(|(at, event)| match event {
+            ProgramEvent::Step(q) => Some((*at, *q)),
+            _ => None,
+        });
+        steps.collect()
+    }
+
+    /// The targets the streaming programs read (keep-alives and stops left out), with when.
+    pub fn program_targets(&self) -> Vec<(Instant, [f64; 6], f64)> {
+        let events = self.shared.program_events.lock().unwrap();
+        let targets = events.iter().filter_map(|(at, event)| match event {
+            ProgramEvent::Message(message)
+                if message.mode == yarok_hw::ur::external_control::Mode::Servo =>
+            {
+                Some((*at, message.q, message.period))
+            }
+            _ => None,
+        });
+        targets.collect()
+    }
+
+    /// Why each streaming program ended, with when.
+    pub fn program_ends(&self) -> Vec<(Instant, String)> {
+        let events = self.shared.program_events.lock().unwrap();
+        let ends = events.iter().filter_map(|(at, event)| match event {
+            ProgramEvent::Ended(why) => Some((*at, why.clone())),
+            _ => None,
+        });
+        ends.collect()
+    }
+
     /// Makes the dashboard answer each command `delay` late, as a busy controller does.
     pub fn set_dashboard_delay(&self, delay: Duration) {
         *self.shared.dashboard_delay.lock().unwrap() = delay;
@@ -362,6 +414,12 @@ impl FakeController {
         self.shared.secondary_mute.store(true, Ordering::Relaxed);
     }
 
+    /// Makes the gripper socket answer nothing, its connections (and new ones) left open (a
+    /// gripper whose URCap hangs, a cable pulled between the wrist and the gripper).
+    pub fn mute_gripper(&self) {
+        self.shared.gripper_mute.store(true, Ordering::Relaxed);
+    }
+
     /// Stops RTDE's data packages, its connections (and new ones) left open and answering
     /// requests (a controller whose RTDE service hangs); `false` lets them flow again.
     pub fn mute_rtde(&self, mute: bool) {
@@ -387,6 +445,7 @@ impl FakeController {
     /// Restarts the controller as its power cycle does: the program running stops (the arm
     /// halts where it is) and every connection drops.
     pub fn restart(&self) {
+        self.shared.end_program();
         self.shared.motion.lock().unwrap().command(ArmCommand::Stop);
         self.shared.arm.lock().unwrap().playing = false;
         self.drop_streams();

@@ -8,6 +8,7 @@ use std::time::Duration;
 use tokio::io::{AsyncBufReadExt, AsyncWriteExt};
 use tokio::net::TcpStream;
 
+use super::external_control::{StreamProgram, run_program};
 use super::motion::{ArmCommand, ArmState};
 use super::{Profile, Shared};
 
@@ -30,15 +31,19 @@ impl Shared {
     /// arm, it is not running (powered off, brakes locked) or the controller is in local
     /// control; other lines (`def`, `end`, …) are kept only.
     pub(super) fn run_script(&self, line: &str) {
+        if line.trim().is_empty() {
+            return;
+        }
         let arrived = std::time::Instant::now();
         self.scripts
             .lock()
             .unwrap()
             .push((arrived, line.to_owned()));
-        let arm = self.arm.lock().unwrap().clone();
-        if arm.safety != "NORMAL" || arm.robot_mode != "RUNNING" || !arm.remote_control {
+        if !self.runs_scripts() {
             return;
         }
+        // A script sent replaces the program running, as on a controller.
+        self.end_program();
         let six = |numbers: &[f64]| -> [f64; 6] { std::array::from_fn(|i| numbers[i]) };
         let command = if let Some(numbers) = call(line, "movej")
             && numbers.len() >= 6
@@ -76,6 +81,42 @@ impl Shared {
             return;
         };
         self.motion.lock().unwrap().command(command);
+    }
+
+    /// Whether a script sent now runs: not while a safety stop holds the arm, it is not
+    /// running or the controller is in local control.
+    fn runs_scripts(&self) -> bool {
+        let arm = self.arm.lock().unwrap();
+        arm.safety == "NORMAL" && arm.robot_mode == "RUNNING" && arm.remote_control
+    }
+
+    /// Ends the streaming program running, if one runs.
+    pub(super) fn end_program(&self) {
+        if let Some(running) = self.running_program.lock().unwrap().take() {
+            running.store(true, Ordering::Relaxed);
+        }
+    }
+
+    /// Runs a program sent whole (`def …():` to `end`): yarok's streaming program as a
+    /// controller would; any other, line by line.
+    pub(super) fn run_program(self: &Arc<Self>, text: &str) {
+        let Some(program) = StreamProgram::parse(text) else {
+            for line in text.lines() {
+                self.run_script(line);
+            }
+            return;
+        };
+        self.scripts
+            .lock()
+            .unwrap()
+            .push((std::time::Instant::now(), text.to_owned()));
+        if !self.runs_scripts() {
+            return;
+        }
+        self.end_program();
+        let aborted = Arc::new(std::sync::atomic::AtomicBool::new(false));
+        *self.running_program.lock().unwrap() = Some(Arc::clone(&aborted));
+        tokio::spawn(run_program(Arc::clone(self), program, aborted));
     }
 
     /// A robot-state packet in the profile's layout.
@@ -185,7 +226,7 @@ fn sub_package(out: &mut Vec<u8>, kind: u8, content: impl FnOnce(&mut Vec<u8>)) 
 }
 
 /// One client's secondary session: the version message, then a robot state every 100 ms;
-/// script lines run as they come.
+/// script lines run as they come, a program (`def …():` to `end`) once whole.
 pub(super) async fn serve_secondary(stream: TcpStream, shared: Arc<Shared>) {
     let drops = shared.drops.load(Ordering::Relaxed);
     let (reader, mut writer) = stream.into_split();
@@ -194,10 +235,19 @@ pub(super) async fn serve_secondary(stream: TcpStream, shared: Arc<Shared>) {
     }
     let mut lines = tokio::io::BufReader::new(reader).lines();
     let mut states = tokio::time::interval(Duration::from_millis(100));
+    let mut program: Option<String> = None;
     loop {
         tokio::select! {
-            line = lines.next_line() => match line {
-                Ok(Some(line)) => shared.run_script(&line),
+            line = lines.next_line() => match (line, program.as_mut()) {
+                (Ok(Some(line)), Some(text)) => {
+                    text.push('\n');
+                    text.push_str(&line);
+                    if line == "end" {
+                        shared.run_program(&program.take().unwrap_or_default());
+                    }
+                }
+                (Ok(Some(line)), None) if line.starts_with("def ") => program = Some(line),
+                (Ok(Some(line)), None) => shared.run_script(&line),
                 _ => return,
             },
             _ = states.tick() => {

@@ -27,7 +27,8 @@ struct Settings {
     host: String,
     /// The URCap's socket.
     port: u16,
-    /// Seconds a reply may take.
+    /// Seconds a reply may take (the URCap's socket answers within milliseconds): a gripper
+    /// silent for longer ends the run, naming it.
     reply_seconds: f64,
     /// Seconds activation may take.
     activation_seconds: f64,
@@ -38,7 +39,7 @@ impl Default for Settings {
         Self {
             host: "192.168.1.10".into(),
             port: 63352,
-            reply_seconds: 1.0,
+            reply_seconds: 0.3,
             activation_seconds: 5.0,
         }
     }
@@ -182,12 +183,23 @@ impl Socket {
     }
 }
 
-/// Whether `error` is the connection failing (not the gripper answering with a fault).
+/// Whether `error` is the connection failing (not the gripper answering with a fault, nor
+/// falling silent on an open connection).
 fn is_connection_lost(error: &GripperError) -> bool {
-    matches!(
-        error,
-        GripperError::Closed { .. } | GripperError::Io { .. } | GripperError::Timeout { .. }
-    )
+    matches!(error, GripperError::Closed { .. } | GripperError::Io { .. })
+}
+
+/// `error` as the run's end: a gripper that answers nothing on an open connection is named
+/// silent at once, not reconnected (its connection is not what failed).
+fn ended_by(error: GripperError) -> yarok_core::BoxError {
+    match error {
+        GripperError::Timeout { .. } => format!(
+            "{error}: the gripper went silent (its connection is open, nothing answers): check \
+             its cable and the Robotiq URCap on the controller"
+        )
+        .into(),
+        other => other.into(),
+    }
 }
 
 /// Sends each new request and reads the status every [`POLL`], reconnecting a dropped socket:
@@ -220,7 +232,7 @@ async fn drive(
                                 gripper.go_to(position, speed, force).await?;
                             }
                         }
-                        other => other?,
+                        other => other.map_err(ended_by)?,
                     }
                 }
             }
@@ -234,7 +246,7 @@ async fn drive(
                     Err(lost) if is_connection_lost(&lost) => {
                         gripper = socket.reopen(&lost).await?;
                     }
-                    Err(fault) => return Err(fault.into()),
+                    Err(other) => return Err(ended_by(other)),
                 }
             }
         }

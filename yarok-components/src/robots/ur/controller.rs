@@ -225,6 +225,8 @@ impl Controller {
         let mut state = self.state.borrow_mut();
         state.stream = None;
         state.stopped = None;
+        drop(state);
+        self.drive.rearm();
     }
 
     /// Ends a motion under way as stopped, and a stream, and holds `q` at rest.
@@ -249,16 +251,16 @@ impl Controller {
     /// where the arm is.
     pub(super) fn servo(&self, target: Joints, seconds: f64) -> Result<(), MotionError> {
         self.joint_path(target, target)?;
+        if let Some(stopped) = self.state.borrow().stopped.clone() {
+            return Err(MotionError::StreamStopped {
+                cause: Box::new(stopped),
+            });
+        }
         if let Some(halted) = self.drive.halt() {
             let mut state = self.state.borrow_mut();
             state.stream = None;
             state.stopped = Some(halted.clone());
             return Err(halted);
-        }
-        if let Some(stopped) = self.state.borrow().stopped.clone() {
-            return Err(MotionError::StreamStopped {
-                cause: Box::new(stopped),
-            });
         }
         let now = self.clock.time();
         let dt = self.clock.timestep();
@@ -294,6 +296,7 @@ impl Controller {
         self.drive.order(Order::ServoJ {
             target: ordered,
             seconds,
+            max_speed: limits.speed(),
         });
         self.command();
         Ok(())

@@ -52,6 +52,8 @@ pub enum Order {
         target: Joints,
         /// The time the target is reached in: the streaming period.
         seconds: f64,
+        /// Each joint's speed limit (rad/s), for an arm's own controller to hold as well.
+        max_speed: Joints,
     },
     /// `stopj`: a joint motion decelerates to a stop.
     StopJ {
@@ -143,6 +145,11 @@ pub trait ArmDrive {
     fn is_put_back_at_restart(&self) -> bool {
         false
     }
+
+    /// A stream of targets that a stop ended was re-armed ([`Arm::rearm`](super::Arm::rearm),
+    /// or an episode began): a halt the drive reported for the stream alone (a real arm's
+    /// streaming program that ended) is cleared. By default nothing.
+    fn rearm(&self) {}
 
     /// Unlocks a protective stop and waits until the arm may move again. By default there is
     /// nothing to unlock.

@@ -76,6 +76,14 @@ pub enum MotionError {
         /// The controller's robot mode.
         mode: &'static str,
     },
+    /// A real arm's streaming program ended on its controller while targets were streamed:
+    /// its watchdog saw no target in time, it was stopped on the teach pendant or replaced
+    /// by another program, or it never connected back. The arm was stopped.
+    #[error("the streaming program on the arm's controller ended: {why}")]
+    ProgramStopped {
+        /// Why, as far as the driver can tell.
+        why: String,
+    },
     /// A stream of targets ([`Arm::servo_j`](super::Arm::servo_j)) was ended by `cause` (a
     /// safety stop, the power), and stays ended after the stop clears until it is re-armed
     /// ([`Arm::rearm`](super::Arm::rearm), or an episode's begin): nothing a policy sends

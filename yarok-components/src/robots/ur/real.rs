@@ -1,6 +1,8 @@
 //! The UR arms' `real` interface: the controller's RTDE stream (joints, speeds, safety) and
 //! its secondary interface (URScript `movej`/`movel`/`stopj`), with the robot's kinematics
-//! checked at connect and the RTDE stream reconnected when it drops.
+//! checked at connect and the RTDE stream reconnected when it drops. A stream of targets runs
+//! as one program on the controller ([`external_control`]) that connects back to a port this
+//! side listens on, with a watchdog that stops the arm when the targets stop coming.
 
 use std::cell::{Cell, RefCell};
 use std::collections::VecDeque;
@@ -10,12 +12,13 @@ use std::rc::Rc;
 use std::time::Duration;
 
 use serde::Deserialize;
-use tokio::net::TcpStream;
+use tokio::net::{TcpListener, TcpStream};
 use tokio::sync::{Notify, oneshot};
 use tokio::time::Instant;
 use yarok_core::component::{Bind, BindError};
 use yarok_core::time::Clock;
 use yarok_hw::ur::dashboard::{Dashboard, RobotMode, SafetyStatus};
+use yarok_hw::ur::external_control::{self, ExternalControl, ProgramSettings};
 use yarok_hw::ur::rtde::{Rtde, RtdeError, RtdeSettings, Value};
 use yarok_hw::ur::script;
 use yarok_hw::ur::secondary::{KinematicsInfo, Secondary, send_script_and_close};
@@ -25,6 +28,7 @@ use super::drive::{ArmDrive, Order, Setpoint};
 use super::error::MotionError;
 use super::kinematics::{DhParameters, Joints, Kinematics, pose_to_vector};
 use super::payload::Payload;
+use super::streaming::UR_JOINT_ACCELERATION;
 
 const RTDE_PORT: u16 = 30004;
 const SECONDARY_PORT: u16 = 30002;
@@ -36,6 +40,13 @@ const STOP_LINGER: Duration = Duration::from_millis(250);
 /// `servoj`'s smoothing of a streamed target (seconds) and its gain: URScript's defaults.
 const SERVO_LOOKAHEAD_S: f64 = 0.1;
 const SERVO_GAIN: f64 = 300.0;
+
+/// How long after the streaming program ended its end is reported as its own: RTDE (a
+/// package every 2 or 8 ms) has by then said whether a safety stop or the power ended it.
+const PROGRAM_END_CONFIRMED_AFTER: Duration = Duration::from_millis(50);
+
+/// How many keep-alives the streaming program gets within its watchdog time.
+const KEEP_ALIVES_PER_WATCHDOG: u32 = 4;
 
 /// What the arm streams over RTDE, in this order.
 const OUTPUTS: [&str; 4] = ["actual_q", "actual_qd", "robot_mode", "safety_mode"];
@@ -66,6 +77,14 @@ struct Settings {
     /// The payload: its mass (kg) and centre of gravity (m, in the flange frame), set on the
     /// controller at connect; the controller's own setting when unset.
     payload: Option<[f64; 4]>,
+    /// The port the streaming program connects back to (0: any free one).
+    reverse_port: u16,
+    /// The address the controller reaches this computer at; by default the one this computer
+    /// reaches the controller from.
+    reverse_host: Option<String>,
+    /// Seconds the streaming program waits for the next target (or keep-alive) before it
+    /// stops the arm.
+    watchdog_seconds: f64,
 }
 
 /// A real arm's interface settings, read and checked.
@@ -77,6 +96,15 @@ pub(super) struct CheckedSettings {
 /// The arm's interface settings, checked without touching the controller.
 pub(super) fn settings(bind: &Bind<Real>) -> Result<CheckedSettings, BindError> {
     let settings: Settings = bind.settings()?;
+    if !(settings.watchdog_seconds.is_finite()
+        && (0.01..=10.0).contains(&settings.watchdog_seconds))
+    {
+        return Err(bind.error(format!(
+            "watchdog_seconds is {}: give the seconds the streaming program waits for the next \
+             target before it stops the arm, 0.01 to 10",
+            settings.watchdog_seconds
+        )));
+    }
     let payload = settings
         .payload
         .map(|[mass, x, y, z]| Payload::new(mass, [x, y, z]))
@@ -93,6 +121,9 @@ impl Default for Settings {
             reply_seconds: 2.0,
             connect_seconds: 5.0,
             payload: None,
+            reverse_port: 50002,
+            reverse_host: None,
+            watchdog_seconds: 0.2,
         }
     }
 }
@@ -142,8 +173,12 @@ struct Measured {
 /// What the arm's driver task is asked to do.
 enum Request {
     Script(String),
-    /// A streamed target's `servoj`: only the latest is sent, never a queue of stale ones.
-    Servo(String),
+    /// A streamed target: only the latest is sent, never a queue of stale ones.
+    Servo {
+        target: Joints,
+        seconds: f64,
+        max_speed: Joints,
+    },
     UnlockProtectiveStop(oneshot::Sender<Result<(), String>>),
 }
 
@@ -158,6 +193,9 @@ pub(super) struct RealLink {
     requests: RefCell<VecDeque<Request>>,
     wake: Notify,
     clock: Clock,
+    /// Why the streaming program ended while streaming, and when this side saw it, until the
+    /// stream is re-armed.
+    program_ended: RefCell<Option<(String, Instant)>>,
 }
 
 impl RealLink {
@@ -179,8 +217,8 @@ impl RealLink {
 
     fn request(&self, request: Request) {
         let mut requests = self.requests.borrow_mut();
-        if matches!(request, Request::Servo(_)) {
-            requests.retain(|queued| !matches!(queued, Request::Servo(_)));
+        if matches!(request, Request::Servo { .. }) {
+            requests.retain(|queued| !matches!(queued, Request::Servo { .. }));
         }
         requests.push_back(request);
         drop(requests);
@@ -216,10 +254,17 @@ impl ArmDrive for RealLink {
                 speed,
                 acceleration,
             ),
-            Order::ServoJ { target, seconds } => {
+            Order::ServoJ {
+                target,
+                seconds,
+                max_speed,
+            } => {
                 self.dropped_since_order.take();
-                let servo = script::servoj(&target, seconds, SERVO_LOOKAHEAD_S, SERVO_GAIN);
-                self.request(Request::Servo(servo));
+                self.request(Request::Servo {
+                    target,
+                    seconds,
+                    max_speed,
+                });
                 return;
             }
             Order::StopJ { deceleration } => script::stopj(deceleration),
@@ -230,16 +275,28 @@ impl ArmDrive for RealLink {
         self.request(Request::Script(script));
     }
 
-    /// Why the arm cannot move, if it cannot: its safety system stopped it, or it is not
-    /// running (powered off, brakes locked, …).
+    /// Why the arm cannot move, if it cannot: its safety system stopped it, it is not
+    /// running (powered off, brakes locked, …), or the streaming program ended.
     fn halt(&self) -> Option<MotionError> {
         let robot_mode = self.measured.get().robot_mode;
-        match self.safety_stop() {
-            Some(mode) => Some(MotionError::SafetyStop { mode }),
-            None => (robot_mode != 7).then(|| MotionError::NotRunning {
-                mode: robot_mode_name(robot_mode),
-            }),
+        if let Some(mode) = self.safety_stop() {
+            return Some(MotionError::SafetyStop { mode });
         }
+        if robot_mode != 7 {
+            return Some(MotionError::NotRunning {
+                mode: robot_mode_name(robot_mode),
+            });
+        }
+        // A safety stop ends the program too, and RTDE may say so a package later: the end
+        // is named as the program's own once RTDE had time to name another cause.
+        let ended = self.program_ended.borrow().clone();
+        ended
+            .filter(|(_, seen)| seen.elapsed() >= PROGRAM_END_CONFIRMED_AFTER)
+            .map(|(why, _)| MotionError::ProgramStopped { why })
+    }
+
+    fn rearm(&self) {
+        self.program_ended.take();
     }
 
     fn interruption(&self) -> Option<String> {
@@ -445,6 +502,9 @@ pub(super) async fn connect(
         .kinematics
         .ok_or_else(|| bind.error(format!("controller {host} sent no kinematics")))?;
     check_kinematics(bind, &kinematics.dh, &reported)?;
+    let reverse = reverse_listener(&host, &settings)
+        .await
+        .map_err(|e| bind.error(e))?;
     if let Some(payload) = &payload {
         secondary
             .send_script(&script::set_payload(payload.mass, payload.centre))
@@ -458,8 +518,9 @@ pub(super) async fn connect(
         requests: RefCell::new(VecDeque::new()),
         wake: Notify::new(),
         clock: bind.clock(),
+        program_ended: RefCell::new(None),
     });
-    bind.spawn(drive(Rc::clone(&link), settings, rtde, secondary));
+    bind.spawn(drive(Rc::clone(&link), settings, rtde, secondary, reverse));
     bind.on_stop(async move {
         // The driver's task has ended: a connection of its own stops the arm, without waiting
         // for a robot state (the interface may be what fell silent).
@@ -475,17 +536,114 @@ pub(super) async fn connect(
     Ok((link, first.q))
 }
 
+/// The listener the streaming program connects back to, and the address it is told.
+struct Reverse {
+    listener: TcpListener,
+    host: String,
+    port: u16,
+}
+
+/// Listens for the streaming program of the controller at `controller`: on the interface
+/// settings' `reverse_host` and `reverse_port`, by default on the address this computer
+/// reaches the controller from.
+async fn reverse_listener(
+    controller: &str,
+    settings: &Settings,
+) -> Result<Reverse, yarok_core::BoxError> {
+    let host = match &settings.reverse_host {
+        Some(host) => host.clone(),
+        None => {
+            // A UDP socket "connected" to the controller holds the local address its route
+            // leaves from; no packet is sent.
+            let probe = std::net::UdpSocket::bind(("0.0.0.0", 0))?;
+            probe.connect((controller, SECONDARY_PORT))?;
+            probe.local_addr()?.ip().to_string()
+        }
+    };
+    let port = settings.reverse_port;
+    let listener = TcpListener::bind((host.as_str(), port))
+        .await
+        .map_err(|e| {
+            format!(
+                "cannot listen on {host}:{port} for the streaming program to connect back \
+                 (the interface settings reverse_host and reverse_port): {e}"
+            )
+        })?;
+    let port = listener.local_addr()?.port();
+    Ok(Reverse {
+        listener,
+        host,
+        port,
+    })
+}
+
+/// The streaming program's connection, once it connected back by `until`.
+async fn accept_program(
+    reverse: &Reverse,
+    until: Option<Instant>,
+    reply: Duration,
+) -> Result<TcpStream, String> {
+    let Some(until) = until else {
+        return std::future::pending().await;
+    };
+    let Reverse { host, port, .. } = reverse;
+    match tokio::time::timeout_at(until, reverse.listener.accept()).await {
+        Ok(Ok((stream, _))) => Ok(stream),
+        Ok(Err(error)) => Err(format!(
+            "its connection back to {host}:{port} failed: {error}"
+        )),
+        Err(_) => Err(format!(
+            "it did not connect back to {host}:{port} within {} s: check that the controller \
+             reaches this computer at {host} (the interface setting reverse_host) and that no \
+             firewall blocks port {port}",
+            reply.as_secs_f64()
+        )),
+    }
+}
+
+/// Resolves when the streaming program running, if one runs, closes its connection.
+async fn program_closed(control: Option<&mut ExternalControl<TcpStream>>) {
+    match control {
+        Some(control) => {
+            let _ = control.ended().await;
+        }
+        None => std::future::pending().await,
+    }
+}
+
+/// Why a streaming program that closed its connection ended, as far as this side can tell.
+fn closed_why(watchdog: Duration) -> String {
+    format!(
+        "it stopped the arm and closed its connection: it was stopped on the teach pendant or \
+         replaced by another program, or its watchdog saw no target within {} s",
+        watchdog.as_secs_f64()
+    )
+}
+
 /// Keeps the link fed from RTDE (reconnecting a dropped stream within the reply time), sends
-/// the scripts asked for, and serves dashboard requests.
+/// the scripts asked for, streams targets to the streaming program (sent when a stream
+/// begins, and kept alive between targets), and serves dashboard requests.
 async fn drive(
     link: Rc<RealLink>,
     settings: Settings,
     mut rtde: Rtde<TcpStream>,
     mut secondary: Secondary<TcpStream>,
+    reverse: Reverse,
 ) -> Result<(), yarok_core::BoxError> {
     let reply = Duration::try_from_secs_f64(settings.reply_seconds).unwrap_or_default();
+    let watchdog = Duration::try_from_secs_f64(settings.watchdog_seconds).unwrap_or_default();
     let host = settings.host.as_str();
     let secondary_again = async || secondary_stream(host, reply).await;
+    // The streaming program: its connection once it connected back, or until when it may,
+    // and the latest target that waits for it.
+    let mut control: Option<ExternalControl<TcpStream>> = None;
+    let mut connecting_until: Option<Instant> = None;
+    let mut waiting: Option<(Joints, f64)> = None;
+    let mut keep_alive = tokio::time::interval(watchdog / KEEP_ALIVES_PER_WATCHDOG);
+    keep_alive.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Delay);
+    let end_program = |why: String| {
+        *link.program_ended.borrow_mut() = Some((why, Instant::now()));
+    };
     // The remote-control check runs beside the stream, never in its way: a dashboard that
     // answers late delays nothing that is sent.
     let mut remote_check: Pin<Box<dyn Future<Output = Result<(), yarok_core::BoxError>> + '_>> =
@@ -533,12 +691,77 @@ async fn drive(
                         reconnect("secondary interface", host, reply, error, secondary_again).await?;
                 }
             }
+            accepted = accept_program(&reverse, connecting_until, reply) => {
+                connecting_until = None;
+                match accepted {
+                    Ok(stream) => {
+                        let mut program = ExternalControl::new(stream, watchdog, reply);
+                        let first = match waiting.take() {
+                            Some((target, seconds)) => program.servo(target, seconds).await,
+                            None => program.keep_alive().await,
+                        };
+                        match first {
+                            Ok(()) => control = Some(program),
+                            Err(error) => end_program(error.to_string()),
+                        }
+                    }
+                    Err(why) => end_program(why),
+                }
+            }
+            () = program_closed(control.as_mut()) => {
+                control = None;
+                end_program(closed_why(watchdog));
+            }
+            _ = keep_alive.tick(), if control.is_some() => {
+                if let Some(program) = control.as_mut()
+                    && let Err(error) = program.keep_alive().await
+                {
+                    control = None;
+                    end_program(error.to_string());
+                }
+            }
             () = link.wake.notified() => {
                 let requests: Vec<Request> = link.requests.borrow_mut().drain(..).collect();
                 for request in requests {
                     match request {
-                        Request::Script(script) | Request::Servo(script) => {
+                        Request::Servo { target, seconds, max_speed } => {
                             sent_since_check = true;
+                            if let Some(program) = control.as_mut() {
+                                if let Err(error) = program.servo(target, seconds).await {
+                                    control = None;
+                                    end_program(error.to_string());
+                                }
+                                continue;
+                            }
+                            waiting = Some((target, seconds));
+                            if connecting_until.is_some() || link.program_ended.borrow().is_some() {
+                                continue;
+                            }
+                            let program = external_control::program(&ProgramSettings {
+                                host: reverse.host.clone(),
+                                port: reverse.port,
+                                max_speed,
+                                stop_deceleration: UR_JOINT_ACCELERATION,
+                                lookahead: SERVO_LOOKAHEAD_S,
+                                gain: SERVO_GAIN,
+                            });
+                            if let Err(error) = secondary.send_script(&program).await {
+                                secondary =
+                                    reconnect("secondary interface", host, reply, error, secondary_again)
+                                        .await?;
+                                secondary.send_script(&program).await?;
+                            }
+                            connecting_until = Some(Instant::now() + reply);
+                        }
+                        Request::Script(script) => {
+                            sent_since_check = true;
+                            // The script replaces the streaming program on the controller: it
+                            // is told to stop first, and its end is no surprise.
+                            if let Some(mut program) = control.take() {
+                                let _ = program.stop().await;
+                            }
+                            connecting_until = None;
+                            waiting = None;
                             if let Err(error) = secondary.send_script(&script).await {
                                 secondary =
                                     reconnect("secondary interface", host, reply, error, secondary_again)
