@@ -333,3 +333,44 @@ fn a_recorder_of_the_simulation_is_refused_in_mock_before_anything_runs() {
     );
     assert!(!csv.exists(), "nothing was recorded");
 }
+
+/// A non-UTF-8 argument (a path in Latin-1) is refused in every subcommand naming its
+/// position, with exit status 2: never a panic.
+#[test]
+fn a_non_utf8_argument_is_refused_naming_it_in_every_subcommand() {
+    use std::ffi::OsStr;
+    use std::os::unix::ffi::OsStrExt;
+
+    let latin1 = OsStr::from_bytes(b"caf\xe9.mcap");
+    for (command, position) in [
+        (
+            vec![
+                OsStr::new("run"),
+                OsStr::new("digit_world"),
+                OsStr::new("--record"),
+                latin1,
+            ],
+            4,
+        ),
+        (vec![OsStr::new("compose"), latin1], 2),
+        (
+            vec![OsStr::new("tactile"), OsStr::new("calibrate"), latin1],
+            3,
+        ),
+        (vec![latin1], 1),
+    ] {
+        let output = std::process::Command::new(env!("CARGO_BIN_EXE_yarok"))
+            .args(&command)
+            .output()
+            .unwrap();
+        let said = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{command:?}: {said}");
+        assert!(
+            said.contains(&format!(
+                "argument {position} (\"caf\u{FFFD}.mcap\") is not UTF-8"
+            )),
+            "{command:?}: {said}"
+        );
+        assert!(!said.contains("panicked"), "{said}");
+    }
+}

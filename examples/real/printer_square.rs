@@ -58,7 +58,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .world::<PrinterSquareWorld>()
         .behaviour_default("side", 50.0)
         .behaviour_default("laps", 1)
-        .args(std::env::args().skip(1))?
+        .args(std::env::args_os().skip(1))?
         .behaviour(trace_square)
         .run()?;
     Ok(())

@@ -50,7 +50,7 @@ fn until(
 }
 
 fn main() -> Result<(), yarok::BoxError> {
-    if std::env::args().nth(1).as_deref() == Some("world") {
+    if std::env::args_os().nth(1).is_some_and(|arg| arg == "world") {
         return world();
     }
     let mut child = Command::new(std::env::current_exe()?)

@@ -23,7 +23,9 @@ fn main() -> anyhow::Result<()> {
     tracing_subscriber::fmt()
         .with_env_filter(tracing_subscriber::EnvFilter::from_default_env())
         .init();
-    let out_dir = PathBuf::from(std::env::args().nth(1).unwrap_or_else(|| "out".to_owned()));
+    let out_dir = std::env::args_os()
+        .nth(1)
+        .map_or_else(|| PathBuf::from("out"), PathBuf::from);
     std::fs::create_dir_all(&out_dir).with_context(|| format!("creating {}", out_dir.display()))?;
 
     let model = Arc::new(Model::from_xml_str(SCENE)?);

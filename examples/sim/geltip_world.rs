@@ -17,7 +17,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     yarok::platform()
         .world::<GelTipWorld>()
         .behaviour_default("out", "out")
-        .args(std::env::args().skip(1))?
+        .args(std::env::args_os().skip(1))?
         .behaviour(demos::pull)
         .run()?;
     println!(

@@ -90,7 +90,7 @@ async fn tick_tock(pl: Pl, name: &'static str) -> BehaviourResult {
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     yarok::platform()
         .world::<Clock>()
-        .args(std::env::args().skip(1))? // e.g. --set /right/length=0.4
+        .args(std::env::args_os().skip(1))? // e.g. --set /right/length=0.4
         .behaviour(|pl| tick_tock(pl, "left"))
         .behaviour(|pl| tick_tock(pl, "/right"))
         .run()?;

@@ -33,7 +33,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let started = std::time::Instant::now();
     yarok::platform()
         .world::<PickAndPlaceWorld>()
-        .args(std::env::args().skip(1))?
+        .args(std::env::args_os().skip(1))?
         .behaviour(demos::stack)
         .run()?;
     println!(

@@ -16,7 +16,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let platform = yarok::platform()
         .world::<PrinterWorld>()
         .behaviour_default("out", "out")
-        .args(std::env::args().skip(1))?
+        .args(std::env::args_os().skip(1))?
         .behaviour(demos::survey)
         .build()?;
     let ticks_before = platform.pl().clone();

@@ -86,7 +86,7 @@ fn merge_indexes(out: &Path, rigs: usize) -> Result<Vec<String>, Box<dyn Error>>
 }
 
 fn main() -> Result<(), Box<dyn Error>> {
-    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    let mut args = yarok::core::args::from_process()?;
     let rigs: usize = take_option(&mut args, "--rigs")?.map_or(Ok(2), |n| n.parse())?;
     if rigs == 0 {
         return Err("--rigs must be at least 1".into());

@@ -14,6 +14,7 @@
 //! It names neither MuJoCo nor any device; simulation lives in `yarok-mjc`, hardware in
 //! `yarok-hw`.
 
+pub mod args;
 pub mod component;
 pub mod compose;
 pub mod config;

@@ -24,7 +24,7 @@ mod world;
 use world::{MENAGERIE, Menagerie2f85, MenagerieUr5e, MenagerieWorld};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let mut args = std::env::args().skip(1);
+    let mut args = std::env::args_os().skip(1);
     let folder = args
         .next()
         .map(PathBuf::from)

@@ -126,7 +126,13 @@ fn write_png(image: image::RgbImage, out: &str) -> Result<(), String> {
 }
 
 fn main() -> ExitCode {
-    let args: Vec<String> = std::env::args().skip(1).collect();
+    let args = match yarok::core::args::from_process() {
+        Ok(args) => args,
+        Err(message) => {
+            eprintln!("error: {message}");
+            return ExitCode::from(2);
+        }
+    };
     let result = match args.first().map(String::as_str) {
         _ if args.iter().any(|a| a == "-h" || a == "--help") => {
             print(&format!("{USAGE}\n")).map_err(Failure::from)

@@ -104,12 +104,27 @@ impl PlatformBuilder {
         Ok(self)
     }
 
-    /// Applies command-line arguments: `--env NAME`, `--set TARGET=VALUE`, `--config FILE`.
+    /// Applies command-line arguments: `--env NAME`, `--set TARGET=VALUE`, `--config FILE`;
+    /// strings, or the process's own as the OS gives them (`std::env::args_os().skip(1)`).
     ///
     /// # Errors
     ///
-    /// [`RuntimeError::Config`] for unknown or incomplete arguments.
-    pub fn args(mut self, args: impl IntoIterator<Item = String>) -> Result<Self, RuntimeError> {
+    /// [`RuntimeError::Config`] for unknown or incomplete arguments, and for an argument that
+    /// is not UTF-8 (named, with its position).
+    pub fn args<A: Into<std::ffi::OsString>>(
+        mut self,
+        args: impl IntoIterator<Item = A>,
+    ) -> Result<Self, RuntimeError> {
+        let args: Vec<String> = args
+            .into_iter()
+            .enumerate()
+            .map(|(index, arg)| {
+                crate::args::utf8(index + 1, arg.into()).map_err(|message| ConfigError {
+                    origin: "command line".into(),
+                    message,
+                })
+            })
+            .collect::<Result<_, _>>()?;
         let mut args = args.into_iter();
         while let Some(arg) = args.next() {
             let mut value = || {
