@@ -374,3 +374,39 @@ fn a_non_utf8_argument_is_refused_naming_it_in_every_subcommand() {
         assert!(!said.contains("panicked"), "{said}");
     }
 }
+
+/// `--config /dev/zero` and a template whose `<include>` is `/dev/zero` are refused at once,
+/// naming the file and the limit, instead of reading until memory runs out.
+#[test]
+fn a_config_or_include_that_never_ends_is_refused_naming_the_limit() {
+    let started = std::time::Instant::now();
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_yarok"))
+        .args(["run", "digit_world", "--config", "/dev/zero"])
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{said}");
+    assert!(
+        said.contains("/dev/zero") && said.contains("more than 1 MiB"),
+        "{said}"
+    );
+    let folder = tempfile::tempdir().unwrap();
+    let world = folder.path().join("world.xml");
+    std::fs::write(
+        &world,
+        r#"<mujoco><worldbody><include file="/dev/zero"/></worldbody></mujoco>"#,
+    )
+    .unwrap();
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_yarok"))
+        .arg("compose")
+        .arg(&world)
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success(), "{said}");
+    assert!(
+        said.contains("/dev/zero") && said.contains("more than 64 MiB"),
+        "{said}"
+    );
+    assert!(started.elapsed() < std::time::Duration::from_secs(20));
+}

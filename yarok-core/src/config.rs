@@ -478,9 +478,11 @@ impl RunConfig {
     /// As [`RunConfig::from_toml`], or when the file cannot be read.
     pub fn from_file(path: impl AsRef<Path>) -> Result<Self, ConfigError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|e| ConfigError {
-            origin: path.display().to_string(),
-            message: format!("cannot read: {e}"),
+        let text = crate::bounded::read_text(path, crate::bounded::CONFIG_LIMIT).map_err(|e| {
+            ConfigError {
+                origin: path.display().to_string(),
+                message: format!("cannot read: {e}"),
+            }
         })?;
         Self::from_toml(&text, &path.display().to_string())
     }

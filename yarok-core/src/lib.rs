@@ -15,6 +15,7 @@
 //! `yarok-hw`.
 
 pub mod args;
+pub mod bounded;
 pub mod component;
 pub mod compose;
 pub mod config;

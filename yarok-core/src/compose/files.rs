@@ -196,12 +196,13 @@ fn inline(
             Some(dir) => dir.join(file),
             None => PathBuf::from(file),
         };
-        let text = std::fs::read_to_string(&path).map_err(|e| {
-            (
-                position,
-                format!("cannot read included file {}: {e}", path.display()),
-            )
-        })?;
+        let text =
+            crate::bounded::read_text(&path, crate::bounded::TEMPLATE_LIMIT).map_err(|e| {
+                (
+                    position,
+                    format!("cannot read included file {}: {e}", path.display()),
+                )
+            })?;
         let mut included = Element::parse(&text).map_err(|e| {
             (
                 position,

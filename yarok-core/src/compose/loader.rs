@@ -148,9 +148,10 @@ fn template_text(
         )),
         Some(Source::File(file)) => {
             let label = file.display().to_string();
-            let text = std::fs::read_to_string(file).map_err(|e| {
-                template_error(path, &label, None, format!("cannot read the template: {e}"))
-            })?;
+            let text =
+                crate::bounded::read_text(file, crate::bounded::TEMPLATE_LIMIT).map_err(|e| {
+                    template_error(path, &label, None, format!("cannot read the template: {e}"))
+                })?;
             Ok((text, label, file.parent().map(PathBuf::from)))
         }
         None => Err(template_error(

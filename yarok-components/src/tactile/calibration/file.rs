@@ -112,9 +112,12 @@ impl Calibration {
     /// [`CalibrationError::Io`] if it cannot be read, [`CalibrationError::Format`] (naming the
     /// file and what is wrong) if it is not a calibration.
     pub fn load(path: &str) -> Result<Self, CalibrationError> {
-        let text = std::fs::read_to_string(path).map_err(|source| CalibrationError::Io {
-            path: path.to_owned(),
-            source,
+        let limit = yarok_core::bounded::TEMPLATE_LIMIT;
+        let text = yarok_core::bounded::read_text(path.as_ref(), limit).map_err(|source| {
+            CalibrationError::Io {
+                path: path.to_owned(),
+                source,
+            }
         })?;
         parse(&text, path)
     }

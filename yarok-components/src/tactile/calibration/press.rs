@@ -90,7 +90,8 @@ pub fn read_presses(csv: &str) -> Result<Vec<(String, Press)>, CalibrationError>
         let path = path.to_owned();
         move |source| CalibrationError::Io { path, source }
     };
-    let text = std::fs::read_to_string(csv).map_err(io(csv))?;
+    let text = yarok_core::bounded::read_text(csv.as_ref(), yarok_core::bounded::TEMPLATE_LIMIT)
+        .map_err(io(csv))?;
     let folder = std::path::Path::new(csv)
         .parent()
         .unwrap_or(std::path::Path::new("."))
