@@ -410,3 +410,26 @@ fn a_config_or_include_that_never_ends_is_refused_naming_the_limit() {
     );
     assert!(started.elapsed() < std::time::Duration::from_secs(20));
 }
+
+/// A recording to a named pipe nobody reads is refused before the run, naming it, instead of
+/// blocking forever on its first write.
+#[test]
+fn a_recording_to_a_pipe_nobody_reads_is_refused_before_the_run() {
+    let folder = tempfile::tempdir().unwrap();
+    let pipe = folder.path().join("recording.mcap");
+    let made = std::process::Command::new("mkfifo")
+        .arg(&pipe)
+        .status()
+        .unwrap();
+    assert!(made.success());
+    let started = std::time::Instant::now();
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_yarok"))
+        .args(["run", "digit_world", "--record"])
+        .arg(&pipe)
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success(), "{said}");
+    assert!(said.contains("is a named pipe nobody reads"), "{said}");
+    assert!(started.elapsed() < std::time::Duration::from_secs(30));
+}
