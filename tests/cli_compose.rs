@@ -127,3 +127,27 @@ fn a_bad_set_value_names_the_argument() {
         "error: component /, --set rows=many attribute `rows`: `rows` expects an integer, got \"many\""
     );
 }
+
+/// An expression that gives NaN or an infinity is an error naming the template's line and
+/// column, not a model with `nan` in it.
+#[test]
+fn an_expression_that_is_not_a_finite_number_is_an_error_at_its_line() {
+    let dir = tempfile::tempdir().unwrap();
+    for (expression, name) in [("0**-1", "power"), ("float('nan')", "nan")] {
+        let file = dir.path().join(format!("{name}.xml"));
+        std::fs::write(
+            &file,
+            format!(
+                "<mujoco>\n<worldbody>\n<geom size=\"{{{expression}}}\"/>\n</worldbody>\n</mujoco>"
+            ),
+        )
+        .unwrap();
+        let (code, _, stderr) = yarok(&["compose", file.to_str().unwrap()]);
+        assert_eq!(code, 2, "{stderr}");
+        assert!(
+            stderr.contains(&format!("{}:3:7", file.display())),
+            "{stderr}"
+        );
+        assert_says(&stderr, &["not a finite number"]);
+    }
+}

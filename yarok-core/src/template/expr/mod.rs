@@ -101,9 +101,26 @@ impl Expr {
     ///
     /// # Errors
     ///
-    /// An [`ExprError`] for an unknown name, a type error, a division by zero, …
+    /// An [`ExprError`] for an unknown name, a type error, a division by zero, a result that is
+    /// not a finite number (NaN, an infinity), …
     pub fn eval(&self, variables: &dyn Variables) -> Result<Value, ExprError> {
-        eval::evaluate(&self.ast, variables).map(Value)
+        let value = eval::evaluate(&self.ast, variables)?;
+        if let Some(number) = not_finite(&value) {
+            return Err(ExprError::evaluating(format!(
+                "the expression gives {number}, not a finite number a model can hold: look for a \
+                 division by zero, a power of zero below zero, or a nan or inf"
+            )));
+        }
+        Ok(Value(value))
+    }
+}
+
+/// The first number in `value` (itself, or an item of a list) that is NaN or infinite.
+fn not_finite(value: &evalexpr::Value) -> Option<f64> {
+    match value {
+        evalexpr::Value::Float(number) if !number.is_finite() => Some(*number),
+        evalexpr::Value::Tuple(items) => items.iter().find_map(not_finite),
+        _ => None,
     }
 }
 

@@ -202,3 +202,18 @@ fn loop_variables_are_names_that_are_not_keywords() {
         assert!(!super::is_variable_name(name), "{name}");
     }
 }
+
+#[test]
+fn an_expression_that_gives_nan_or_inf_is_an_error() {
+    for source in [
+        "0 ** -1",
+        "0.0 ** -1",
+        "float('nan')",
+        "[1, float('inf')]",
+        "1e308 * 10",
+    ] {
+        let said = error(source);
+        assert!(said.contains("not a finite number"), "{source}: {said}");
+    }
+    assert_eq!(show("float('1e3')"), "1000");
+}
