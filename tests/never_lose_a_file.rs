@@ -300,3 +300,107 @@ fn make_removable(root: &Path) {
         }
     }
 }
+
+/// The arguments of a short run writing the dataset `ds`.
+fn dataset_run() -> Vec<String> {
+    Writer::Dataset.args("ds")
+}
+
+/// A shared dataset tampered with (`tamper` given the folder holding `ds`): the next run into
+/// it is refused with an error saying `said`, and every file is as it was.
+fn refused_after(tamper: impl FnOnce(&Path), said: &str) {
+    let tree = tempfile::tempdir().unwrap();
+    let root = tree.path();
+    let (code, stderr) = yarok_in(root, &dataset_run());
+    assert_eq!(code, 0, "{stderr}");
+    tamper(root);
+    let before = snapshot(root);
+    let (code, stderr) = yarok_in(root, &dataset_run());
+    assert_eq!(code, 2, "{stderr}");
+    assert!(stderr.contains(said), "{stderr}");
+    assert_eq!(snapshot(root), before, "{stderr}");
+}
+
+/// Adds `entry` to the manifest of the dataset `ds` in `root`.
+fn list_in_manifest(root: &Path, entry: &str) {
+    let manifest = root.join("ds/meta/yarok_files.json");
+    let mut files: Vec<String> =
+        serde_json::from_str(&std::fs::read_to_string(&manifest).unwrap()).unwrap();
+    files.push(entry.to_owned());
+    std::fs::write(&manifest, serde_json::to_string(&files).unwrap()).unwrap();
+}
+
+#[test]
+fn a_manifest_naming_files_outside_its_dataset_is_refused_and_removes_nothing() {
+    refused_after(
+        |root| {
+            std::fs::write(root.join("beside.txt"), "a user's notes").unwrap();
+            list_in_manifest(root, "../beside.txt");
+        },
+        "lists \"../beside.txt\", which is not a path inside the dataset",
+    );
+    refused_after(
+        |root| {
+            std::fs::write(root.join("abs.txt"), "a user's notes").unwrap();
+            list_in_manifest(root, &root.join("abs.txt").display().to_string());
+        },
+        "which is not a path inside the dataset",
+    );
+    refused_after(
+        |root| {
+            std::fs::create_dir(root.join("documents")).unwrap();
+            std::fs::write(root.join("documents/thesis.tex"), "a user's thesis").unwrap();
+            symlink(root.join("documents"), root.join("ds/docs")).unwrap();
+            list_in_manifest(root, "docs/thesis.tex");
+            list_in_manifest(root, "docs");
+        },
+        "which goes through a link out of the dataset",
+    );
+}
+
+#[test]
+fn a_lock_or_partial_name_held_by_a_users_file_folder_or_link_is_refused_never_removed() {
+    refused_after(
+        |root| {
+            std::fs::create_dir(root.join(".ssh")).unwrap();
+            std::fs::write(root.join(".ssh/id_rsa"), "a user's key").unwrap();
+            symlink(root.join(".ssh/id_rsa"), root.join(".ds.yarok-lock")).unwrap();
+        },
+        ".ds.yarok-lock is in the way of the dataset's lock",
+    );
+    refused_after(
+        |root| std::fs::write(root.join(".ds.yarok-lock"), "a user's file").unwrap(),
+        ".ds.yarok-lock is in the way of the dataset's lock",
+    );
+    refused_after(
+        |root| {
+            std::fs::create_dir(root.join(".ds.yarok-partial")).unwrap();
+            std::fs::write(root.join(".ds.yarok-partial/work.txt"), "a user's work").unwrap();
+        },
+        ".ds.yarok-partial is in the way of the dataset being written",
+    );
+}
+
+/// A killed run's leftovers (its lock, with a process id that has ended, and its partial
+/// dataset, marked) are recognised and cleared by the next run, which writes the dataset.
+#[test]
+fn a_killed_runs_lock_and_partial_dataset_are_taken_over() {
+    let tree = tempfile::tempdir().unwrap();
+    let root = tree.path();
+    let ended = Command::new("true").spawn().unwrap();
+    let pid = ended.id();
+    let _ = { ended }.wait();
+    std::fs::write(root.join(".ds.yarok-lock"), pid.to_string()).unwrap();
+    std::fs::create_dir(root.join(".ds.yarok-partial")).unwrap();
+    std::fs::write(
+        root.join(".ds.yarok-partial/.yarok-partial"),
+        pid.to_string(),
+    )
+    .unwrap();
+    let (code, stderr) = yarok_in(root, &dataset_run());
+    assert_eq!(code, 0, "{stderr}");
+    assert!(root.join("ds/meta/info.json").is_file());
+    assert!(!root.join(".ds.yarok-lock").exists());
+    assert!(!root.join(".ds.yarok-partial").exists());
+    assert!(!root.join("ds/.yarok-partial").exists());
+}

@@ -51,15 +51,59 @@ fn files_below(root: &Path) -> Result<BTreeSet<PathBuf>, BoxError> {
     Ok(files)
 }
 
-/// The files the manifest of the dataset in `root` lists, if it has one.
+/// The files the manifest of the dataset in `root` lists, if it has one: each a relative
+/// path inside the dataset that reaches its file through real folders, never through a link.
+///
+/// # Errors
+///
+/// When the manifest is not yarok's list, or an entry leaves the dataset (an absolute path,
+/// `..`, a link on the way): the entry is named, and nothing may be removed on its word.
 fn manifest(root: &Path) -> Result<Option<BTreeSet<PathBuf>>, BoxError> {
     let path = root.join(MANIFEST);
-    let Ok(text) = std::fs::read_to_string(&path) else {
+    if !std::fs::symlink_metadata(&path).is_ok_and(|m| m.is_file()) {
         return Ok(None);
-    };
+    }
+    let text = yarok_core::bounded::read_text(&path, yarok_core::bounded::CONFIG_LIMIT)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let files: Vec<PathBuf> = serde_json::from_str(&text)
         .map_err(|e| format!("{} is not yarok's list of its files: {e}", path.display()))?;
+    for file in &files {
+        if let Some(why) = outside(root, file) {
+            return Err(format!(
+                "{} lists {:?}, which {why}: yarok trusts its list only for files inside the \
+                 dataset, and removes nothing on its word; remove the entry, or give another \
+                 folder",
+                path.display(),
+                file.display().to_string()
+            )
+            .into());
+        }
+    }
     Ok(Some(files.into_iter().collect()))
+}
+
+/// Why the manifest entry `file` does not name a file inside the dataset at `root`, if it
+/// does not: it is not a plain relative path, or a folder on its way is a link (or no folder).
+fn outside(root: &Path, file: &Path) -> Option<&'static str> {
+    let plain = file
+        .components()
+        .all(|component| matches!(component, Component::Normal(_)));
+    if file.as_os_str().is_empty() || !plain {
+        return Some("is not a path inside the dataset");
+    }
+    let mut reached = root.to_owned();
+    let parts: Vec<_> = file.components().collect();
+    for part in &parts[..parts.len() - 1] {
+        reached.push(part);
+        match std::fs::symlink_metadata(&reached) {
+            Ok(metadata) if metadata.file_type().is_symlink() => {
+                return Some("goes through a link out of the dataset");
+            }
+            Ok(metadata) if !metadata.is_dir() => return Some("goes through a file"),
+            _ => {}
+        }
+    }
+    None
 }
 
 /// Why `destination` may not receive a dataset, if it may not.
@@ -106,6 +150,92 @@ fn refusal(destination: &Path) -> Result<Option<String>, BoxError> {
     )))
 }
 
+/// The file in a dataset being written that says a yarok run made its folder (its process
+/// id): a leftover holding it is a killed run's, and may be removed.
+const PARTIAL_MARK: &str = ".yarok-partial";
+
+/// Takes the lock `lock` of `destination` for this process: created anew (never through a
+/// link, never over a file), holding the process id. A lock left by a run that ended is taken
+/// over; one a live run holds, or a file or link of the user's at its name, is refused.
+fn take_lock(lock: &Path, destination: &Path) -> Result<(), BoxError> {
+    use std::io::Write;
+    let shown = lock.display();
+    let pid = std::process::id();
+    for _attempt in 0..2 {
+        let created = std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(lock);
+        let error = match created {
+            Ok(mut file) => {
+                return file
+                    .write_all(pid.to_string().as_bytes())
+                    .map_err(|e| format!("cannot write {shown}: {e}").into());
+            }
+            Err(error) => error,
+        };
+        if error.kind() != std::io::ErrorKind::AlreadyExists {
+            return Err(format!("cannot create {shown}: {error}").into());
+        }
+        let in_the_way = || -> BoxError {
+            format!(
+                "{shown} is in the way of the dataset's lock and is not one yarok wrote (a lock \
+                 is a file holding a process id): move it away, or give another folder"
+            )
+            .into()
+        };
+        if !std::fs::symlink_metadata(lock).is_ok_and(|m| m.is_file()) {
+            return Err(in_the_way());
+        }
+        let text = yarok_core::bounded::read_text(lock, 32).map_err(|_| in_the_way())?;
+        match text.trim().parse::<u32>() {
+            Ok(holder) if holder != pid && alive(holder) => {
+                return Err(format!(
+                    "another yarok run (process {holder}) is writing a dataset into {}",
+                    destination.display()
+                )
+                .into());
+            }
+            // Left by a run that ended without removing it.
+            Ok(_) => {
+                std::fs::remove_file(lock)
+                    .map_err(|e| format!("cannot remove {shown}, left by a run that ended: {e}"))?;
+            }
+            Err(_) if text.is_empty() => {
+                return Err(format!(
+                    "another yarok run is claiming {} (its lock {shown} is being written)",
+                    destination.display()
+                )
+                .into());
+            }
+            Err(_) => return Err(in_the_way()),
+        }
+    }
+    Err(format!("another yarok run took {shown} at the same time").into())
+}
+
+/// Removes the dataset a killed run left at `partial` (it holds [`PARTIAL_MARK`]); anything
+/// else there is the user's, and is refused.
+fn remove_leftover(partial: &Path) -> Result<(), BoxError> {
+    let shown = partial.display();
+    match std::fs::symlink_metadata(partial) {
+        Err(error) if error.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Ok(metadata)
+            if metadata.is_dir()
+                && std::fs::symlink_metadata(partial.join(PARTIAL_MARK))
+                    .is_ok_and(|m| m.is_file()) =>
+        {
+            std::fs::remove_dir_all(partial)
+                .map_err(|e| format!("cannot remove {shown}, left by a run that ended: {e}").into())
+        }
+        _ => Err(format!(
+            "{shown} is in the way of the dataset being written, and is not a leftover of a \
+             yarok run: move it away, or give another folder"
+        )
+        .into()),
+    }
+}
+
 /// Whether process `pid` is alive.
 fn alive(pid: u32) -> bool {
     Path::new(&format!("/proc/{pid}")).exists()
@@ -139,37 +269,19 @@ impl DatasetFolder {
                 .map_err(|e| format!("cannot create {}: {e}", parent.display()))?;
         }
         let lock = beside(destination, "lock");
-        let pid = std::process::id();
-        let taken = std::fs::OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&lock);
-        if taken.is_err() {
-            let holder = std::fs::read_to_string(&lock)
-                .ok()
-                .and_then(|text| text.trim().parse::<u32>().ok());
-            match holder {
-                Some(holder) if alive(holder) && holder != pid => {
-                    return Err(format!(
-                        "another yarok run (process {holder}) is writing a dataset into {}",
-                        destination.display()
-                    )
-                    .into());
-                }
-                // Left by a run that ended without removing it.
-                _ => {}
-            }
-        }
-        std::fs::write(&lock, pid.to_string())
-            .map_err(|e| format!("cannot write {}: {e}", lock.display()))?;
+        take_lock(&lock, destination)?;
         let partial = beside(destination, "partial");
-        if partial.exists() {
-            // A dataset of a run that was killed, under the lock this run now holds.
-            std::fs::remove_dir_all(&partial)
-                .map_err(|e| format!("cannot remove {}: {e}", partial.display()))?;
+        let claimed = remove_leftover(&partial).and_then(|()| {
+            std::fs::create_dir(&partial)
+                .and_then(|()| {
+                    std::fs::write(partial.join(PARTIAL_MARK), std::process::id().to_string())
+                })
+                .map_err(|e| format!("cannot create {}: {e}", partial.display()).into())
+        });
+        if let Err(error) = claimed {
+            let _released = std::fs::remove_file(&lock);
+            return Err(error);
         }
-        std::fs::create_dir_all(&partial)
-            .map_err(|e| format!("cannot create {}: {e}", partial.display()))?;
         Ok(Self {
             destination: destination.to_owned(),
             partial,
@@ -191,6 +303,9 @@ impl DatasetFolder {
     /// When a file cannot be written or moved, or the folder has changed since it was claimed
     /// (then nothing is replaced and the new dataset is left where it was written, named).
     pub(super) fn commit(mut self) -> Result<(), BoxError> {
+        let mark = self.partial.join(PARTIAL_MARK);
+        std::fs::remove_file(&mark)
+            .map_err(|e| format!("cannot remove {}: {e}", mark.display()))?;
         let written: Vec<PathBuf> = files_below(&self.partial)?
             .into_iter()
             .chain([PathBuf::from(MANIFEST)])
@@ -244,7 +359,10 @@ fn remove_own(folder: &Path) -> Result<(), BoxError> {
     let own = manifest(folder)?.unwrap_or_default();
     for file in &own {
         let path = folder.join(file);
-        if path.is_file() {
+        // A file, or a link itself (never what it points to).
+        let removable = std::fs::symlink_metadata(&path)
+            .is_ok_and(|m| m.is_file() || m.file_type().is_symlink());
+        if removable && outside(folder, file).is_none() {
             std::fs::remove_file(&path)
                 .map_err(|e| format!("cannot remove {}: {e}", path.display()))?;
         }
@@ -254,7 +372,12 @@ fn remove_own(folder: &Path) -> Result<(), BoxError> {
     while let Some(next) = folders.pop() {
         all.push(next.clone());
         if let Ok(entries) = std::fs::read_dir(&next) {
-            folders.extend(entries.flatten().map(|e| e.path()).filter(|p| p.is_dir()));
+            // A DirEntry's type is the link's own: links to folders are not walked into.
+            let real_folders = entries
+                .flatten()
+                .filter(|e| e.file_type().is_ok_and(|kind| kind.is_dir()))
+                .map(|e| e.path());
+            folders.extend(real_folders);
         }
     }
     for empty in all.iter().rev() {
