@@ -433,3 +433,54 @@ fn a_recording_to_a_pipe_nobody_reads_is_refused_before_the_run() {
     assert!(said.contains("is a named pipe nobody reads"), "{said}");
     assert!(started.elapsed() < std::time::Duration::from_secs(30));
 }
+
+/// Two runs recording to one path: the second is refused naming the first's process, and the
+/// first's recording is written whole.
+#[test]
+fn a_second_run_recording_to_the_same_path_is_refused_naming_the_first() {
+    let folder = tempfile::tempdir().unwrap();
+    let recording = folder.path().join("run.mcap");
+    let lock = folder.path().join(".run.mcap.yarok-lock");
+    let args = |seconds: &str| {
+        [
+            "run",
+            "tower_world",
+            "--behaviour",
+            "idle",
+            "--set",
+            seconds,
+            "--record",
+            recording.to_str().unwrap(),
+        ]
+        .map(str::to_owned)
+    };
+    let mut first = std::process::Command::new(env!("CARGO_BIN_EXE_yarok"))
+        .args(args("behaviour/seconds=3"))
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let started = std::time::Instant::now();
+    while !lock.exists() && started.elapsed() < std::time::Duration::from_secs(30) {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    assert!(lock.exists(), "the first run took no lock");
+    let second = std::process::Command::new(env!("CARGO_BIN_EXE_yarok"))
+        .args(args("behaviour/seconds=0.1"))
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&second.stderr);
+    assert!(!second.status.success(), "{said}");
+    assert!(
+        said.contains(&format!(
+            "another yarok run (process {}) is writing",
+            first.id()
+        )),
+        "{said}"
+    );
+    let status = first.wait().unwrap();
+    assert!(status.success());
+    assert!(!lock.exists(), "the first run left its lock");
+    let bytes = std::fs::read(&recording).unwrap();
+    assert!(bytes.starts_with(b"\x89MCAP0\r\n") && bytes.ends_with(b"\x89MCAP0\r\n"));
+}

@@ -366,11 +366,11 @@ fn a_lock_or_partial_name_held_by_a_users_file_folder_or_link_is_refused_never_r
             std::fs::write(root.join(".ssh/id_rsa"), "a user's key").unwrap();
             symlink(root.join(".ssh/id_rsa"), root.join(".ds.yarok-lock")).unwrap();
         },
-        ".ds.yarok-lock is in the way of the dataset's lock",
+        ".ds.yarok-lock is in the way of the lock of",
     );
     refused_after(
         |root| std::fs::write(root.join(".ds.yarok-lock"), "a user's file").unwrap(),
-        ".ds.yarok-lock is in the way of the dataset's lock",
+        ".ds.yarok-lock is in the way of the lock of",
     );
     refused_after(
         |root| {

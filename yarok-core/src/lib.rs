@@ -20,6 +20,7 @@ pub mod component;
 pub mod compose;
 pub mod config;
 pub mod output;
+pub mod output_lock;
 pub mod report;
 pub mod runtime;
 mod stack;

@@ -3,10 +3,10 @@
 //! dataset yarok wrote and nothing else, and one run at a time writes into it.
 
 use std::collections::BTreeSet;
-use std::ffi::OsString;
 use std::path::{Component, Path, PathBuf};
 
 use yarok_core::BoxError;
+use yarok_core::output_lock::{OutputLock, beside};
 
 /// The list of the files yarok wrote, inside the dataset (LeRobot reads past it).
 const MANIFEST: &str = "meta/yarok_files.json";
@@ -16,16 +16,8 @@ const MANIFEST: &str = "meta/yarok_files.json";
 pub(super) struct DatasetFolder {
     destination: PathBuf,
     partial: PathBuf,
-    lock: PathBuf,
+    _lock: OutputLock,
     committed: bool,
-}
-
-/// `folder`'s sibling `.{name}.yarok-{what}`.
-fn beside(folder: &Path, what: &str) -> PathBuf {
-    let mut name = OsString::from(".");
-    name.push(folder.file_name().unwrap_or_default());
-    name.push(format!(".yarok-{what}"));
-    folder.with_file_name(name)
 }
 
 /// Every file below `root`, as paths relative to it, sorted.
@@ -154,66 +146,6 @@ fn refusal(destination: &Path) -> Result<Option<String>, BoxError> {
 /// id): a leftover holding it is a killed run's, and may be removed.
 const PARTIAL_MARK: &str = ".yarok-partial";
 
-/// Takes the lock `lock` of `destination` for this process: created anew (never through a
-/// link, never over a file), holding the process id. A lock left by a run that ended is taken
-/// over; one a live run holds, or a file or link of the user's at its name, is refused.
-fn take_lock(lock: &Path, destination: &Path) -> Result<(), BoxError> {
-    use std::io::Write;
-    let shown = lock.display();
-    let pid = std::process::id();
-    for _attempt in 0..2 {
-        let created = std::fs::OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(lock);
-        let error = match created {
-            Ok(mut file) => {
-                return file
-                    .write_all(pid.to_string().as_bytes())
-                    .map_err(|e| format!("cannot write {shown}: {e}").into());
-            }
-            Err(error) => error,
-        };
-        if error.kind() != std::io::ErrorKind::AlreadyExists {
-            return Err(format!("cannot create {shown}: {error}").into());
-        }
-        let in_the_way = || -> BoxError {
-            format!(
-                "{shown} is in the way of the dataset's lock and is not one yarok wrote (a lock \
-                 is a file holding a process id): move it away, or give another folder"
-            )
-            .into()
-        };
-        if !std::fs::symlink_metadata(lock).is_ok_and(|m| m.is_file()) {
-            return Err(in_the_way());
-        }
-        let text = yarok_core::bounded::read_text(lock, 32).map_err(|_| in_the_way())?;
-        match text.trim().parse::<u32>() {
-            Ok(holder) if holder != pid && alive(holder) => {
-                return Err(format!(
-                    "another yarok run (process {holder}) is writing a dataset into {}",
-                    destination.display()
-                )
-                .into());
-            }
-            // Left by a run that ended without removing it.
-            Ok(_) => {
-                std::fs::remove_file(lock)
-                    .map_err(|e| format!("cannot remove {shown}, left by a run that ended: {e}"))?;
-            }
-            Err(_) if text.is_empty() => {
-                return Err(format!(
-                    "another yarok run is claiming {} (its lock {shown} is being written)",
-                    destination.display()
-                )
-                .into());
-            }
-            Err(_) => return Err(in_the_way()),
-        }
-    }
-    Err(format!("another yarok run took {shown} at the same time").into())
-}
-
 /// Removes the dataset a killed run left at `partial` (it holds [`PARTIAL_MARK`]); anything
 /// else there is the user's, and is refused.
 fn remove_leftover(partial: &Path) -> Result<(), BoxError> {
@@ -234,11 +166,6 @@ fn remove_leftover(partial: &Path) -> Result<(), BoxError> {
         )
         .into()),
     }
-}
-
-/// Whether process `pid` is alive.
-fn alive(pid: u32) -> bool {
-    Path::new(&format!("/proc/{pid}")).exists()
 }
 
 impl DatasetFolder {
@@ -268,24 +195,18 @@ impl DatasetFolder {
             std::fs::create_dir_all(parent)
                 .map_err(|e| format!("cannot create {}: {e}", parent.display()))?;
         }
-        let lock = beside(destination, "lock");
-        take_lock(&lock, destination)?;
+        let lock = OutputLock::take(destination)?;
         let partial = beside(destination, "partial");
-        let claimed = remove_leftover(&partial).and_then(|()| {
-            std::fs::create_dir(&partial)
-                .and_then(|()| {
-                    std::fs::write(partial.join(PARTIAL_MARK), std::process::id().to_string())
-                })
-                .map_err(|e| format!("cannot create {}: {e}", partial.display()).into())
-        });
-        if let Err(error) = claimed {
-            let _released = std::fs::remove_file(&lock);
-            return Err(error);
-        }
+        remove_leftover(&partial)?;
+        std::fs::create_dir(&partial)
+            .and_then(|()| {
+                std::fs::write(partial.join(PARTIAL_MARK), std::process::id().to_string())
+            })
+            .map_err(|e| format!("cannot create {}: {e}", partial.display()))?;
         Ok(Self {
             destination: destination.to_owned(),
             partial,
-            lock,
+            _lock: lock,
             committed: false,
         })
     }
@@ -398,6 +319,5 @@ impl Drop for DatasetFolder {
         if !self.committed {
             let _incomplete = std::fs::remove_dir_all(&self.partial);
         }
-        let _released = std::fs::remove_file(&self.lock);
     }
 }

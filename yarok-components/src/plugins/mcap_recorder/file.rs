@@ -10,6 +10,7 @@ use std::sync::Arc;
 use yarok_core::BoxError;
 use yarok_core::component::ProbeImage;
 use yarok_core::output::{check_replaceable, head, make_folder_for};
+use yarok_core::output_lock::OutputLock;
 use yarok_mjc::Pose;
 
 use crate::plugins::recording_profile::{JointValues, MessageKind, RecordingProfile, nanoseconds};
@@ -94,6 +95,8 @@ pub(super) struct McapFile {
     writer: mcap::Writer<BufWriter<File>>,
     channels: Channels,
     sequence: u32,
+    /// Held while the file is written: a second run recording to the same path is refused.
+    _lock: OutputLock,
 }
 
 impl std::fmt::Debug for McapFile {
@@ -120,6 +123,7 @@ impl McapFile {
         let cannot = |e: std::io::Error| format!("cannot create {}: {e}", path.display());
         check_replaceable(&path, "recording", recorded_by_yarok)?;
         make_folder_for(&path)?;
+        let lock = OutputLock::take(&path)?;
         let file = File::create(&path).map_err(cannot)?;
         let options = mcap::WriteOptions::new()
             .compression(Some(mcap::Compression::Zstd))
@@ -138,6 +142,7 @@ impl McapFile {
             writer,
             channels: Channels::default(),
             sequence: 0,
+            _lock: lock,
         };
         file.channels.log = file.channel(MessageKind::Log, "/log", &BTreeMap::new())?;
         for image in &layout.images {
