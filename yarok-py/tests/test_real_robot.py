@@ -266,6 +266,7 @@ def test_a_killed_process_leaves_the_streaming_program_to_stop_the_arm(fake_cont
     "fault, named",
     [
         ("protective stop", "PROTECTIVE_STOP"),
+        ("emergency stop", "ROBOT_EMERGENCY_STOP"),
         ("power off", "POWER_OFF"),
         ("mute gripper", "gripper"),
     ],
@@ -299,3 +300,48 @@ def test_a_stop_reaches_the_caller_within_half_a_second_and_nothing_more_is_stre
     ends = program_ends(said)
     assert len(ends) == 1, said
     assert all(at <= ends[0][0] for at, _, _ in targets(said)), said
+
+
+def test_a_3_rad_jump_is_approached_at_the_joint_speed_limit(fake_controller):
+    """An action 3 rad from where the arm is, held at 20 Hz: every target the program reads is
+    within the joint speed limit of the one before, the approach goes at that limit, and the arm
+    arrives."""
+    env = real_env(fake_controller)
+    observation, _ = env.reset(seed=0)
+    start = observation["observation.state"][1:7].astype(np.float64)
+    action = np.concatenate([[0.0], start + [3.0, 0, 0, 0, 0, 0]]).astype(np.float32)
+    for _ in range(40):
+        observation, *_ = env.step(action)
+    assert abs(observation["observation.state"][1] - action[1]) < 0.02
+    env.close()
+    fake_controller.stdin.close()
+    said = fake_controller.stdout.read().splitlines()
+    before, fastest = start, 0.0
+    for _, period, joints in targets(said):
+        fastest = max(fastest, np.abs(joints - before).max() / period)
+        before = joints
+    # To the messages' resolution: a micro-radian at each end over a 50 ms period.
+    assert fastest <= yarok.UR_JOINT_SPEED + 4e-5, fastest
+    assert fastest > 0.9 * yarok.UR_JOINT_SPEED, fastest
+
+
+def test_a_late_dashboard_never_stalls_the_stream(fake_controller):
+    """The dashboard answering 0.3 s late (the once-a-second remote-control check runs beside
+    the stream): 60 steps at 20 Hz reach the program as 60 targets, none more than 0.15 s after
+    the one before and none in a burst."""
+    env = real_env(fake_controller)
+    observation, _ = env.reset(seed=0)
+    start = observation["observation.state"][1:7].astype(np.float64)
+    fake_controller.stdin.write("late dashboard 0.3\n")
+    fake_controller.stdin.flush()
+    for step in range(60):
+        action = np.concatenate([[0.0], start + [0.005 * step, 0, 0, 0, 0, 0]]).astype(np.float32)
+        env.step(action)
+    env.close()
+    fake_controller.stdin.close()
+    said = fake_controller.stdout.read().splitlines()
+    arrived = np.array([at for at, _, _ in targets(said)])
+    assert len(arrived) == 60, said
+    gaps = np.diff(arrived[1:])
+    assert gaps.max() < 0.15, gaps
+    assert gaps.min() > 0.005, gaps

@@ -7,8 +7,8 @@
 //! program's lines joined by `\n`), `gripper COMMAND` for each gripper `SET`, and for yarok's
 //! streaming program `program SECONDS started`, `message SECONDS MODE PERIOD Q0 … Q5` for each
 //! message it reads (`Servo`, `KeepAlive`, `Stop`) and `program SECONDS ended WHY`. Takes faults
-//! on its standard input, a line each: `protective stop`, `power off`, `mute gripper`. Ends
-//! when its standard input closes.
+//! on its standard input, a line each: `protective stop`, `emergency stop`, `power off`, `mute
+//! gripper`, `late dashboard SECONDS`. Ends when its standard input closes.
 
 use std::io::{BufRead, Write};
 use std::sync::mpsc::{RecvTimeoutError, channel};
@@ -36,11 +36,19 @@ fn main() {
             Ok(Some(fault)) => {
                 match fault.trim() {
                     "protective stop" => fake.protective_stop(Duration::ZERO),
+                    "emergency stop" => fake.emergency_stop(),
                     "power off" => fake.power_off(),
                     "mute gripper" => fake.mute_gripper(),
-                    other => {
-                        let _ = writeln!(out, "error unknown fault {other:?}");
-                    }
+                    other => match other
+                        .strip_prefix("late dashboard ")
+                        .and_then(|seconds| seconds.parse::<f64>().ok())
+                        .and_then(|seconds| Duration::try_from_secs_f64(seconds).ok())
+                    {
+                        Some(late) => fake.set_dashboard_delay(late),
+                        None => {
+                            let _ = writeln!(out, "error unknown fault {other:?}");
+                        }
+                    },
                 }
                 false
             }

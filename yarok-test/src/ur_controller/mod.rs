@@ -391,6 +391,14 @@ impl FakeController {
         arm.playing = false;
     }
 
+    /// The emergency stop button pressed on the robot: the arm stops where it is.
+    pub fn emergency_stop(&self) {
+        self.shared.motion.lock().unwrap().command(ArmCommand::Stop);
+        let mut arm = self.shared.arm.lock().unwrap();
+        arm.safety = "ROBOT_EMERGENCY_STOP";
+        arm.playing = false;
+    }
+
     /// The gripper now.
     pub fn fingers(&self) -> Fingers {
         let mut fingers = self.shared.fingers.lock().unwrap();

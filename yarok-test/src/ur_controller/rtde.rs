@@ -25,6 +25,7 @@ impl Shared {
                 Value::Int32(match self.arm.lock().unwrap().safety {
                     "NORMAL" => 1,
                     "PROTECTIVE_STOP" => 3,
+                    "ROBOT_EMERGENCY_STOP" => 7,
                     _ => 9,
                 })
             }
