@@ -27,7 +27,7 @@ pub fn beside(output: &Path, what: &str) -> PathBuf {
 ///
 /// let folder = tempfile::tempdir()?;
 /// let recording = folder.path().join("run.mcap");
-/// let held = OutputLock::take(&recording)?;
+/// let held = OutputLock::take(&recording, "the recording run.mcap")?;
 /// assert!(folder.path().join(".run.mcap.yarok-lock").is_file());
 /// drop(held);
 /// assert!(!folder.path().join(".run.mcap.yarok-lock").exists());
@@ -39,15 +39,15 @@ pub struct OutputLock {
 }
 
 impl OutputLock {
-    /// Takes the lock of `output`. A lock left by a run that ended (its process is gone) is
-    /// taken over.
+    /// Takes the lock of `output`, which a refusal describes as `what` (`a dataset into
+    /// out/run`). A lock left by a run that ended (its process is gone) is taken over.
     ///
     /// # Errors
     ///
     /// When a live run holds it (naming its process), when a file, folder or link of the
     /// user's is at the lock's name (never written through, never removed), or when it cannot
     /// be created.
-    pub fn take(output: &Path) -> Result<Self, String> {
+    pub fn take(output: &Path, what: &str) -> Result<Self, String> {
         let path = beside(output, "lock");
         let shown = path.display();
         let pid = std::process::id();
@@ -82,8 +82,7 @@ impl OutputLock {
             match text.trim().parse::<u32>() {
                 Ok(holder) if holder != pid && alive(holder) => {
                     return Err(format!(
-                        "another yarok run (process {holder}) is writing {}",
-                        output.display()
+                        "another yarok run (process {holder}) is writing {what}"
                     ));
                 }
                 // Left by a run that ended without removing it.
@@ -91,9 +90,8 @@ impl OutputLock {
                     .map_err(|e| format!("cannot remove {shown}, left by a run that ended: {e}"))?,
                 Err(_) if text.is_empty() => {
                     return Err(format!(
-                        "another yarok run is starting to write {} (its lock {shown} is being \
-                         written)",
-                        output.display()
+                        "another yarok run is starting to write {what} (its lock {shown} is \
+                         being written)"
                     ));
                 }
                 Err(_) => return Err(in_the_way()),
@@ -122,18 +120,12 @@ mod tests {
     fn a_second_writer_is_refused_naming_the_first_until_it_is_done() {
         let folder = tempfile::tempdir().unwrap();
         let output = folder.path().join("run.mcap");
-        let first = OutputLock::take(&output).unwrap();
+        let first = OutputLock::take(&output, "run.mcap").unwrap();
         std::fs::write(beside(&output, "lock"), "1").unwrap();
-        let refused = OutputLock::take(&output).unwrap_err();
-        assert_eq!(
-            refused,
-            format!(
-                "another yarok run (process 1) is writing {}",
-                output.display()
-            )
-        );
+        let refused = OutputLock::take(&output, "run.mcap").unwrap_err();
+        assert_eq!(refused, "another yarok run (process 1) is writing run.mcap");
         drop(first);
-        let second = OutputLock::take(&output).unwrap();
+        let second = OutputLock::take(&output, "run.mcap").unwrap();
         drop(second);
     }
 
@@ -144,7 +136,7 @@ mod tests {
         let key = folder.path().join("id_rsa");
         std::fs::write(&key, "a user's key").unwrap();
         std::os::unix::fs::symlink(&key, beside(&output, "lock")).unwrap();
-        let refused = OutputLock::take(&output).unwrap_err();
+        let refused = OutputLock::take(&output, "run.mcap").unwrap_err();
         assert!(
             refused.contains("is in the way of the lock of"),
             "{refused}"
@@ -152,7 +144,7 @@ mod tests {
         assert_eq!(std::fs::read_to_string(&key).unwrap(), "a user's key");
         std::fs::remove_file(beside(&output, "lock")).unwrap();
         std::fs::write(beside(&output, "lock"), "a user's notes").unwrap();
-        assert!(OutputLock::take(&output).is_err());
+        assert!(OutputLock::take(&output, "run.mcap").is_err());
         assert_eq!(
             std::fs::read_to_string(beside(&output, "lock")).unwrap(),
             "a user's notes"

@@ -195,7 +195,10 @@ impl DatasetFolder {
             std::fs::create_dir_all(parent)
                 .map_err(|e| format!("cannot create {}: {e}", parent.display()))?;
         }
-        let lock = OutputLock::take(destination)?;
+        let lock = OutputLock::take(
+            destination,
+            &format!("a dataset into {}", destination.display()),
+        )?;
         let partial = beside(destination, "partial");
         remove_leftover(&partial)?;
         std::fs::create_dir(&partial)

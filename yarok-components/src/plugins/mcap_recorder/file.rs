@@ -123,7 +123,7 @@ impl McapFile {
         let cannot = |e: std::io::Error| format!("cannot create {}: {e}", path.display());
         check_replaceable(&path, "recording", recorded_by_yarok)?;
         make_folder_for(&path)?;
-        let lock = OutputLock::take(&path)?;
+        let lock = OutputLock::take(&path, &format!("the recording {}", path.display()))?;
         let file = File::create(&path).map_err(cannot)?;
         let options = mcap::WriteOptions::new()
             .compression(Some(mcap::Compression::Zstd))
