@@ -18,7 +18,7 @@ use support::simulated_ur;
 use yarok_test::ur_controller;
 
 use simulated_ur::{SimulatedArm, Ur5Alone, Ur5eAlone};
-use ur_controller::{FakeController, Profile, ProgramEvent};
+use ur_controller::{FakeController, Profile};
 use yarok_test::assert_says;
 
 /// Where the arms start.
@@ -661,12 +661,7 @@ fn a_protective_stop_ends_a_stream_until_it_is_rearmed() {
             .is_some_and(|(at, why)| why.contains("PROTECTIVE_STOP") && *at < refused),
         "{ends:?}"
     );
-    let started = fake
-        .program_events()
-        .iter()
-        .filter(|(_, event)| *event == ProgramEvent::Started)
-        .count();
-    assert_eq!(started, 2, "a new program after re-arming");
+    assert_eq!(fake.programs_started(), 2, "a new program after re-arming");
 }
 
 /// yarok falls silent mid-stream (its thread blocked 0.6 s, as a hung process or a cut
@@ -734,12 +729,7 @@ fn a_silent_sender_is_stopped_by_the_programs_watchdog() {
         .filter(|(at, _)| at > ended_at && *at < silent_from + Duration::from_millis(600))
         .count();
     assert_eq!(steps_after, 0, "the stopped program moved the arm");
-    let started = fake
-        .program_events()
-        .iter()
-        .filter(|(_, event)| *event == ProgramEvent::Started)
-        .count();
-    assert_eq!(started, 2, "a new program after re-arming");
+    assert_eq!(fake.programs_started(), 2, "a new program after re-arming");
 }
 
 /// A behaviour that streams at 20 Hz, pauses 2 s (a model warming up), streams at 20 Hz again,

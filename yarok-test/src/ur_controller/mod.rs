@@ -352,6 +352,15 @@ impl FakeController {
         targets.collect()
     }
 
+    /// How many streaming programs connected back to their sender.
+    pub fn programs_started(&self) -> usize {
+        let events = self.shared.program_events.lock().unwrap();
+        let started = events
+            .iter()
+            .filter(|(_, event)| *event == ProgramEvent::Started);
+        started.count()
+    }
+
     /// Why each streaming program ended, with when.
     pub fn program_ends(&self) -> Vec<(Instant, String)> {
         let events = self.shared.program_events.lock().unwrap();
