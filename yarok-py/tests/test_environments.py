@@ -178,18 +178,95 @@ def test_tactile_press_holds_its_goal_in_the_observation():
         env.close()
 
 
+def test_tactile_press_acts_over_the_gel_and_is_won_by_a_press_held_not_passed_through():
+    env = gymnasium.make("yarok/TactilePress-v0")
+    try:
+        task = env.unwrapped.task
+        x, y, surface = yarok.tasks.DIGIT_GEL_CENTRE_MM
+        world = np.array(env.unwrapped.world.features.action_ranges)
+        assert (env.action_space.low >= world[:, 0]).all()
+        assert (env.action_space.high <= world[:, 1]).all()
+        assert env.action_space.contains(np.array([x, y, surface], dtype=np.float32))
+        # Beyond the workspace, clipped to it: the head goes to the workspace's corner.
+        env.reset(seed=0)
+        for _ in range(20):
+            observation, *_ = env.step(np.array([0.0, 0.0, 400.0], dtype=np.float32))
+        low, high = env.action_space.low, env.action_space.high
+        corner = [low[0], low[1], high[2]]
+        assert observation["observation.state"] == pytest.approx(corner, abs=0.01)
+        assert observation["observation.achieved_goal"][0] == 0.0, "the gel touched from above it"
+
+        def press(depth, steps):
+            env.reset(seed=3)
+            changes, wins = [], []
+            for _ in range(steps):
+                action = np.array([x, y, surface - depth], dtype=np.float32)
+                observation, _, terminated, _, info = env.step(action)
+                changes.append(float(observation["observation.achieved_goal"][0]))
+                wins.append(info["is_success"])
+                if terminated:
+                    break
+            return changes, wins
+
+        changes, _ = press(-0.3, 20)
+        assert changes[-1] == 0.0, "0.3 mm over the gel's surface touches nothing"
+        # Deeper and deeper in 0.05 mm steps: the change passes through the target's band
+        # without a win, as no depth is held.
+        env.reset(seed=3)
+        target, passed, won = task.target, False, False
+        for step in range(60):
+            depth = 0.05 * max(step - 5, 0)
+            observation, _, terminated, _, info = env.step(
+                np.array([x, y, surface - depth], dtype=np.float32)
+            )
+            change = float(observation["observation.achieved_goal"][0])
+            passed |= abs(change - target) < task.tolerance
+            won |= info["is_success"]
+        assert passed and not won and change > target + 1
+        # The depth that gives the target change, found by bisection, held: won after
+        # hold_steps steps within the band, and not before.
+        shallow, deep = 0.0, 2.0
+        for _ in range(12):
+            middle = (shallow + deep) / 2
+            changes, _ = press(middle, 12)
+            shallow, deep = (middle, deep) if changes[-1] < target else (shallow, middle)
+        changes, wins = press((shallow + deep) / 2, 40)
+        within = [abs(change - target) < task.tolerance for change in changes]
+        first = within.index(True)
+        assert wins[-1] and all(within[first:])
+        assert len(wins) == first + task.hold_steps and not any(wins[:-1])
+    finally:
+        env.close()
+
+
 @pytest.mark.parametrize("env_id", sorted(ENVIRONMENTS))
 def test_for_learners_keys_observations_without_dots_or_empty_features(env_id):
-    env = yarok.for_learners(gymnasium.make(env_id))
+    made = gymnasium.make(env_id)
+    env = yarok.for_learners(made)
     try:
         observation, _ = env.reset(seed=0)
         assert set(observation) == set(env.observation_space.spaces)
         for key, space in env.observation_space.spaces.items():
             assert "." not in key and np.prod(space.shape) > 0, key
             assert space.contains(observation[key]), key
-        flat = gymnasium.wrappers.FlattenObservation(yarok.for_learners(env.env, images=False))
+        flat = gymnasium.wrappers.FlattenObservation(yarok.for_learners(made, images=False))
         vector, _ = flat.reset(seed=0)
         assert vector.ndim == 1 and flat.observation_space.contains(vector)
+    finally:
+        env.close()
+
+
+def test_for_learners_rescales_actions_to_minus_one_one_onto_the_action_space():
+    made = gymnasium.make("yarok/TactilePress-v0")
+    env = yarok.for_learners(made, images=False)
+    try:
+        assert (env.action_space.low == -1).all() and (env.action_space.high == 1).all()
+        env.reset(seed=0)
+        low, high = made.action_space.low, made.action_space.high
+        for rescaled, expected in ((-1.0, low), (1.0, high), (0.0, (low + high) / 2)):
+            for _ in range(30):
+                observation, *_ = env.step(np.full(3, rescaled, dtype=np.float32))
+            assert observation["state"] == pytest.approx(expected, abs=0.01), rescaled
     finally:
         env.close()
 

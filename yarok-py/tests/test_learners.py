@@ -1,6 +1,7 @@
 """Reinforcement learning out of the box: Stable-Baselines3's own environment checker and PPO
-updates through ``yarok.for_learners`` for each registered environment, and PyTorch training
-in the same process as a rendering yarok world, in either import order.
+updates through ``yarok.for_learners`` for each registered environment, PPO learning
+TactilePress (the reinforcement benchmark's short run), and PyTorch training in the same
+process as a rendering yarok world, in either import order.
 
 Stable-Baselines3 and PyTorch are installed by ``scripts/setup-lerobot.sh`` beside LeRobot;
 where they are missing these tests are skipped, unless ``YAROK_REQUIRE_LEROBOT=1`` (as
@@ -74,3 +75,21 @@ def test_pytorch_trains_beside_a_rendering_world(order):
     )
     assert done.returncode == 0, (done.returncode, done.stdout[-2000:], done.stderr[-4000:])
     assert done.stdout.startswith("trained"), done.stdout
+
+
+def test_ppo_learns_to_press_as_the_reinforcement_benchmark_measures():
+    """The CI version of ``scripts/bench-reinforcement.sh``: a short PPO run through
+    ``yarok.for_learners`` wins most held-out presses, where the untrained policy wins none."""
+    bench = os.path.join(os.path.dirname(__file__), "..", "benches", "reinforcement.py")
+    done = subprocess.run(
+        [
+            *(sys.executable, bench),
+            *("--steps", "20000", "--every", "10000"),
+            *("--episodes", "10", "--min-success", "0.5"),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=900,
+    )
+    assert done.returncode == 0, (done.stdout[-3000:], done.stderr[-3000:])
+    assert "success   0.0 %  (untrained)" in done.stdout, done.stdout

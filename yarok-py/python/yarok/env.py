@@ -49,6 +49,14 @@ class Task:
     def success(self, observation: dict[str, np.ndarray]) -> bool:
         return False
 
+    def action_bounds(self, low: np.ndarray, high: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The bounds of the task's actions, given the world's ranges ``low`` and ``high``
+        (float64, one per number of the action): the whole ranges by default. A task whose work
+        is in one place narrows them to its workspace (as a rig keeps a printer's head over the
+        sensor); actions beyond the bounds are clipped to them. They must lie within the
+        world's ranges."""
+        return low, high
+
     def goal_spaces(self) -> dict[str, gymnasium.spaces.Box]:
         """Observations the task adds to the world's (a goal-conditioned task's goal), by key:
         ``observation.desired_goal`` and ``observation.achieved_goal`` by Gymnasium-Robotics'
@@ -76,16 +84,33 @@ def observation_space(world) -> gymnasium.spaces.Dict:
     return gymnasium.spaces.Dict(spaces)
 
 
-def action_ranges(world) -> np.ndarray:
-    """A world's ``features``' action ranges, lowest and highest per number (float64)."""
-    return np.array(world.action_ranges, dtype=np.float64).reshape(-1, 2)
+def action_ranges(world, task: Task) -> np.ndarray:
+    """The ranges of ``task``'s actions in a world (its ``features``), lowest and highest per
+    number (float64): the world's, narrowed by ``Task.action_bounds``."""
+    world_ranges = np.array(world.action_ranges, dtype=np.float64).reshape(-1, 2)
+    low, high = (
+        np.asarray(bound, dtype=np.float64)
+        for bound in task.action_bounds(world_ranges[:, 0].copy(), world_ranges[:, 1].copy())
+    )
+    if low.shape != world_ranges[:, 0].shape or high.shape != low.shape:
+        raise ValueError(
+            f"{type(task).__name__}.action_bounds gave bounds of shapes {low.shape} and "
+            f"{high.shape}; the action has {len(world_ranges)} numbers ({world.action_names})"
+        )
+    outside = (low < world_ranges[:, 0]) | (high > world_ranges[:, 1]) | (low > high)
+    if outside.any():
+        names = [name for name, out in zip(world.action_names, outside) if out]
+        raise ValueError(
+            f"{type(task).__name__}.action_bounds: the bounds of {names} are not an interval "
+            f"within the world's ranges {world_ranges[outside].tolist()}"
+        )
+    return np.stack([low, high], axis=1)
 
 
-def action_space(world) -> gymnasium.spaces.Box:
-    """The action space of a world's ``features``: ``action``'s numbers within their ranges,
-    as float32 bounds that lie inside them (a bound rounded to float32 can fall just outside
-    a float64 limit, as 2π does), so that every action in the space is taken."""
-    ranges = action_ranges(world)
+def action_space(ranges: np.ndarray) -> gymnasium.spaces.Box:
+    """The action space of action ``ranges`` (``action_ranges``): the numbers within them, as
+    float32 bounds that lie inside them (a bound rounded to float32 can fall just outside a
+    float64 limit, as 2π does), so that every action in the space is taken."""
     low = ranges[:, 0].astype(np.float32)
     high = ranges[:, 1].astype(np.float32)
     low = np.where(low.astype(np.float64) < ranges[:, 0], np.nextafter(low, np.float32(np.inf)), low)
@@ -102,8 +127,8 @@ class YarokEnv(gymnasium.Env):
     ``observation.environment_state``, ``observation.images.*``), the action its ``action``
     (each component's targets: an arm's joints in radians, a gripper's position 0-255), so a
     policy trained on a dataset ``yarok run WORLD --dataset DIR`` wrote takes them unchanged.
-    Each step sets the action (clipped to the world's ranges: any action is taken, the
-    space's bounds and beyond) and advances ``1 / control_hz`` seconds of platform time; a step
+    Each step sets the action (clipped to the action space's bounds: the world's ranges, or
+    the task's workspace within them; any action is taken, the bounds and beyond) and advances ``1 / control_hz`` seconds of platform time; a step
     in which MuJoCo warned (an unstable state it reset, a full contact buffer) ends the episode
     truncated, with ``info["warnings"]`` saying what. ``reset(seed=s)`` puts the world back to
     its start and places the task's bodies as drawn from ``s``: the same seed, the same
@@ -158,10 +183,11 @@ class YarokEnv(gymnasium.Env):
         spaces.update(self.task.goal_spaces())
         self.observation_space = gymnasium.spaces.Dict(spaces)
         self._observed_keys = set(spaces)
-        self.action_space = action_space(self.world.features)
         # Read once: each read of `World.features` copies every name.
-        self._timestep = self.world.features.timestep
-        ranges = action_ranges(self.world.features)
+        features = self.world.features
+        ranges = action_ranges(features, self.task)
+        self.action_space = action_space(ranges)
+        self._timestep = features.timestep
         self._low, self._high = ranges[:, 0], ranges[:, 1]
         self.metadata = {**self.metadata, "render_fps": self.task.control_hz}
         self._episodes = 0

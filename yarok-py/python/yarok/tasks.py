@@ -89,12 +89,21 @@ class PickPlace(Task):
         return -self.distance(observation) + (1.0 if self.success(observation) else 0.0)
 
 
+DIGIT_GEL_CENTRE_MM = (160.0, 160.0, 18.0)
+"""Where the tactile rig's DIGIT gel is, in the printer's coordinates (millimetres): the middle of
+its face (the rig's ``sensor_pos``) and the height of the untouched gel's surface there."""
+
+
 @dataclass
 class TactilePress(Task):
     """The tactile rig with a DIGIT: press the indenter into the gel until the sensor's image
     changes by a target amount (mean absolute change of its pixels from the first frame of the
     episode, in grey levels), drawn from the seed between 2 and 6. The action is the printer
-    head's target (millimetres). Won when the change is within 0.5 of the target.
+    head's target (millimetres) within the task's workspace over the gel's middle: ``x`` and
+    ``y`` within ``reach`` of it, ``z`` from ``above`` over the gel's surface to ``below`` it
+    (the head moves there from home in the episode's first steps). Won when the change has
+    stayed within 0.5 of the target for ``hold_steps`` steps in a row (a press held, not one
+    passed through on the way down).
 
     Goal-conditioned: the observation holds the target as ``observation.desired_goal`` and the
     change now as ``observation.achieved_goal`` (one number each, grey levels), so that one
@@ -106,14 +115,27 @@ class TactilePress(Task):
     settings: tuple[str, ...] = ('sensor="digit"',)
     control_hz: float = 20.0
     tolerance: float = 0.5
+    reach: float = 1.0
+    above: float = 2.0
+    below: float = 2.0
+    hold_steps: int = 5
+
+    def action_bounds(self, low, high):
+        x, y, surface = DIGIT_GEL_CENTRE_MM
+        return (
+            np.array([x - self.reach, y - self.reach, surface - self.below]),
+            np.array([x + self.reach, y + self.reach, surface + self.above]),
+        )
 
     def __post_init__(self):
         self.target = 4.0
         self._reference: np.ndarray | None = None
+        self._held = 0
 
     def placements(self, rng):
         self.target = float(rng.uniform(2.0, 6.0))
         self._reference = None
+        self._held = 0
         return []
 
     def change(self, observation) -> float:
@@ -126,7 +148,10 @@ class TactilePress(Task):
         return -abs(self.change(observation) - self.target)
 
     def success(self, observation) -> bool:
-        return abs(self.change(observation) - self.target) < self.tolerance
+        # Called once a step (by the environment, after the reward): counts the steps held.
+        within = abs(self.change(observation) - self.target) < self.tolerance
+        self._held = self._held + 1 if within else 0
+        return self._held >= self.hold_steps
 
     def goal_spaces(self):
         change = gymnasium.spaces.Box(0.0, 255.0, (1,), np.float32)

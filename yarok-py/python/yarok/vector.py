@@ -49,10 +49,10 @@ class YarokVectorEnv(VectorEnv):
         spaces = observation_space(self.worlds.features).spaces
         spaces.update(task.goal_spaces())
         self.single_observation_space = gymnasium.spaces.Dict(spaces)
-        self.single_action_space = action_space(self.worlds.features)
+        ranges = action_ranges(self.worlds.features, task)
+        self.single_action_space = action_space(ranges)
         self.observation_space = batch_space(self.single_observation_space, num_envs)
         self.action_space = batch_space(self.single_action_space, num_envs)
-        ranges = action_ranges(self.worlds.features)
         self._low, self._high = ranges[:, 0], ranges[:, 1]
         self.max_episode_steps = max_episode_steps
         self._episodes = 0

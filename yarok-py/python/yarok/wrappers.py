@@ -12,7 +12,8 @@ it. ``for_learners`` gives an environment keys they take::
     env = yarok.for_learners(gymnasium.make("yarok/TactilePress-v0"), images=False)
     PPO("MultiInputPolicy", env).learn(10_000)
 
-and, with ``gymnasium.wrappers.FlattenObservation`` after it, one flat vector for CleanRL-style
+Its actions are each number of the environment's action rescaled to [-1, 1]. With
+``gymnasium.wrappers.FlattenObservation`` after it, one flat vector for CleanRL-style
 loops (``RecordEpisodeStatistics``, ``NormalizeObservation``, ``ClipAction`` apply unchanged).
 """
 
@@ -53,6 +54,16 @@ class LearnerKeys(gymnasium.ObservationWrapper):
         return {renamed: observation[key] for key, renamed in self._keys.items()}
 
 
-def for_learners(env: gymnasium.Env, images: bool = True) -> LearnerKeys:
-    """``env`` keyed for reinforcement-learning libraries: see ``LearnerKeys``."""
-    return LearnerKeys(env, images=images)
+def for_learners(
+    env: gymnasium.Env, images: bool = True, rescale_actions: bool = True
+) -> gymnasium.Env:
+    """``env`` keyed for reinforcement-learning libraries (see ``LearnerKeys``), its actions
+    rescaled to [-1, 1] per number (Gymnasium's ``RescaleAction``: the bounds of the action space
+    map to -1 and 1), as Stable-Baselines3's and CleanRL's Gaussian policies expect; with
+    ``rescale_actions=False`` the action is the environment's own."""
+    keyed = LearnerKeys(env, images=images)
+    if not rescale_actions:
+        return keyed
+    # float32 bounds: float64 ones make Gymnasium warn of precision lost to the float32 space.
+    one = np.ones(keyed.action_space.shape, dtype=np.float32)
+    return gymnasium.wrappers.RescaleAction(keyed, -one, one)
