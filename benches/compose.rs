@@ -33,7 +33,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .expect("compose")
             .instances
             .len(),
-        1 => Element::parse(&xml).expect("parse").children.len(),
+        1 => Element::parse(&xml).expect("parse").root.children.len(),
         _ => Model::from_composition(&composition)
             .expect("compile")
             .count(yarok::mjc::ObjectKind::Body),

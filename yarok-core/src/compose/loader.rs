@@ -82,7 +82,11 @@ impl Loader {
                 ),
             ));
         }
-        let mut tree = Element::parse(&text).map_err(|e| error(Some(e.position), e.message))?;
+        let document = Element::parse(&text).map_err(|e| error(Some(e.position), e.message))?;
+        for stray in &document.stray_text {
+            tracing::warn!("{label}:{stray}");
+        }
+        let mut tree = document.root;
         if tree.name != "mujoco" {
             return Err(error(
                 Some(tree.position),

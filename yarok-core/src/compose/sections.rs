@@ -99,9 +99,14 @@ impl World {
         for attribute in &source.attributes {
             let key = (path.to_owned(), attribute.name.clone());
             let target = walk_mut(&mut self.sections[index], &trail);
+            let setter = self.setters.get(&key).copied().unwrap_or(0);
             match target.attribute(&attribute.name) {
+                // One component setting a value twice (a file and what it includes): the later
+                // one holds, as in MuJoCo.
+                Some(_) if setter == owner => {
+                    target.set_attribute(&attribute.name, &attribute.value)
+                }
                 Some(existing) if existing != attribute.value => {
-                    let setter = self.setters.get(&key).copied().unwrap_or(0);
                     let message = format!(
                         "{path}/@{} is {:?} here but {:?} in {}; components must agree on global settings",
                         attribute.name, attribute.value, existing, paths[setter]

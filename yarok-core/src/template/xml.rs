@@ -38,7 +38,8 @@ pub struct Attribute {
 
 /// An element: name, attributes in document order, child elements, and its position.
 ///
-/// Text and comments are not kept: MJCF carries everything in attributes.
+/// Text and comments are not kept: MJCF carries everything in attributes (text found between
+/// elements is reported in [`Document::stray_text`]).
 #[derive(Debug, PartialEq)]
 pub struct Element {
     /// Tag name.
@@ -62,6 +63,35 @@ pub struct XmlError {
     pub position: Position,
     /// What the problem is.
     pub message: String,
+}
+
+/// A parsed template: its root element, and the text it held between elements, which MJCF has
+/// no place for and which MuJoCo's own reader ignores (a stray `]` or `>` in a published file).
+#[derive(Debug)]
+pub struct Document {
+    /// The root element.
+    pub root: Element,
+    /// The text outside any element's attributes that was ignored, in document order.
+    pub stray_text: Vec<StrayText>,
+}
+
+/// Text a template holds between elements, ignored as MuJoCo ignores it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct StrayText {
+    /// Where the text starts.
+    pub position: Position,
+    /// The text, without its surrounding white space.
+    pub text: String,
+}
+
+impl fmt::Display for StrayText {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{}: the text {:?} outside any element's attributes is ignored, as MuJoCo ignores it",
+            self.position, self.text
+        )
+    }
 }
 
 impl Clone for Element {
@@ -157,12 +187,12 @@ impl Element {
         all
     }
 
-    /// Parses one document; its root element is returned.
+    /// Parses one document: its root element, and the text between elements it ignored.
     ///
     /// # Errors
     ///
     /// [`XmlError`] with the line and column of malformed XML or of a second root element.
-    pub fn parse(source: &str) -> Result<Element, XmlError> {
+    pub fn parse(source: &str) -> Result<Document, XmlError> {
         // The XML reader skips a byte-order mark without counting it in its offsets.
         let source = source.strip_prefix('\u{feff}').unwrap_or(source);
         let lines = LineIndex::new(source);
@@ -170,6 +200,7 @@ impl Element {
         reader.config_mut().check_end_names = true;
         let mut stack: Vec<Element> = Vec::new();
         let mut root = None;
+        let mut stray_text = Vec::new();
         loop {
             let offset = reader.buffer_position() as usize;
             let event = reader.read_event().map_err(|e| XmlError {
@@ -202,9 +233,10 @@ impl Element {
                     attach(&mut stack, &mut root, element);
                 }
                 Event::Text(text) if !text.iter().all(u8::is_ascii_whitespace) => {
-                    return Err(XmlError {
-                        position: lines.position(offset),
-                        message: "text content is not allowed in MJCF; use attributes".into(),
+                    let leading = text.iter().take_while(|b| b.is_ascii_whitespace()).count();
+                    stray_text.push(StrayText {
+                        position: lines.position(offset + leading),
+                        text: String::from_utf8_lossy(&text).trim().to_owned(),
                     });
                 }
                 Event::Eof => break,
@@ -217,10 +249,11 @@ impl Element {
                 message: format!("<{}> is never closed", open.name),
             });
         }
-        root.ok_or_else(|| XmlError {
+        let root = root.ok_or_else(|| XmlError {
             position: Position { line: 1, column: 1 },
             message: "the template is empty".into(),
-        })
+        })?;
+        Ok(Document { root, stray_text })
     }
 
     /// Writes the tree as indented XML.
@@ -396,7 +429,9 @@ mod tests {
 
     #[test]
     fn a_byte_order_mark_is_skipped() {
-        let element = Element::parse("\u{feff}\u{c}<mujoco>\n <¡/></mujoco>").unwrap();
+        let element = Element::parse("\u{feff}\u{c}<mujoco>\n <¡/></mujoco>")
+            .unwrap()
+            .root;
         assert_eq!(element.children[0].name, "¡");
         assert_eq!(
             element.children[0].position,
@@ -407,7 +442,7 @@ mod tests {
     #[test]
     fn parses_with_positions_and_writes_back() {
         let source = "<mujoco>\n  <!-- c -->\n  <worldbody>\n    <geom name=\"a\" size=\"{x &amp; y}\"/>\n  </worldbody>\n</mujoco>";
-        let root = Element::parse(source).unwrap();
+        let root = Element::parse(source).unwrap().root;
         let geom = &root.children[0].children[0];
         assert_eq!(geom.position, Position { line: 4, column: 5 });
         assert_eq!(
@@ -418,7 +453,7 @@ mod tests {
             }
         );
         assert_eq!(geom.attribute("size"), Some("{x & y}"));
-        let reparsed = Element::parse(&root.to_xml()).unwrap();
+        let reparsed = Element::parse(&root.to_xml()).unwrap().root;
         let geom_again = &reparsed.children[0].children[0];
         assert_eq!(geom_again.attribute("size"), Some("{x & y}"));
         assert_eq!(geom_again.attribute("name"), Some("a"));
@@ -430,8 +465,20 @@ mod tests {
         assert_eq!(error.position.line, 3, "{error:?}");
         let error = Element::parse("<a/><b/>").unwrap_err();
         assert_eq!(error.message, "a template has one root element");
-        let error = Element::parse("<a>text</a>").unwrap_err();
-        assert!(error.message.contains("text content"));
         assert!(Element::parse("").is_err());
+    }
+
+    #[test]
+    fn stray_text_is_ignored_and_reported_where_it_is() {
+        let parsed = Element::parse("<mujoco>\n  <visual/>>\n  <a>  ]\n</a></mujoco>").unwrap();
+        assert_eq!(parsed.root.children.len(), 2);
+        let found: Vec<String> = parsed.stray_text.iter().map(|s| s.to_string()).collect();
+        assert_eq!(
+            found,
+            [
+                "2:12: the text \">\" outside any element's attributes is ignored, as MuJoCo ignores it",
+                "3:8: the text \"]\" outside any element's attributes is ignored, as MuJoCo ignores it",
+            ]
+        );
     }
 }
