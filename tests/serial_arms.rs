@@ -785,3 +785,139 @@ fn dm_controls_jaco_drives_and_stays_where_it_stops() {
         drift.get()
     );
 }
+
+/// gym-aloha's bimanual ViperX 300s (LeRobot's ALOHA simulation), its file unmodified: 16
+/// position servos without names, each found by the joint it drives.
+#[derive(Clone, Debug)]
+struct GymAloha {
+    left: SerialArm,
+    right: SerialArm,
+}
+
+/// One ViperX of the pair, its joints base to wrist and its TCP between the fingers.
+const fn viperx(joints: &'static [&'static str], tcp: &'static str) -> SerialNames {
+    SerialNames {
+        joints,
+        actuators: &[],
+        tcp,
+    }
+}
+
+const ALOHA_LEFT: SerialNames = viperx(
+    &[
+        "vx300s_left/waist",
+        "vx300s_left/shoulder",
+        "vx300s_left/elbow",
+        "vx300s_left/forearm_roll",
+        "vx300s_left/wrist_angle",
+        "vx300s_left/wrist_rotate",
+    ],
+    "left_cam_focus",
+);
+
+const ALOHA_RIGHT: SerialNames = viperx(
+    &[
+        "vx300s_right/waist",
+        "vx300s_right/shoulder",
+        "vx300s_right/elbow",
+        "vx300s_right/forearm_roll",
+        "vx300s_right/wrist_angle",
+        "vx300s_right/wrist_rotate",
+    ],
+    "right_cam_focus",
+);
+
+/// The start gym-aloha's keyframe gives each arm.
+const ALOHA_START: [f64; 6] = [0.0, -0.96, 1.16, 0.0, -0.3, 0.0];
+
+impl Component for GymAloha {
+    fn declaration() -> Declaration {
+        Declaration::new("gym_aloha")
+            .mjcf_file(peers::package("gym_aloha").join("assets/bimanual_viperx_transfer_cube.xml"))
+    }
+
+    fn interfaces(interfaces: &mut Interfaces<Self>) {
+        interfaces.add::<Sim>();
+    }
+}
+
+impl Interface<Sim> for GymAloha {
+    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
+        let start = Some(&ALOHA_START[..]);
+        Ok(Self {
+            left: SerialArm::bind_sim(bind, &ALOHA_LEFT, start, DEFAULT_STIFFNESS)?,
+            right: SerialArm::bind_sim(bind, &ALOHA_RIGHT, start, DEFAULT_STIFFNESS)?,
+        })
+    }
+}
+
+/// Both arms of gym-aloha's file move through their own unnamed position servos: each makes a
+/// joint motion and arrives under gravity while the other holds its start.
+#[test]
+fn gym_alohas_unnamed_position_servos_drive_both_arms() {
+    yarok::platform()
+        .world::<GymAloha>()
+        .behaviour(|pl| async move {
+            let aloha: GymAloha = pl.get("/")?;
+            for (moving, holding) in [(&aloha.left, &aloha.right), (&aloha.right, &aloha.left)] {
+                let target: Vec<f64> = ALOHA_START
+                    .iter()
+                    .zip([0.4, 0.3, -0.3, 0.5, 0.4, 0.6])
+                    .map(|(q, offset)| q + offset)
+                    .collect();
+                moving.move_j(target.clone()).await?;
+                pl.wait_seconds(0.5).await?;
+                let error = furthest(&moving.q(), &target);
+                check(error < 1e-3, || {
+                    format!("{error} rad from {target:?}: at {:?}", moving.q())
+                })?;
+                let drift = furthest(&holding.q(), &holding.start().to_vec());
+                check(drift < 1e-3, || {
+                    format!("the other arm drifted {drift} rad")
+                })?;
+                moving.move_j(ALOHA_START.to_vec()).await?;
+            }
+            Ok(())
+        })
+        .run()
+        .unwrap();
+}
+
+/// dm_control's Jaco file, which declares no actuators, bound by its joints' actuators.
+#[derive(Clone, Debug)]
+struct UnactuatedJaco;
+
+impl Component for UnactuatedJaco {
+    fn declaration() -> Declaration {
+        DmControlJacoFile::declaration()
+    }
+
+    fn interfaces(interfaces: &mut Interfaces<Self>) {
+        interfaces.add::<Sim>();
+    }
+}
+
+impl Interface<Sim> for UnactuatedJaco {
+    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
+        let names = SerialNames {
+            actuators: &[],
+            ..DM_CONTROL_JACO
+        };
+        SerialArm::bind_sim(bind, &names, None, DEFAULT_STIFFNESS).map(|_| Self)
+    }
+}
+
+/// An arm whose joints no actuator drives is refused naming the first such joint.
+#[test]
+fn a_joint_no_actuator_drives_is_refused_naming_it() {
+    let error = yarok::platform()
+        .world::<UnactuatedJaco>()
+        .behaviour(|_| async { panic!("an arm without actuators was bound") })
+        .run()
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains(r#"no actuator drives joint "joint_1": the file declares none on it"#),
+        "{error}"
+    );
+}

@@ -433,6 +433,15 @@ pub trait SimBind {
     /// [`BindError`] when the template or the model has no such actuator.
     fn actuator(&self, local: &str) -> Result<Actuator, BindError>;
 
+    /// The one actuator that drives `joint` (its transmission is the joint), named or not:
+    /// how an arm finds its actuators in files that leave them unnamed, as gym-aloha's ALOHA
+    /// does.
+    ///
+    /// # Errors
+    ///
+    /// [`BindError`] when no actuator drives the joint, or more than one does (naming them).
+    fn actuator_driving(&self, joint: &Joint) -> Result<Actuator, BindError>;
+
     /// The sensor the template names `local`.
     ///
     /// # Errors
@@ -516,6 +525,42 @@ impl SimBind for Bind<Sim> {
         body: Body => body -> Body;
         site: Site => site -> Site;
         geom: Geom => geom -> Geom;
+    }
+
+    fn actuator_driving(&self, joint: &Joint) -> Result<Actuator, BindError> {
+        let backend = self.backend();
+        let model = backend.model();
+        let driving: Vec<ActuatorId> = model
+            .actuators()
+            .filter(|&actuator| model.actuator_joint(actuator) == Some(joint.id()))
+            .collect();
+        let joint_name = model
+            .joint_name(joint.id())
+            .unwrap_or_else(|| format!("#{}", joint.id().index()));
+        match driving[..] {
+            [id] => Ok(Actuator {
+                data: backend.shared_data(),
+                id,
+            }),
+            [] => Err(self.error(format!(
+                "no actuator drives joint {joint_name:?}: the file declares none on it"
+            ))),
+            _ => {
+                let named: Vec<String> = driving
+                    .iter()
+                    .map(|&id| {
+                        model
+                            .actuator_name(id)
+                            .unwrap_or_else(|| format!("#{} (unnamed)", id.index()))
+                    })
+                    .collect();
+                Err(self.error(format!(
+                    "{} actuators drive joint {joint_name:?} ({}): name the one to use",
+                    driving.len(),
+                    named.join(", ")
+                )))
+            }
+        }
     }
 
     #[cfg(feature = "render")]

@@ -41,9 +41,11 @@ pub(super) type Drives = Vec<Drive>;
 /// is a torque motor or a position servo on that very joint, no joint or actuator is named
 /// twice.
 pub(super) fn drives(bind: &mut Bind<Sim>, names: &SerialNames) -> Result<Drives, BindError> {
-    if names.joints.len() != names.actuators.len() || names.joints.is_empty() {
+    let by_joint = names.actuators.is_empty();
+    if (!by_joint && names.joints.len() != names.actuators.len()) || names.joints.is_empty() {
         return Err(bind.error(format!(
-            "{} joints and {} actuators: a serial arm names one actuator per joint",
+            "{} joints and {} actuators: a serial arm names one actuator per joint (or none, \
+             to use the actuator that drives each joint)",
             names.joints.len(),
             names.actuators.len()
         )));
@@ -67,8 +69,18 @@ pub(super) fn drives(bind: &mut Bind<Sim>, names: &SerialNames) -> Result<Drives
         .map(|name| bind.joint(name))
         .collect::<Result<Vec<_>, _>>()?;
     let mut drives = Vec::with_capacity(names.joints.len());
-    for ((&name, &actuator_name), joint) in names.joints.iter().zip(names.actuators).zip(&joints) {
-        let actuator = bind.actuator(actuator_name)?;
+    for (index, (&name, joint)) in names.joints.iter().zip(&joints).enumerate() {
+        let (actuator, actuator_name) = match names.actuators.get(index) {
+            Some(&actuator_name) => (bind.actuator(actuator_name)?, actuator_name.to_owned()),
+            None => {
+                let actuator = bind.actuator_driving(joint)?;
+                let model = bind.backend().model();
+                let described = model
+                    .actuator_name(actuator.id())
+                    .unwrap_or_else(|| format!("the actuator of {name}"));
+                (actuator, described)
+            }
+        };
         let model = std::sync::Arc::clone(bind.backend().model());
         if let Some(driven) = model.actuator_joint(actuator.id())
             && driven != joint.id()

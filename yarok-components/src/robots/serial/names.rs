@@ -7,7 +7,8 @@
 pub struct SerialNames {
     /// The hinge or slide joints, base to tip.
     pub joints: &'static [&'static str],
-    /// The actuator of each joint, in the same order.
+    /// The actuator of each joint, in the same order; none (`&[]`) to use the actuator that
+    /// drives each joint, named or not (files whose actuators have no names).
     pub actuators: &'static [&'static str],
     /// The TCP: a site's name, or a body's (for files with no site at the hand).
     pub tcp: &'static str,
