@@ -63,6 +63,20 @@ rm -rf "$fresh"
 # The tests run in the project's venv (pinned Gymnasium and pytest), with the same package.
 "$cache/python/bin/pip" install -q --disable-pip-version-check --force-reinstall --no-deps ./yarok-py
 (cd yarok-py && "$cache/python/bin/python" -m pytest -q -p no:cacheprovider tests)
+echo "== the wheel, built once, installed where yarok was never built (an empty home, no Rust on PATH)"
+wheels="$(mktemp -d)"
+bash scripts/build-wheel.sh "$wheels"
+wheel="$(ls "$wheels"/yarok-*.whl)"
+size="$(stat -c %s "$wheel")"
+echo "$(basename "$wheel"): $((size / 1024 / 1024)) MB"
+[ "$size" -lt $((40 * 1024 * 1024)) ] || { echo "the wheel is over 40 MB" >&2; exit 1; }
+"$cache/python/bin/auditwheel" show "$wheel"
+elsewhere="$(mktemp -d)"
+bare=(env -i HOME="$elsewhere" PATH="$elsewhere/venv/bin:/usr/bin:/bin" LANG=C.UTF-8)
+"${bare[@]}" /usr/bin/python3 -m venv "$elsewhere/venv"
+"${bare[@]}" pip install -q --disable-pip-version-check "$wheel"
+"${bare[@]}" python yarok-py/tests/check_installed_wheel.py
+rm -rf "$wheels" "$elsewhere"
 echo "== the learning loop with LeRobot and Stable-Baselines3: demonstrations, lerobot-train, LeRobot's own evaluation, PPO"
 lerobot_python="$(bash scripts/setup-lerobot.sh)"
 "$(dirname "$lerobot_python")/pip" install -q --disable-pip-version-check --force-reinstall --no-deps ./yarok-py

@@ -18,6 +18,16 @@ pub enum LibraryError {
         /// The folder `MUJOCO_DIR` named.
         dir: PathBuf,
     },
+    /// The MuJoCo folder the program bundles holds no MuJoCo shared library.
+    #[error(
+        "the MuJoCo folder this program ships with, {}, holds no lib/libmujoco.so.{}",
+        dir.display(),
+        crate::locate::MUJOCO_VERSION
+    )]
+    NotInBundledDir {
+        /// The folder [`use_bundled_mujoco`](crate::use_bundled_mujoco) named.
+        dir: PathBuf,
+    },
     /// The shared library could not be opened or lacks a function yarok needs.
     #[error("cannot open MuJoCo at {}: {reason}", path.display())]
     Open {

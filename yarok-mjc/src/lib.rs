@@ -93,7 +93,7 @@ pub use error::{LibraryError, ModelError};
 #[cfg(feature = "render")]
 pub use handles::Camera;
 pub use handles::{Actuator, Body, Geom, Joint, Sensor, SimBind, Site};
-pub use library::mujoco_version;
+pub use library::{BESIDE_EXECUTABLE, mujoco_version, use_bundled_mujoco};
 pub use pose::Pose;
 pub use warnings::Warnings;
 /// The MuJoCo version yarok is written against.

@@ -13,9 +13,15 @@ const BUILT_WITH: &str = env!("YAROK_MUJOCO_LIBRARY");
 
 static MUJOCO: OnceLock<Result<sys::MuJoCo, LibraryError>> = OnceLock::new();
 
-/// The loaded MuJoCo library, opened on first use.
-///
-/// `MUJOCO_DIR` at run time takes precedence over the library found at build time.
+/// The MuJoCo folder a program ships with it, set by [`use_bundled_mujoco`].
+static BUNDLED: OnceLock<PathBuf> = OnceLock::new();
+
+/// The folder beside the executable a copied `yarok` binary finds its MuJoCo in.
+pub const BESIDE_EXECUTABLE: &str = "mujoco";
+
+/// The loaded MuJoCo library, opened on first use, from the first of: the folder `MUJOCO_DIR`
+/// names; the folder the program bundles ([`use_bundled_mujoco`]); a [`BESIDE_EXECUTABLE`]
+/// folder beside the executable; the library found when yarok was built.
 pub(crate) fn mujoco() -> Result<&'static sys::MuJoCo, LibraryError> {
     MUJOCO.get_or_init(load).as_ref().map_err(Clone::clone)
 }
@@ -40,15 +46,38 @@ pub fn mujoco_version() -> Result<String, LibraryError> {
     Ok(version.to_string_lossy().into_owned())
 }
 
+/// Makes `dir` (a MuJoCo folder: `lib/libmujoco.so.4.0.1`) where MuJoCo is found when
+/// `MUJOCO_DIR` is not set: for programs that ship MuJoCo with them, as yarok's Python wheel
+/// does, so that they run on machines where yarok was never built. Returns whether it takes
+/// effect: not once MuJoCo has been opened, nor when a folder was bundled before.
+///
+/// # Examples
+///
+/// ```
+/// // MuJoCo is open already here (or MUJOCO_DIR is set): a later folder changes nothing.
+/// yarok_mjc::mujoco_version()?;
+/// assert!(!yarok_mjc::use_bundled_mujoco("/opt/elsewhere/mujoco"));
+/// # Ok::<(), yarok_mjc::LibraryError>(())
+/// ```
+pub fn use_bundled_mujoco(dir: impl Into<PathBuf>) -> bool {
+    MUJOCO.get().is_none() && BUNDLED.set(dir.into()).is_ok()
+}
+
 fn library_path() -> Result<PathBuf, LibraryError> {
-    match std::env::var_os(locate::MUJOCO_DIR_VAR) {
-        Some(dir) => {
-            locate::library_in(Path::new(&dir)).ok_or_else(|| LibraryError::NotInMujocoDir {
-                dir: PathBuf::from(dir),
-            })
-        }
-        None => Ok(PathBuf::from(BUILT_WITH)),
+    if let Some(dir) = std::env::var_os(locate::MUJOCO_DIR_VAR) {
+        return locate::library_in(Path::new(&dir)).ok_or_else(|| LibraryError::NotInMujocoDir {
+            dir: PathBuf::from(dir),
+        });
     }
+    if let Some(dir) = BUNDLED.get() {
+        return locate::library_in(dir)
+            .ok_or_else(|| LibraryError::NotInBundledDir { dir: dir.clone() });
+    }
+    let beside = std::env::current_exe()
+        .ok()
+        .and_then(|exe| Some(exe.parent()?.join(BESIDE_EXECUTABLE)))
+        .and_then(|dir| locate::library_in(&dir));
+    Ok(beside.unwrap_or_else(|| PathBuf::from(BUILT_WITH)))
 }
 
 fn load() -> Result<sys::MuJoCo, LibraryError> {

@@ -29,6 +29,7 @@ fn _native(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_class::<worlds::Worlds>()?;
     module.add_function(wrap_pyfunction!(run::run, module)?)?;
     module.add_function(wrap_pyfunction!(after_fork_in_child, module)?)?;
+    module.add_function(wrap_pyfunction!(use_bundled_mujoco, module)?)?;
     module.add("DIGIT_WORLD_START_REGION", demos::START_REGION)?;
     module.add("DIGIT_WORLD_START_YAW", demos::START_YAW)?;
     module.add(
@@ -36,6 +37,14 @@ fn _native(module: &Bound<'_, PyModule>) -> PyResult<()> {
         yarok::components::robots::ur::UR_JOINT_SPEED,
     )?;
     Ok(())
+}
+
+/// Makes `dir`, the MuJoCo folder a wheel ships inside the package, where MuJoCo is found
+/// (unless `MUJOCO_DIR` is set); called on import. Whether it took effect (not once a world
+/// has opened MuJoCo).
+#[pyfunction]
+fn use_bundled_mujoco(dir: std::path::PathBuf) -> bool {
+    yarok::mjc::use_bundled_mujoco(dir)
 }
 
 /// Called in a forked child (registered with `os.register_at_fork` on import): a world made

@@ -17,7 +17,15 @@ keys an environment's observations as Stable-Baselines3 and CleanRL-style loops 
 
 import os
 
-from ._native import UR_JOINT_SPEED, World, Worlds, YarokError, after_fork_in_child, run
+from ._native import (
+    UR_JOINT_SPEED,
+    World,
+    Worlds,
+    YarokError,
+    after_fork_in_child,
+    run,
+    use_bundled_mujoco,
+)
 from .env import Task, YarokEnv
 from .vector import YarokVectorEnv
 from .wrappers import LearnerKeys, for_learners
@@ -39,5 +47,10 @@ __all__ = [
     "tasks",
 ]
 
+# A wheel built by scripts/build-wheel.sh carries MuJoCo in the package: found there, so that
+# it runs on machines where yarok was never built.
+_BUNDLED_MUJOCO = os.path.join(os.path.dirname(__file__), "mujoco")
+if os.path.isdir(_BUNDLED_MUJOCO):
+    use_bundled_mujoco(_BUNDLED_MUJOCO)
 register_environments()
 os.register_at_fork(after_in_child=after_fork_in_child)

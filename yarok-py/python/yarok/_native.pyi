@@ -13,6 +13,7 @@ __all__ = [
     "Worlds",
     "run",
     "after_fork_in_child",
+    "use_bundled_mujoco",
     "DIGIT_WORLD_START_REGION",
     "DIGIT_WORLD_START_YAW",
     "UR_JOINT_SPEED",
@@ -111,6 +112,7 @@ def run(
     dataset: str | PathLike[str] | None = None,
 ) -> None: ...
 def after_fork_in_child() -> None: ...
+def use_bundled_mujoco(dir: str | PathLike[str]) -> bool: ...
 
 DIGIT_WORLD_START_REGION: list[list[float]]
 DIGIT_WORLD_START_YAW: float
