@@ -27,6 +27,15 @@ pub mod worlds;
 
 use yarok_core::component::ComponentType;
 
+/// A world from a template file a user wrote, which may use every bundled component by its tag
+/// (as `yarok compose FILE` and Python's `yarok.World(FILE)` compose it).
+pub fn template_world(path: impl AsRef<std::path::Path>) -> yarok_core::component::Declaration {
+    catalogue().into_iter().fold(
+        yarok_core::component::Declaration::new("world").template_file(path.as_ref()),
+        |world, component| world.uses_type(component),
+    )
+}
+
 /// Every bundled component, for tools that pick components by tag at run time.
 pub fn catalogue() -> Vec<ComponentType> {
     vec![

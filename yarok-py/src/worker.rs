@@ -10,6 +10,7 @@ use std::time::Duration;
 
 use yarok::components::demos::{self, Demo};
 use yarok::components::plugins::features::{Features, Observation, check_action_length};
+use yarok::components::template_world;
 use yarok::core::runtime::Platform;
 use yarok::core::suggest::did_you_mean;
 use yarok::mjc::{SimBackend, Warnings};
@@ -298,7 +299,13 @@ pub(crate) fn bundled(world: &str) -> Result<Demo, String> {
 
 /// The platform of `spec`, built and started (its components bound).
 fn start(spec: &WorldSpec, stop: Arc<AtomicBool>) -> Result<(Platform, Features), String> {
-    let demo = bundled(&spec.world)?;
+    let builder = if std::path::Path::new(&spec.world).is_file() {
+        yarok::platform().world_declaration(template_world(&spec.world))
+    } else if spec.world.ends_with(".xml") {
+        return Err(format!("no template file {:?}", spec.world));
+    } else {
+        yarok::platform().world_type(bundled(&spec.world)?.world)
+    };
     let args = ["--env".to_owned(), spec.environment.clone()]
         .into_iter()
         .chain(
@@ -311,8 +318,7 @@ fn start(spec: &WorldSpec, stop: Arc<AtomicBool>) -> Result<(Platform, Features)
                 .iter()
                 .flat_map(|c| ["--config".to_owned(), c.clone()]),
         );
-    let mut platform = yarok::platform()
-        .world_type(demo.world)
+    let mut platform = builder
         .args(args)
         .map_err(|e| e.to_string())?
         .stop_flag(stop)

@@ -9,7 +9,8 @@ use crate::features::Features;
 use crate::worker::{Placement, Worker, WorldInfo, WorldSpec};
 use crate::{error, exclusive, interrupted, observation};
 
-/// A yarok world: a bundled world by its tag (`yarok run --list`), in `sim`, `mock` or
+/// A yarok world: a bundled world by its tag (`yarok run --list`) or a template file of your
+/// own (`world.xml`, using the bundled components by their tags, as `yarok compose` reads it), in `sim`, `mock` or
 /// `real`, with the command line's settings (`settings=["/arm/gripper/force=200"]`,
 /// `config=["run.toml"]`). It runs on a thread of its own; every call waits for it without
 /// the GIL, and Ctrl-C stops it (devices left safe) and raises `KeyboardInterrupt`.

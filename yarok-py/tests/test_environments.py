@@ -390,3 +390,43 @@ def test_what_mujoco_warns_of_in_a_step_is_reported_and_ends_the_episode_truncat
         env.unwrapped.world = world
     finally:
         env.close()
+
+
+OWN_WORLD = """<mujoco>
+  <worldbody>
+    <geom name="floor" type="plane" size="2 2 0.1"/>
+    <ur5e name="arm">
+      <robotiq_2f85 name="gripper" parent="flange">
+        <digit name="left_digit" parent="left_pad" pos="0 -0.0066 0.01875"
+               quat="0.7071067811865476 0.7071067811865476 0 0"/>
+      </robotiq_2f85>
+    </ur5e>
+    <block name="cube" size="0.04" pos="0.5 0.2 0.02"/>
+  </worldbody>
+</mujoco>
+"""
+
+
+def test_a_world_of_your_own_from_a_template_file_is_an_environment(tmp_path):
+    path = tmp_path / "my_world.xml"
+    path.write_text(OWN_WORLD)
+    env = yarok.YarokEnv(yarok.Task(world=str(path)))
+    try:
+        features = env.world.features
+        assert features.action_names[0] == "arm/gripper/position"
+        assert "cube/block/x" in features.environment_names
+        observation, _ = env.reset(seed=0)
+        image = observation["observation.images.arm.gripper.left_digit.image"]
+        assert image.dtype == np.uint8 and image.std() > 0
+        start = observation["observation.state"][:7].copy()
+        target = start.copy()
+        target[1] += 0.2  # the shoulder pan, 0.2 rad
+        for _ in range(20):
+            observation, *_ = env.step(target)
+        assert observation["observation.state"][1] == pytest.approx(target[1], abs=2e-3)
+        cube = observation["observation.environment_state"][:3]
+        assert cube == pytest.approx([0.5, 0.2, 0.02], abs=1e-3)
+    finally:
+        env.close()
+    with pytest.raises(yarok.YarokError, match="no template file"):
+        yarok.World(str(tmp_path / "missing.xml"))

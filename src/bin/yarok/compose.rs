@@ -2,8 +2,7 @@
 
 use std::path::PathBuf;
 
-use yarok::components::catalogue;
-use yarok::core::component::Declaration;
+use yarok::components::{catalogue, template_world};
 use yarok::core::compose::{compose_configured, compose_declaration};
 use yarok::core::config::{RunConfig, Settings};
 use yarok::core::output::{check_replaceable, make_folder_for};
@@ -45,11 +44,7 @@ pub(super) fn run(args: &[String]) -> Result<(), String> {
     let composition = match bundled.iter().find(|c| c.declaration().tag() == args.world) {
         Some(component) => compose_configured(*component, &args.settings),
         None if PathBuf::from(&args.world).is_file() => {
-            let world = bundled.iter().fold(
-                Declaration::new("world").template_file(&args.world),
-                |d, c| d.uses_type(*c),
-            );
-            compose_declaration(world, &args.settings)
+            compose_declaration(template_world(&args.world), &args.settings)
         }
         None => {
             let tags: Vec<String> = bundled

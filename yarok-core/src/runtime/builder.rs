@@ -12,8 +12,8 @@ use serde::de::DeserializeOwned;
 use super::platform::{BehaviourFactory, Platform, Prepared};
 use super::{BehaviourResult, Pl, Plugin, RuntimeError, Unsupported};
 use crate::BoxError;
-use crate::component::{Backend, ComponentType, Environment};
-use crate::compose::{Composition, compose_configured};
+use crate::component::{Backend, ComponentType, Declaration, Environment};
+use crate::compose::{Composition, compose_configured, compose_declaration};
 use crate::config::{ConfigError, RunConfig, Settings};
 use crate::suggest::{did_you_mean, did_you_mean_or_list};
 use crate::value::{Config, IntoValue, typed};
@@ -21,9 +21,16 @@ use crate::value::{Config, IntoValue, typed};
 type BackendFactory = Box<dyn FnOnce(&Composition, &Settings) -> Result<Rc<dyn Backend>, BoxError>>;
 type PluginFactory = Box<dyn Fn(&Settings, &str) -> Result<Box<dyn Plugin>, RuntimeError>>;
 
+/// The world a platform runs: a component type, or a declaration made at run time.
+#[derive(Debug)]
+enum World {
+    Type(ComponentType),
+    Declared(Box<Declaration>),
+}
+
 /// Builds a [`Platform`].
 pub struct PlatformBuilder {
-    world: Option<ComponentType>,
+    world: Option<World>,
     config: RunConfig,
     backends: BTreeMap<&'static str, BackendFactory>,
     behaviours: Vec<BehaviourFactory>,
@@ -69,7 +76,32 @@ impl PlatformBuilder {
 
     /// The world, as a component type value.
     pub fn world_type(mut self, world: ComponentType) -> Self {
-        self.world = Some(world);
+        self.world = Some(World::Type(world));
+        self
+    }
+
+    /// A world declared at run time, e.g. from a template file a user names
+    /// (`Declaration::new("world").template_file(path)` with the components it may use).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use yarok_core::component::{Declaration, Mock, MockBackend};
+    /// use yarok_core::runtime::Platform;
+    ///
+    /// let world = Declaration::new("world").template(
+    ///     r#"<mujoco><worldbody><geom name="floor" size="1 1 0.1"/></worldbody></mujoco>"#,
+    /// );
+    /// let platform = Platform::builder()
+    ///     .world_declaration(world)
+    ///     .environment("mock")
+    ///     .backend::<Mock>(|_, _| Ok(MockBackend::new(0.5, false)))
+    ///     .build()?;
+    /// assert!(platform.composition().to_xml().contains("floor"));
+    /// # Ok::<(), yarok_core::runtime::RuntimeError>(())
+    /// ```
+    pub fn world_declaration(mut self, world: Declaration) -> Self {
+        self.world = Some(World::Declared(Box::new(world)));
         self
     }
 
@@ -289,7 +321,10 @@ impl PlatformBuilder {
         };
         let platform = settings.platform_settings()?;
         let behaviour = defaulted(&self.behaviour_defaults, &settings)?;
-        let composition = compose_configured(world, &settings)?;
+        let composition = match world {
+            World::Type(world) => compose_configured(world, &settings)?,
+            World::Declared(world) => compose_declaration(*world, &settings)?,
+        };
         for path in settings.interfaces.keys() {
             if composition.instance(path).is_none() {
                 let paths = composition.instances.iter().map(|i| i.path.as_str());
