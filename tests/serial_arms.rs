@@ -871,7 +871,7 @@ fn gym_alohas_unnamed_position_servos_drive_both_arms() {
                 check(error < 1e-3, || {
                     format!("{error} rad from {target:?}: at {:?}", moving.q())
                 })?;
-                let drift = furthest(&holding.q(), &holding.start().to_vec());
+                let drift = furthest(&holding.q(), holding.start());
                 check(drift < 1e-3, || {
                     format!("the other arm drifted {drift} rad")
                 })?;
