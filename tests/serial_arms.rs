@@ -921,3 +921,44 @@ fn a_joint_no_actuator_drives_is_refused_naming_it() {
         "{error}"
     );
 }
+
+/// gym-aloha's end-effector scene: the same ViperX arms, moved by welds to mocap bodies instead
+/// of joint actuators.
+#[derive(Clone, Debug)]
+struct GymAlohaEndEffector;
+
+impl Component for GymAlohaEndEffector {
+    fn declaration() -> Declaration {
+        Declaration::new("gym_aloha_end_effector").mjcf_file(
+            peers::package("gym_aloha")
+                .join("assets/bimanual_viperx_end_effector_transfer_cube.xml"),
+        )
+    }
+
+    fn interfaces(interfaces: &mut Interfaces<Self>) {
+        interfaces.add::<Sim>();
+    }
+}
+
+impl Interface<Sim> for GymAlohaEndEffector {
+    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
+        SerialArm::bind_sim(bind, &ALOHA_LEFT, None, DEFAULT_STIFFNESS).map(|_| Self)
+    }
+}
+
+/// An arm whose hand a mocap weld moves is refused naming the weld's bodies, not "no actuator".
+#[test]
+fn an_arm_moved_by_a_mocap_weld_is_refused_naming_the_weld() {
+    let error = yarok::platform()
+        .world::<GymAlohaEndEffector>()
+        .behaviour(|_| async { panic!("an arm moved by a mocap weld was bound") })
+        .run()
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains(
+            r#"joint "vx300s_left/waist" has no actuator: the file moves the arm by the weld of mocap body "mocap_left" to "vx300s_left/gripper_link""#
+        ),
+        "{error}"
+    );
+}

@@ -100,8 +100,8 @@ pub use warnings::Warnings;
 pub const MUJOCO_VERSION: &str = locate::MUJOCO_VERSION;
 pub use image;
 pub use model::{
-    ActuatorId, BodyId, CameraId, GeomId, JointId, JointLosses, KeyframeId, Model, ObjectKind,
-    SensorId, ServoGains, SiteId, TendonId,
+    ActuatorId, BodyId, CameraId, GeomId, JointId, JointLosses, KeyframeId, MocapWeld, Model,
+    ObjectKind, SensorId, ServoGains, SiteId, TendonId,
 };
 pub use model_cache::ModelSource;
 #[cfg(feature = "viewer")]

@@ -647,6 +647,41 @@ impl Model {
         self.name_of(ObjectKind::Body, self.index_of(body))
     }
 
+    /// The welds that tie a mocap body to another body (an end-effector moved by a mocap body
+    /// rather than by joint actuators): each weld's name (if any), the mocap body and the body
+    /// it holds.
+    pub fn mocap_welds(&self) -> Vec<MocapWeld> {
+        let m = self.raw();
+        let neq = self.count(ObjectKind::Equality);
+        let nbody = self.count(ObjectKind::Body);
+        // SAFETY: the eq_* arrays hold neq entries and body_mocapid nbody.
+        let (types, objtypes, first, second, mocap) = unsafe {
+            (
+                self.array(m.eq_type, neq),
+                self.array(m.eq_objtype, neq),
+                self.array(m.eq_obj1id, neq),
+                self.array(m.eq_obj2id, neq),
+                self.array(m.body_mocapid, nbody),
+            )
+        };
+        let is_mocap = |body: i32| usize::try_from(body).is_ok_and(|b| b < nbody && mocap[b] >= 0);
+        (0..neq)
+            .filter(|&i| types[i] == sys::mjEQ_WELD as i32 && objtypes[i] == sys::mjOBJ_BODY as i32)
+            .filter_map(|i| {
+                let (mocap_body, held) = match (is_mocap(first[i]), is_mocap(second[i])) {
+                    (true, false) => (first[i], second[i]),
+                    (false, true) => (second[i], first[i]),
+                    _ => return None,
+                };
+                Some(MocapWeld {
+                    name: self.name_of(ObjectKind::Equality, i),
+                    mocap: self.body_at(mocap_body),
+                    held: self.body_at(held),
+                })
+            })
+            .collect()
+    }
+
     /// Every camera, in MuJoCo's order.
     pub fn cameras(&self) -> impl Iterator<Item = CameraId> + '_ {
         (0..self.count(ObjectKind::Camera)).map(|index| CameraId {
@@ -769,6 +804,17 @@ fn load(
 /// MuJoCo sizes are signed; a negative one would be a corrupt model.
 pub(crate) fn to_usize(value: impl TryInto<usize>) -> usize {
     value.try_into().unwrap_or(0)
+}
+
+/// A weld that ties a mocap body to a body of the model ([`Model::mocap_welds`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MocapWeld {
+    /// The weld's name, if it has one.
+    pub name: Option<String>,
+    /// The mocap body.
+    pub mocap: BodyId,
+    /// The body the weld holds to it.
+    pub held: BodyId,
 }
 
 /// The kinds of named object that can be looked up in a [`Model`].

@@ -235,7 +235,7 @@ fn tcp_frame(bind: &mut Bind<Sim>, name: &str) -> Result<TcpFrame, BindError> {
 }
 
 /// Whether `body` is `carrier` or hangs below it.
-fn carried_by(model: &Model, mut body: BodyId, carrier: BodyId) -> bool {
+pub(super) fn carried_by(model: &Model, mut body: BodyId, carrier: BodyId) -> bool {
     loop {
         if body == carrier {
             return true;

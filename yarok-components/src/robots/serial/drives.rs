@@ -73,7 +73,9 @@ pub(super) fn drives(bind: &mut Bind<Sim>, names: &SerialNames) -> Result<Drives
         let (actuator, actuator_name) = match names.actuators.get(index) {
             Some(&actuator_name) => (bind.actuator(actuator_name)?, actuator_name.to_owned()),
             None => {
-                let actuator = bind.actuator_driving(joint)?;
+                let actuator = bind
+                    .actuator_driving(joint)
+                    .map_err(|error| moved_by_mocap(bind, joint, name).unwrap_or(error))?;
                 let model = bind.backend().model();
                 let described = model
                     .actuator_name(actuator.id())
@@ -117,6 +119,34 @@ pub(super) fn drives(bind: &mut Bind<Sim>, names: &SerialNames) -> Result<Drives
         });
     }
     Ok(drives)
+}
+
+/// Why `joint` has no actuator when the file moves the arm by a weld to a mocap body (an
+/// end-effector-controlled file, as gym-aloha's `…_end_effector_…` scenes): the refusal naming
+/// the weld, or `None`.
+fn moved_by_mocap(bind: &Bind<Sim>, joint: &Joint, name: &str) -> Option<BindError> {
+    let model = bind.backend().model();
+    let moved = model.joint_body(joint.id());
+    let weld = model
+        .mocap_welds()
+        .into_iter()
+        .find(|weld| super::arm::carried_by(model, weld.held, moved))?;
+    let body = |id| {
+        model
+            .body_name(id)
+            .unwrap_or_else(|| "an unnamed body".to_owned())
+    };
+    let named = weld
+        .name
+        .map_or_else(String::new, |name| format!(" {name:?}"));
+    Some(bind.error(format!(
+        "joint {name:?} has no actuator: the file moves the arm by the weld{named} of mocap \
+         body {:?} to {:?}, the hand following the mocap body's pose; a serial arm is driven \
+         through its joints' actuators: use the file's joint-actuated variant, or give each \
+         joint a <position> actuator",
+        body(weld.mocap),
+        body(weld.held)
+    )))
 }
 
 /// The force range an actuator puts on its joint: its control range (a motor's) and force
