@@ -73,6 +73,10 @@ echo "$(basename "$wheel"): $((size / 1024 / 1024)) MB"
 "$cache/python/bin/auditwheel" show "$wheel"
 elsewhere="$(mktemp -d)"
 bare=(env -i HOME="$elsewhere" PATH="$elsewhere/venv/bin:/usr/bin:/bin" LANG=C.UTF-8)
+# The way to the package registries (proxies, certificates, pip's settings) is kept.
+for name in $(compgen -e | grep -E '^(PIP_|SSL_CERT_|REQUESTS_CA_BUNDLE$|(HTTPS?|NO|ALL)_PROXY$|(https?|no|all)_proxy$)'); do
+  bare+=("$name=${!name}")
+done
 "${bare[@]}" /usr/bin/python3 -m venv "$elsewhere/venv"
 "${bare[@]}" pip install -q --disable-pip-version-check "$wheel"
 "${bare[@]}" python yarok-py/tests/check_installed_wheel.py
