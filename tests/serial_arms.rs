@@ -627,14 +627,19 @@ impl<const M: usize> Interface<Sim> for Mismapped<M> {
     }
 }
 
-/// The error binding mapping `M` gives; the arm never runs.
-fn refusal<const M: usize>() -> String {
-    let error = yarok::platform()
-        .world::<Mismapped<M>>()
-        .behaviour(|_| async { panic!("a mapping that cannot work was bound") })
+/// The error composing or binding world `W` gives; its behaviour never runs.
+fn bind_refusal<W: Component>() -> String {
+    yarok::platform()
+        .world::<W>()
+        .behaviour(|_| async { panic!("a world that cannot work was bound") })
         .run()
         .unwrap_err()
-        .to_string();
+        .to_string()
+}
+
+/// The error binding mapping `M` gives; the arm never runs.
+fn refusal<const M: usize>() -> String {
+    let error = bind_refusal::<Mismapped<M>>();
     assert!(error.contains(MISMAPPED[M].1), "{error}");
     error
 }
@@ -682,12 +687,7 @@ fn spots_gripper_file_would_switch_gravity_off_and_is_refused_naming_it() {
         }
     }
 
-    let error = yarok::platform()
-        .world::<SpotWithGripper>()
-        .behaviour(|_| async { panic!("the world composed") })
-        .run()
-        .unwrap_err()
-        .to_string();
+    let error = bind_refusal::<SpotWithGripper>();
     assert!(
         error.contains("bd_gripper.xml:3:11") && error.contains("option/@gravity"),
         "{error}"
@@ -910,12 +910,7 @@ impl Interface<Sim> for UnactuatedJaco {
 /// An arm whose joints no actuator drives is refused naming the first such joint.
 #[test]
 fn a_joint_no_actuator_drives_is_refused_naming_it() {
-    let error = yarok::platform()
-        .world::<UnactuatedJaco>()
-        .behaviour(|_| async { panic!("an arm without actuators was bound") })
-        .run()
-        .unwrap_err()
-        .to_string();
+    let error = bind_refusal::<UnactuatedJaco>();
     assert!(
         error.contains(r#"no actuator drives joint "joint_1": the file declares none on it"#),
         "{error}"
@@ -949,12 +944,7 @@ impl Interface<Sim> for GymAlohaEndEffector {
 /// An arm whose hand a mocap weld moves is refused naming the weld's bodies, not "no actuator".
 #[test]
 fn an_arm_moved_by_a_mocap_weld_is_refused_naming_the_weld() {
-    let error = yarok::platform()
-        .world::<GymAlohaEndEffector>()
-        .behaviour(|_| async { panic!("an arm moved by a mocap weld was bound") })
-        .run()
-        .unwrap_err()
-        .to_string();
+    let error = bind_refusal::<GymAlohaEndEffector>();
     assert!(
         error.contains(
             r#"joint "vx300s_left/waist" has no actuator: the file moves the arm by the weld of mocap body "mocap_left" to "vx300s_left/gripper_link""#
