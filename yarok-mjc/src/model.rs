@@ -196,6 +196,25 @@ impl Model {
         self.body_at(parent)
     }
 
+    /// Whether `body` is `carrier` or hangs below it in the kinematic tree.
+    ///
+    /// # Panics
+    ///
+    /// When either body was resolved in a different model.
+    #[track_caller]
+    pub fn carries(&self, carrier: BodyId, mut body: BodyId) -> bool {
+        loop {
+            if body == carrier {
+                return true;
+            }
+            let parent = self.body_parent(body);
+            if parent == body {
+                return false;
+            }
+            body = parent;
+        }
+    }
+
     /// The body a joint moves.
     ///
     /// # Panics

@@ -5,7 +5,7 @@ use std::rc::Rc;
 
 use nalgebra::Isometry3;
 use yarok_core::component::{Bind, BindError};
-use yarok_mjc::{BodyId, Model, Sim, SimBind};
+use yarok_mjc::{Sim, SimBind};
 
 use super::controller::{Controller, Goal};
 use super::drives::drives;
@@ -70,7 +70,7 @@ impl SerialArm {
             TcpFrame::Site(site) => model.site_body(site),
             TcpFrame::Body(body) => body,
         };
-        if !carried_by(&model, tcp_body, last_body) {
+        if !model.carries(last_body, tcp_body) {
             return Err(bind.error(format!(
                 "the TCP {:?} is not carried by the arm's last joint {:?}: it must be on the \
                  body of the last joint or a body below it",
@@ -232,18 +232,4 @@ fn tcp_frame(bind: &mut Bind<Sim>, name: &str) -> Result<TcpFrame, BindError> {
         hint(site_error),
         hint(body_error)
     )))
-}
-
-/// Whether `body` is `carrier` or hangs below it.
-pub(super) fn carried_by(model: &Model, mut body: BodyId, carrier: BodyId) -> bool {
-    loop {
-        if body == carrier {
-            return true;
-        }
-        let parent = model.body_parent(body);
-        if parent == body {
-            return false;
-        }
-        body = parent;
-    }
 }

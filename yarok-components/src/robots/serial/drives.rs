@@ -130,7 +130,7 @@ fn moved_by_mocap(bind: &Bind<Sim>, joint: &Joint, name: &str) -> Option<BindErr
     let weld = model
         .mocap_welds()
         .into_iter()
-        .find(|weld| super::arm::carried_by(model, weld.held, moved))?;
+        .find(|weld| model.carries(moved, weld.held))?;
     let body = |id| {
         model
             .body_name(id)
