@@ -14,6 +14,8 @@ cargo fetch --locked
 python3 .ci/check-licences.py
 echo "== import circles"
 python3 .ci/check-import-circles.py
+echo "== the README and the book"
+python3 .ci/check-book.py
 echo "== clippy"
 cargo clippy --workspace --all-targets --locked -- -D warnings
 cargo clippy --workspace --all-targets --features yarok/camera,yarok/viewer,yarok/zenoh,yarok/dataset --locked -- -D warnings

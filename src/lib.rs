@@ -5,7 +5,8 @@
 //!
 //! - [`core`] (`yarok-core`): templates, composition, config and the async runtime;
 //! - [`mjc`] (`yarok-mjc`): MuJoCo bindings, safe model/data, headless rendering;
-//! - [`hw`] (`yarok-hw`): the hardware backend (device drivers come next);
+//! - [`hw`] (`yarok-hw`): the `real` environment and the device drivers (UR, Robotiq,
+//!   Marlin printers, cameras);
 //! - [`components`] (`yarok-components`): the bundled components.
 //!
 //! # Cargo features
@@ -18,6 +19,37 @@
 //! # The project's README
 //!
 #![doc = include_str!("../README.md")]
+
+/// The book's chapters (`docs/src`): their Rust examples run as doc tests.
+#[cfg(doctest)]
+mod book {
+    #[doc = include_str!("../docs/src/python.md")]
+    mod python {}
+    #[doc = include_str!("../docs/src/learning.md")]
+    mod learning {}
+    #[doc = include_str!("../docs/src/components.md")]
+    mod components {}
+    #[doc = include_str!("../docs/src/own-crate.md")]
+    mod own_crate {}
+    #[doc = include_str!("../docs/src/first-component.md")]
+    mod first_component {}
+    #[doc = include_str!("../docs/src/motion.md")]
+    mod motion {}
+    #[doc = include_str!("../docs/src/hardware.md")]
+    mod hardware {}
+    #[doc = include_str!("../docs/src/plugins.md")]
+    mod plugins {}
+    #[doc = include_str!("../docs/src/testing.md")]
+    mod testing {}
+    #[doc = include_str!("../docs/src/cameras.md")]
+    mod cameras {}
+    #[doc = include_str!("../docs/src/tactile.md")]
+    mod tactile {}
+    #[doc = include_str!("../docs/src/worlds.md")]
+    mod worlds {}
+    #[doc = include_str!("../docs/src/many-worlds.md")]
+    mod many_worlds {}
+}
 
 use yarok_core::component::{Mock, MockBackend};
 use yarok_core::runtime::{Platform, PlatformBuilder};

@@ -186,11 +186,11 @@ def test_each_recorded_action_leads_from_its_frame_to_the_next_and_a_policy_repe
             assert task.success(observation), f"episode {episode}: the policy did not place the block"
 
 
-def test_the_readmes_install_line_is_what_the_loop_is_tested_with():
-    """The README's LeRobot lines name the extras and Python this venv was made with (by
+def test_the_books_install_line_is_what_the_loop_is_tested_with():
+    """The book's LeRobot lines name the extras and Python this venv was made with (by
     ``scripts/setup-lerobot.sh``), so that following them gives what this test ran."""
     root = Path(__file__).resolve().parents[2]
-    readme = (root / "README.md").read_text()
+    readme = (root / "docs" / "src" / "learning.md").read_text()
     setup = (root / "scripts" / "setup-lerobot.sh").read_text()
     line = next(line for line in readme.splitlines() if "pip install 'lerobot[" in line)
     assert line.startswith("python3.12 -m venv "), line
