@@ -16,7 +16,9 @@ pub use zenoh;
 
 pub mod cameras;
 pub mod demos;
+pub mod features;
 pub mod grippers;
+pub(crate) mod model_cameras;
 pub mod plugins;
 pub mod probe_images;
 pub mod robots;

@@ -4,8 +4,14 @@
 //! async drivers generic over their transport (Marlin G-code over serial, the UR controller's
 //! URScript and RTDE, the Robotiq gripper socket, cameras).
 //!
-//! This crate is being built up issue by issue; today it holds the hardware backend, the
-//! Marlin driver, serial ports, cameras (feature `camera`) and the UR controller's RTDE client.
+//! - [`Real`] and [`HardwareBackend`]: the `real` environment, ticking on wall-clock time;
+//! - [`marlin`]: Marlin printers (G-code over a serial port or any byte stream);
+//! - [`ur`]: the UR controller (RTDE, the secondary interface, the dashboard, the streaming
+//!   program that carries joint targets with a watchdog);
+//! - [`robotiq`]: the Robotiq gripper's URCap socket;
+//! - `camera` (feature `camera`): Video4Linux2 and command-line cameras;
+//! - [`SerialPort`], [`connect_within`] and [`reopen`]: the transports and their bounded
+//!   connection and reconnection.
 
 mod backend;
 #[cfg(feature = "camera")]

@@ -9,7 +9,7 @@ use std::thread::JoinHandle;
 use std::time::Duration;
 
 use yarok::components::demos::{self, Demo};
-use yarok::components::plugins::features::{Features, Observation, check_action_length};
+use yarok::components::features::{Features, Observation, check_action_length};
 use yarok::components::template_world;
 use yarok::core::runtime::Platform;
 use yarok::core::suggest::did_you_mean;

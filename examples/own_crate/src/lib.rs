@@ -10,16 +10,54 @@ use std::rc::Rc;
 use yarok::prelude::*;
 
 /// A turntable: `turn_to(radians)`, `angle()`.
-#[derive(Clone, Debug)]
+#[derive(Clone)]
 pub struct Turntable {
-    drive: Drive,
+    turning: Rc<dyn Turning>,
 }
 
-/// How the turntable turns in each environment.
-#[derive(Clone, Debug)]
-enum Drive {
-    Sim { servo: Actuator, angle: Sensor },
-    Mock { angle: Rc<Cell<f64>> },
+impl std::fmt::Debug for Turntable {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Turntable")
+            .field("angle", &self.angle())
+            .finish()
+    }
+}
+
+/// How the turntable turns in one environment.
+trait Turning {
+    fn turn_to(&self, radians: f64);
+    fn angle(&self) -> f64;
+}
+
+/// In `sim`: the servo turns the disc; the joint sensor says where it is.
+struct Servo {
+    servo: Actuator,
+    angle: Sensor,
+}
+
+impl Turning for Servo {
+    fn turn_to(&self, radians: f64) {
+        self.servo.set(radians);
+    }
+
+    fn angle(&self) -> f64 {
+        self.angle.value()
+    }
+}
+
+/// In `mock`: no physics; the disc is where it was told to be.
+struct Told {
+    angle: Cell<f64>,
+}
+
+impl Turning for Told {
+    fn turn_to(&self, radians: f64) {
+        self.angle.set(radians);
+    }
+
+    fn angle(&self) -> f64 {
+        self.angle.get()
+    }
 }
 
 /// The turntable's config: the disc's radius (metres) and the servo's stiffness.
@@ -58,10 +96,10 @@ impl Component for Turntable {
 impl Interface<Sim> for Turntable {
     async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
         Ok(Turntable {
-            drive: Drive::Sim {
+            turning: Rc::new(Servo {
                 servo: bind.actuator("servo")?,
                 angle: bind.sensor("angle")?,
-            },
+            }),
         })
     }
 }
@@ -69,9 +107,9 @@ impl Interface<Sim> for Turntable {
 impl Interface<Mock> for Turntable {
     async fn bind(_bind: &mut Bind<Mock>) -> Result<Self, BindError> {
         Ok(Turntable {
-            drive: Drive::Mock {
-                angle: Rc::new(Cell::new(0.0)),
-            },
+            turning: Rc::new(Told {
+                angle: Cell::new(0.0),
+            }),
         })
     }
 }
@@ -79,18 +117,12 @@ impl Interface<Mock> for Turntable {
 impl Turntable {
     /// Sets the angle (radians) the turntable turns to.
     pub fn turn_to(&self, radians: f64) {
-        match &self.drive {
-            Drive::Sim { servo, .. } => servo.set(radians),
-            Drive::Mock { angle } => angle.set(radians),
-        }
+        self.turning.turn_to(radians);
     }
 
     /// The angle it is at (radians).
     pub fn angle(&self) -> f64 {
-        match &self.drive {
-            Drive::Sim { angle, .. } => angle.value(),
-            Drive::Mock { angle } => angle.get(),
-        }
+        self.turning.angle()
     }
 }
 

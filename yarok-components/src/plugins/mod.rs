@@ -5,12 +5,10 @@ mod cdr;
 #[cfg(feature = "dataset")]
 mod dataset_recorder;
 mod encoder;
-pub mod features;
 #[cfg(feature = "viewer")]
 mod inspector;
 mod joint_recorder;
 mod mcap_recorder;
-pub(crate) mod model_cameras;
 mod recording_profile;
 pub(crate) mod sim_state;
 mod status_line;

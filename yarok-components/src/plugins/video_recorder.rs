@@ -7,7 +7,7 @@ use yarok_core::runtime::{Plugin, World};
 use yarok_mjc::SimBackend;
 
 use super::encoder::{Encoder, H264};
-use super::model_cameras::ModelCameras;
+use crate::model_cameras::ModelCameras;
 
 /// What a [`VideoRecorder`] films (`[plugins.video]`).
 #[derive(Debug, Clone, PartialEq, serde::Deserialize)]

@@ -6,6 +6,16 @@ use super::profile::Profile;
 /// How close (radians, every joint) counts as arrived.
 pub const ARRIVED_RAD: f64 = 1e-3;
 
+/// How close (metres) counts as arrived for a pose (an arm's `is_at_pose`); its rotation within
+/// [`ARRIVED_RAD`].
+pub const ARRIVED_M: f64 = 1e-3;
+
+/// URScript's `movej` defaults, every arm's: joint speed (rad/s) and acceleration (rad/s²).
+pub const MOVE_J_DEFAULTS: (f64, f64) = (1.05, 1.4);
+
+/// URScript's `movel` defaults, every arm's: tool speed (m/s) and acceleration (m/s²).
+pub const MOVE_L_DEFAULTS: (f64, f64) = (0.25, 1.2);
+
 /// Seconds after its profile ends that a motion may take to settle within [`ARRIVED_RAD`]
 /// before it counts as failed (something blocks the arm).
 pub const SETTLE_SECONDS: f64 = 0.5;

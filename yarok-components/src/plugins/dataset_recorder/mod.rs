@@ -21,7 +21,7 @@ use self::meta::{Feature, INDEX_FEATURES, Info, stats_json, write_json};
 use self::stats::FeatureStats;
 use self::tables::{DataFiles, EpisodeRow, VECTOR_FEATURES, Widths, write_episodes, write_tasks};
 use super::encoder::H264;
-use super::features::Features;
+use crate::features::Features;
 
 /// What and how a [`DatasetRecorder`] records (`[plugins.dataset]`).
 #[derive(Debug, Clone, PartialEq, serde::Deserialize)]

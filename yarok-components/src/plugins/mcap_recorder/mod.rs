@@ -16,9 +16,9 @@ use yarok_mjc::SimBackend;
 
 use self::file::{ImageChannel, Layout, McapFile, SimNames, SimSample};
 use self::writer::{Job, Writer};
-use super::model_cameras::ModelCameras;
 use super::recording_profile::{self, MessageKind, RecordingProfile};
 use super::sim_state::{SimState, optical_frame};
+use crate::model_cameras::ModelCameras;
 use crate::probe_images;
 
 /// What and how often a [`McapRecorder`] records (`[plugins.mcap]`).

@@ -15,8 +15,7 @@ use super::kinematics::{SerialKinematics, TcpFrame};
 use super::names::SerialNames;
 use crate::robots::Motion;
 use crate::robots::motion::MotionControl;
-use crate::robots::motions::within;
-use crate::robots::ur::{ARRIVED_M, ARRIVED_RAD, MOVE_J_DEFAULTS, MOVE_L_DEFAULTS};
+use crate::robots::motions::{ARRIVED_M, ARRIVED_RAD, MOVE_J_DEFAULTS, MOVE_L_DEFAULTS, within};
 
 /// How stiffly (rad/s, the natural frequency of the tracking error) motor-driven joints follow
 /// their reference unless told otherwise.

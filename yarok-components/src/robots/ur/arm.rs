@@ -18,17 +18,7 @@ use super::payload::Payload;
 use super::sim::Servos;
 use super::streaming::ServoLimits;
 use crate::robots::motion::MotionControl;
-use crate::robots::motions::{ARRIVED_RAD, within};
-
-/// How close (metres) counts as arrived for a pose ([`Arm::is_at_pose`]); its rotation within
-/// [`ARRIVED_RAD`].
-pub const ARRIVED_M: f64 = 1e-3;
-
-/// URScript's `movej` defaults: joint speed (rad/s) and acceleration (rad/s²).
-pub const MOVE_J_DEFAULTS: (f64, f64) = (1.05, 1.4);
-
-/// URScript's `movel` defaults: tool speed (m/s) and acceleration (m/s²).
-pub const MOVE_L_DEFAULTS: (f64, f64) = (0.25, 1.2);
+use crate::robots::motions::{ARRIVED_M, ARRIVED_RAD, MOVE_J_DEFAULTS, MOVE_L_DEFAULTS, within};
 
 /// A UR arm: joints, TCP pose, and motions in platform time. Cheap to clone.
 #[derive(Clone)]

@@ -18,8 +18,10 @@ mod real;
 mod sim;
 mod streaming;
 
-pub use crate::robots::motions::{ARRIVED_RAD, SETTLE_SECONDS};
-pub use arm::{ARRIVED_M, Arm, MOVE_J_DEFAULTS, MOVE_L_DEFAULTS};
+pub use crate::robots::motions::{
+    ARRIVED_M, ARRIVED_RAD, MOVE_J_DEFAULTS, MOVE_L_DEFAULTS, SETTLE_SECONDS,
+};
+pub use arm::Arm;
 pub use config::{ArmConfig, ArmNames};
 pub use drive::{ArmDrive, Order, Setpoint};
 pub use error::MotionError;

@@ -1,5 +1,5 @@
 //! [`Features`]: a world's observation and action as a policy sees them and a LeRobot dataset
-//! records them (beside the plugins, which record and show them) — `observation.state`,
+//! records them (the plugins record and show them) — `observation.state`,
 //! `observation.environment_state`, `observation.images.*` and `action` — with the same names
 //! and shapes everywhere, in `sim` and on hardware.
 
@@ -8,7 +8,7 @@ use yarok_core::component::ProbeImage;
 use yarok_core::runtime::World;
 use yarok_mjc::{ActuatorId, JointId, SimBackend};
 
-use super::model_cameras::ModelCameras;
+use crate::model_cameras::ModelCameras;
 
 /// The numbers of a free body's pose in `observation.environment_state`: position, then
 /// orientation as a unit quaternion (w first, as MuJoCo's).
@@ -355,7 +355,12 @@ impl Features {
         position: [f64; 3],
         orientation: [f64; 4],
     ) -> Result<(), BoxError> {
-        let sim = super::sim_backend(world)?;
+        let sim: &SimBackend = world.backend().ok_or_else(|| {
+            format!(
+                "cannot place {name:?}: the world runs in `{}`, not simulated",
+                world.pl().environment()
+            )
+        })?;
         let index = self
             .environment_names
             .iter()
