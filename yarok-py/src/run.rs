@@ -9,8 +9,8 @@ use std::sync::mpsc::{RecvTimeoutError, channel};
 use pyo3::prelude::*;
 use yarok::core::suggest::did_you_mean;
 
+use crate::boundary::{error, interrupted};
 use crate::worker::{POLL, bundled, starting};
-use crate::{error, interrupted};
 
 /// Runs the bundled world `world` with its demo behaviour `behaviour` (its default when
 /// `None`; `yarok run --list` names them), in `env`, with the command line's settings

@@ -30,7 +30,7 @@ pub(crate) struct WorldSpec {
 
 /// A free body put somewhere when an episode begins.
 #[derive(Debug, Clone)]
-pub(crate) struct Placement {
+pub(crate) struct BodyPlacement {
     pub(crate) body: String,
     pub(crate) position: [f64; 3],
     pub(crate) orientation: [f64; 4],
@@ -80,7 +80,7 @@ enum Request {
     /// tick so that every sensor sees the start.
     Reset {
         episode: u64,
-        placements: Vec<Placement>,
+        placements: Vec<BodyPlacement>,
     },
     /// Set the action (if any), then `periods` times: advance `ticks` ticks and observe.
     Step {
@@ -191,7 +191,7 @@ impl Worker {
     pub(crate) fn send_reset(
         &self,
         episode: u64,
-        placements: Vec<Placement>,
+        placements: Vec<BodyPlacement>,
     ) -> Result<(), String> {
         self.send(Request::Reset {
             episode,
@@ -453,7 +453,7 @@ fn begin(
     platform: &Platform,
     features: &Features,
     episode: u64,
-    placements: &[Placement],
+    placements: &[BodyPlacement],
 ) -> Result<(), String> {
     platform
         .pl()

@@ -5,9 +5,10 @@ use std::sync::Mutex;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::boundary::{error, exclusive, interrupted};
 use crate::features::Features;
-use crate::worker::{Placement, Worker, WorldInfo, WorldSpec};
-use crate::{error, exclusive, interrupted, observation};
+use crate::observation;
+use crate::worker::{BodyPlacement, Worker, WorldInfo, WorldSpec};
 
 /// A yarok world: a bundled world by its tag (`yarok run --list`) or a template file of your
 /// own (`world.xml`, using the bundled components by their tags, as `yarok compose` reads it), in `sim`, `mock` or
@@ -28,12 +29,12 @@ pub(crate) struct World {
 }
 
 /// A reset's placements from Python: `[(body, (x, y, z), (qw, qx, qy, qz)), …]`.
-pub(crate) type Placements = Vec<(String, [f64; 3], [f64; 4])>;
+pub(crate) type BodyPlacements = Vec<(String, [f64; 3], [f64; 4])>;
 
-pub(crate) fn placements(given: Placements) -> Vec<Placement> {
+pub(crate) fn placements(given: BodyPlacements) -> Vec<BodyPlacement> {
     given
         .into_iter()
-        .map(|(body, position, orientation)| Placement {
+        .map(|(body, position, orientation)| BodyPlacement {
             body,
             position,
             orientation,
@@ -119,7 +120,7 @@ impl World {
         &self,
         py: Python<'py>,
         episode: u64,
-        placements: Placements,
+        placements: BodyPlacements,
     ) -> PyResult<Bound<'py, PyDict>> {
         let placements = self::placements(placements);
         self.exchange(py, move |worker| worker.send_reset(episode, placements))

@@ -5,10 +5,11 @@ use std::sync::Mutex;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::boundary::{error, exclusive, interrupted};
 use crate::features::Features;
+use crate::observation;
 use crate::worker::{Observed, Worker, WorldInfo, WorldSpec};
-use crate::world::{Placements, placements, start, ticks_for};
-use crate::{error, exclusive, interrupted, observation};
+use crate::world::{BodyPlacements, placements, start, ticks_for};
 
 /// What sends one world its request.
 type SendRequest = Box<dyn FnOnce(&Worker) -> Result<(), String> + Send>;
@@ -120,7 +121,7 @@ impl Worlds {
     fn reset<'py>(
         &self,
         py: Python<'py>,
-        worlds: Vec<(usize, u64, Placements)>,
+        worlds: Vec<(usize, u64, BodyPlacements)>,
     ) -> PyResult<Vec<Bound<'py, PyDict>>> {
         let requests = worlds
             .into_iter()

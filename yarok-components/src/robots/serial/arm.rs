@@ -7,8 +7,8 @@ use nalgebra::Isometry3;
 use yarok_core::component::{Bind, BindError};
 use yarok_mjc::{Sim, SimBind};
 
+use super::actuated_joints::actuated_joints;
 use super::controller::{Controller, Goal};
-use super::drives::drives;
 use super::dynamics::{Dynamics, JointDynamics};
 use super::error::SerialMotionError;
 use super::kinematics::{SerialKinematics, TcpFrame};
@@ -61,7 +61,7 @@ impl SerialArm {
         if !(stiffness > 0.0 && stiffness.is_finite()) {
             return Err(bind.error(format!("stiffness {stiffness} must be a positive number")));
         }
-        let drives = drives(bind, names)?;
+        let drives = actuated_joints(bind, names)?;
         let model = std::sync::Arc::clone(bind.backend().model());
         let tcp = tcp_frame(bind, names.tcp)?;
         let last_body = model.joint_body(drives[drives.len() - 1].joint.id());

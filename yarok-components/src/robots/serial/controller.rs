@@ -13,7 +13,7 @@ use crate::robots::paths;
 use crate::robots::profile::Profile;
 use yarok_mjc::{Joint, JointLosses};
 
-use super::drives::{Actuation, Drive, Drives};
+use super::actuated_joints::{ActuatedJoint, ActuatedJoints, Actuation};
 use super::dynamics::Dynamics;
 use super::error::{SerialMotionError, StuckCause};
 use super::kinematics::{SerialIkError, SerialKinematics};
@@ -135,7 +135,7 @@ pub(super) struct Controller {
     kinematics: RefCell<SerialKinematics>,
     dynamics: RefCell<Dynamics>,
     clock: Clock,
-    drives: Drives,
+    drives: ActuatedJoints,
     /// The drives' joints, in their order.
     joints: Vec<Joint>,
     /// How stiffly motors track (rad/s, the natural frequency of the tracking error).
@@ -148,7 +148,7 @@ impl Controller {
         clock: Clock,
         kinematics: SerialKinematics,
         dynamics: Dynamics,
-        drives: Drives,
+        drives: ActuatedJoints,
         stiffness: f64,
         start: Vec<f64>,
     ) -> Self {
@@ -205,7 +205,7 @@ impl Controller {
     /// The inertia each joint's feedback is scaled by: the joint's own (the mass matrix's
     /// diagonal), at least what its damping makes it behave as over the stiffness's time
     /// scale, and at most what one step of explicit feedback keeps stable.
-    fn feedback_inertia(&self, drive: &Drive) -> f64 {
+    fn feedback_inertia(&self, drive: &ActuatedJoint) -> f64 {
         let inertia = drive.joint.inertia();
         let damping = drive.losses.damping;
         let dt = self.clock.timestep();

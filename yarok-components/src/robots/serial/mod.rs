@@ -4,9 +4,9 @@
 //! ([`SerialKinematics`]). The UR arms keep their exact closed form
 //! ([`ur::Kinematics`](super::ur::Kinematics)).
 
+mod actuated_joints;
 mod arm;
 mod controller;
-mod drives;
 mod dynamics;
 mod error;
 mod kinematics;

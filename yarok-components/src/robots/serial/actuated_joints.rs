@@ -1,4 +1,4 @@
-//! [`Drives`]: what drives each joint of a serial arm in `sim` — its actuator, what the joint
+//! [`ActuatedJoints`]: each joint of a serial arm in `sim` — its actuator, what the joint
 //! resists with by itself, and the most force the actuator can give it — found from a mapping
 //! ([`SerialNames`]) and checked against the model before anything moves.
 
@@ -17,7 +17,7 @@ pub(super) enum Actuation {
 }
 
 /// One joint of the arm and what drives it.
-pub(super) struct Drive {
+pub(super) struct ActuatedJoint {
     pub(super) name: String,
     pub(super) joint: Joint,
     pub(super) actuator: Actuator,
@@ -27,7 +27,7 @@ pub(super) struct Drive {
     pub(super) force_range: [f64; 2],
 }
 
-impl Drive {
+impl ActuatedJoint {
     /// The most force the actuator gives either way.
     pub(super) fn strength(&self) -> f64 {
         self.force_range[0].abs().min(self.force_range[1].abs())
@@ -35,12 +35,15 @@ impl Drive {
 }
 
 /// The arm's joints base to tip, each with its drive.
-pub(super) type Drives = Vec<Drive>;
+pub(super) type ActuatedJoints = Vec<ActuatedJoint>;
 
 /// The drives `names` maps, each checked: the joint exists and is a hinge or slide, its actuator
 /// is a torque motor or a position servo on that very joint, no joint or actuator is named
 /// twice.
-pub(super) fn drives(bind: &mut Bind<Sim>, names: &SerialNames) -> Result<Drives, BindError> {
+pub(super) fn actuated_joints(
+    bind: &mut Bind<Sim>,
+    names: &SerialNames,
+) -> Result<ActuatedJoints, BindError> {
     let by_joint = names.actuators.is_empty();
     if (!by_joint && names.joints.len() != names.actuators.len()) || names.joints.is_empty() {
         return Err(bind.error(format!(
@@ -109,7 +112,7 @@ pub(super) fn drives(bind: &mut Bind<Sim>, names: &SerialNames) -> Result<Drives
             }
         };
         let force_range = force_range(&model, &actuator, actuation, joint);
-        drives.push(Drive {
+        drives.push(ActuatedJoint {
             name: name.to_owned(),
             losses: model.joint_losses(joint.id()),
             joint: joint.clone(),
