@@ -9,6 +9,8 @@
 use std::os::unix::fs::{FileTypeExt, OpenOptionsExt};
 use std::path::Path;
 
+use crate::OutputError;
+
 /// Reads whether the existing regular file at a path is one yarok wrote, from its content.
 pub type Recogniser = fn(&Path) -> std::io::Result<bool>;
 
@@ -36,46 +38,54 @@ pub type Recogniser = fn(&Path) -> std::io::Result<bool>;
 /// let notes = folder.join("notes.txt");
 /// std::fs::write(&notes, "a user's notes")?;
 /// let refused = check_replaceable(&notes, "note", starts_with_our_mark).unwrap_err();
-/// assert!(refused.contains("notes.txt") && refused.contains("did not write"));
+/// assert!(matches!(refused, yarok_core::OutputError::NotYaroks { .. }));
+/// assert!(refused.to_string().contains("notes.txt"));
 /// std::fs::write(&notes, "written by yarok: 3 notes")?;
 /// assert!(check_replaceable(&notes, "note", starts_with_our_mark).is_ok());
 /// assert!(check_replaceable(&folder.join("new.txt"), "note", starts_with_our_mark).is_ok());
 /// # std::fs::remove_dir_all(&folder)?;
 /// # Ok::<(), std::io::Error>(())
 /// ```
-pub fn check_replaceable(path: &Path, kind: &str, wrote: Recogniser) -> Result<(), String> {
-    let shown = path.display();
+pub fn check_replaceable(path: &Path, kind: &str, wrote: Recogniser) -> Result<(), OutputError> {
+    let path_buf = || path.to_path_buf();
+    let kind_text = || kind.to_owned();
     if path.as_os_str().is_empty() {
-        return Err(format!("the {kind}'s path is empty: give a file's path"));
+        return Err(OutputError::EmptyPath { kind: kind_text() });
     }
     let metadata = match std::fs::metadata(path) {
         Ok(metadata) => metadata,
         Err(error) if error.kind() == std::io::ErrorKind::NotFound => return Ok(()),
-        Err(error) => return Err(format!("cannot look at {shown} ({error})")),
+        Err(source) => {
+            return Err(OutputError::Inaccessible {
+                path: path_buf(),
+                source,
+            });
+        }
     };
     if metadata.is_dir() {
-        return Err(format!(
-            "{shown} is a folder: give a file's path for the {kind}"
-        ));
+        return Err(OutputError::Folder {
+            path: path_buf(),
+            kind: kind_text(),
+        });
     }
     let file_type = metadata.file_type();
     if file_type.is_block_device() {
-        return Err(format!(
-            "{shown} is a disk (a block device): yarok does not write a {kind} over a disk; give \
-             a file's path"
-        ));
+        return Err(OutputError::BlockDevice {
+            path: path_buf(),
+            kind: kind_text(),
+        });
     }
     if file_type.is_socket() {
-        return Err(format!(
-            "{shown} is a socket: give a file's path for the {kind}"
-        ));
+        return Err(OutputError::Socket {
+            path: path_buf(),
+            kind: kind_text(),
+        });
     }
     if file_type.is_fifo() {
-        return has_a_reader(path).map_err(|error| {
-            format!(
-                "{shown} is a named pipe nobody reads ({error}): writing the {kind} would wait \
-                 forever; start its reader first, or give a file's path"
-            )
+        return has_a_reader(path).map_err(|source| OutputError::PipeWithoutReader {
+            path: path_buf(),
+            kind: kind_text(),
+            source,
         });
     }
     if !metadata.is_file() {
@@ -83,14 +93,15 @@ pub fn check_replaceable(path: &Path, kind: &str, wrote: Recogniser) -> Result<(
     }
     match wrote(path) {
         Ok(true) => Ok(()),
-        Ok(false) => Err(format!(
-            "{shown} exists and is not a {kind} yarok wrote: yarok does not replace a file it \
-             did not write; move it away or give another path"
-        )),
-        Err(error) => Err(format!(
-            "{shown} exists and cannot be read ({error}), so yarok cannot tell it wrote it: \
-             it is left as it is; move it away or give another path"
-        )),
+        Ok(false) => Err(OutputError::NotYaroks {
+            path: path_buf(),
+            kind: kind_text(),
+        }),
+        Err(source) => Err(OutputError::Unreadable {
+            path: path_buf(),
+            kind: kind_text(),
+            source,
+        }),
     }
 }
 
@@ -125,13 +136,15 @@ pub fn head(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
 /// # Errors
 ///
 /// When a folder cannot be made, naming it.
-pub fn make_folder_for(path: &Path) -> Result<(), String> {
+pub fn make_folder_for(path: &Path) -> Result<(), OutputError> {
     match path
         .parent()
         .filter(|folder| !folder.as_os_str().is_empty())
     {
-        Some(folder) => std::fs::create_dir_all(folder)
-            .map_err(|e| format!("cannot make the folder {} ({e})", folder.display())),
+        Some(folder) => std::fs::create_dir_all(folder).map_err(|source| OutputError::Folderless {
+            folder: folder.to_path_buf(),
+            source,
+        }),
         None => Ok(()),
     }
 }
@@ -153,7 +166,9 @@ mod tests {
             .status()
             .unwrap();
         assert!(made.success());
-        let refused = check_replaceable(&pipe, "video", never).unwrap_err();
+        let refused = check_replaceable(&pipe, "video", never)
+            .unwrap_err()
+            .to_string();
         assert!(
             refused.contains("is a named pipe nobody reads")
                 && refused.contains("start its reader"),
@@ -164,20 +179,17 @@ mod tests {
             .custom_flags(libc::O_NONBLOCK)
             .open(&pipe)
             .unwrap();
-        assert_eq!(check_replaceable(&pipe, "video", never), Ok(()));
+        assert!(check_replaceable(&pipe, "video", never).is_ok());
         drop(reader);
     }
 
     #[test]
     fn a_character_device_is_written_and_a_socket_is_not() {
-        assert_eq!(
-            check_replaceable(Path::new("/dev/null"), "video", never),
-            Ok(())
-        );
+        assert!(check_replaceable(Path::new("/dev/null"), "video", never).is_ok());
         let folder = tempfile::tempdir().unwrap();
         let socket = folder.path().join("socket");
         let _listening = std::os::unix::net::UnixListener::bind(&socket).unwrap();
         let refused = check_replaceable(&socket, "video", never).unwrap_err();
-        assert!(refused.contains("is a socket"), "{refused}");
+        assert!(matches!(refused, OutputError::Socket { .. }), "{refused}");
     }
 }

@@ -7,6 +7,8 @@ use std::ffi::OsString;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+use crate::OutputError;
+
 /// `output`'s sibling `.{name}.yarok-{what}`: where its lock (`lock`) or a writer's
 /// unfinished work (`partial`) goes.
 pub fn beside(output: &Path, what: &str) -> PathBuf {
@@ -47,9 +49,13 @@ impl OutputLock {
     /// When a live run holds it (naming its process), when a file, folder or link of the
     /// user's is at the lock's name (never written through, never removed), or when it cannot
     /// be created.
-    pub fn take(output: &Path, what: &str) -> Result<Self, String> {
+    pub fn take(output: &Path, what: &str) -> Result<Self, OutputError> {
         let path = beside(output, "lock");
-        let shown = path.display();
+        let failed = |action, source| OutputError::LockFailed {
+            action,
+            lock: path.clone(),
+            source,
+        };
         let pid = std::process::id();
         for _attempt in 0..2 {
             let created = std::fs::OpenOptions::new()
@@ -60,20 +66,17 @@ impl OutputLock {
                 Ok(mut file) => {
                     let lock = Self { path: path.clone() };
                     file.write_all(pid.to_string().as_bytes())
-                        .map_err(|e| format!("cannot write {shown}: {e}"))?;
+                        .map_err(|source| failed("write", source))?;
                     return Ok(lock);
                 }
                 Err(error) => error,
             };
             if error.kind() != std::io::ErrorKind::AlreadyExists {
-                return Err(format!("cannot create {shown}: {error}"));
+                return Err(failed("create", error));
             }
-            let in_the_way = || {
-                format!(
-                    "{shown} is in the way of the lock of {} and is not one yarok wrote (a lock \
-                     is a file holding a process id): move it away, or give another path",
-                    output.display()
-                )
+            let in_the_way = || OutputError::LockInTheWay {
+                lock: path.clone(),
+                output: output.to_path_buf(),
             };
             if !std::fs::symlink_metadata(&path).is_ok_and(|m| m.is_file()) {
                 return Err(in_the_way());
@@ -81,23 +84,25 @@ impl OutputLock {
             let text = crate::bounded::read_text(&path, 32).map_err(|_| in_the_way())?;
             match text.trim().parse::<u32>() {
                 Ok(holder) if holder != pid && alive(holder) => {
-                    return Err(format!(
-                        "another yarok run (process {holder}) is writing {what}"
-                    ));
+                    return Err(OutputError::Locked {
+                        what: what.to_owned(),
+                        pid: holder,
+                    });
                 }
                 // Left by a run that ended without removing it.
-                Ok(_) => std::fs::remove_file(&path)
-                    .map_err(|e| format!("cannot remove {shown}, left by a run that ended: {e}"))?,
+                Ok(_) => std::fs::remove_file(&path).map_err(|source| {
+                    failed("remove the lock left by a run that ended,", source)
+                })?,
                 Err(_) if text.is_empty() => {
-                    return Err(format!(
-                        "another yarok run is starting to write {what} (its lock {shown} is \
-                         being written)"
-                    ));
+                    return Err(OutputError::LockStarting {
+                        what: what.to_owned(),
+                        lock: path.clone(),
+                    });
                 }
                 Err(_) => return Err(in_the_way()),
             }
         }
-        Err(format!("another yarok run took {shown} at the same time"))
+        Err(OutputError::LockRace { lock: path })
     }
 }
 
@@ -123,7 +128,10 @@ mod tests {
         let first = OutputLock::take(&output, "run.mcap").unwrap();
         std::fs::write(beside(&output, "lock"), "1").unwrap();
         let refused = OutputLock::take(&output, "run.mcap").unwrap_err();
-        assert_eq!(refused, "another yarok run (process 1) is writing run.mcap");
+        assert_eq!(
+            refused.to_string(),
+            "another yarok run (process 1) is writing run.mcap"
+        );
         drop(first);
         let second = OutputLock::take(&output, "run.mcap").unwrap();
         drop(second);
@@ -138,7 +146,7 @@ mod tests {
         std::os::unix::fs::symlink(&key, beside(&output, "lock")).unwrap();
         let refused = OutputLock::take(&output, "run.mcap").unwrap_err();
         assert!(
-            refused.contains("is in the way of the lock of"),
+            matches!(refused, OutputError::LockInTheWay { .. }),
             "{refused}"
         );
         assert_eq!(std::fs::read_to_string(&key).unwrap(), "a user's key");

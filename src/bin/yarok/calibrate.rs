@@ -76,7 +76,8 @@ pub(super) fn run(args: &[String]) -> Result<(), String> {
         .to_rgb8();
     let map = coverage_map_path(out);
     super::apart_from_inputs(&map, &[untouched, presses])?;
-    check_replaceable(map.as_ref(), "PNG image", probe_images::png_by_yarok)?;
+    check_replaceable(map.as_ref(), "PNG image", probe_images::png_by_yarok)
+        .map_err(|refused| refused.to_string())?;
     let read = read_presses(presses).map_err(|e| e.to_string())?;
     let names: Vec<String> = read
         .iter()

@@ -62,8 +62,9 @@ pub(super) fn run(args: &[String]) -> Result<(), String> {
     let xml = composition.to_xml();
     match args.out {
         Some(path) => {
-            check_replaceable(&path, "composed world", composed_by_yarok)?;
-            make_folder_for(&path)?;
+            check_replaceable(&path, "composed world", composed_by_yarok)
+                .and_then(|()| make_folder_for(&path))
+                .map_err(|refused| refused.to_string())?;
             std::fs::write(&path, format!("{COMPOSED_MARK}\n{xml}"))
                 .map_err(|e| format!("cannot write {}: {e}", path.display()))
         }

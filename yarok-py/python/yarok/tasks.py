@@ -27,10 +27,16 @@ def _pose(observation: dict[str, np.ndarray], index: int) -> np.ndarray:
     return observation["observation.environment_state"][index : index + 3]
 
 
+TARGET_SPOT_RADIUS = 0.05
+"""The radius (metres) of DigitWorld's target spot, the disc the block is put on."""
+
+
 @dataclass
 class PickPlace(Task):
     """DigitWorld: put the medium block (3.5 cm) on the target spot. Won when the block rests
-    on the target within 5 mm with the gripper open. Each episode starts with the block at a
+    wholly on the spot (a disc of 5 cm radius) with the gripper open: its centre within
+    ``tolerance`` of the spot's, the radius less the block's half diagonal (2.5 cm), so that
+    no corner overhangs the disc whatever the block's yaw. Each episode starts with the block at a
     place and yaw drawn from the seed, within the arm's reach and clear of the other blocks:
     the region ``yarok.run("digit_world", "demonstrate")`` draws its demonstrations' starts
     from.
@@ -47,7 +53,7 @@ class PickPlace(Task):
         tuple(bounds) for bounds in DIGIT_WORLD_START_REGION
     )
     max_yaw: float = DIGIT_WORLD_START_YAW
-    tolerance: float = 0.005
+    tolerance: float = TARGET_SPOT_RADIUS - 0.035 * math.sqrt(2) / 2  # 0.0253
     render_camera: str | None = "overview"
 
     def bind(self, features) -> None:

@@ -68,7 +68,7 @@ pub enum CalibrationError {
     /// The path to write a calibration to cannot take it: a file yarok did not write is there
     /// (it is left as it is), or the folder for it cannot be made.
     #[error("{0}")]
-    Refused(String),
+    Refused(#[from] yarok_core::OutputError),
     /// A calibration file is not one.
     #[error("calibration file {path}: {reason}")]
     Format {
