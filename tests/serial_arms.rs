@@ -12,7 +12,7 @@
 use std::path::PathBuf;
 
 use yarok::components::robots::serial::{
-    DEFAULT_STIFFNESS, SerialArm, SerialIkError, SerialMotionError, SerialNames,
+    DEFAULT_STIFFNESS, SerialArm, SerialIkError, SerialMotionError, SerialNames, StuckCause,
 };
 use yarok::nalgebra::{Isometry3, Vector3};
 use yarok::prelude::*;
@@ -951,4 +951,95 @@ fn an_arm_moved_by_a_mocap_weld_is_refused_naming_the_weld() {
         ),
         "{error}"
     );
+}
+
+/// robosuite's bare Panda with a fixed slab `slab` (its centre; 20 × 20 × 2 cm) and, when
+/// `WELD`, its hand welded where it is in the model's reference posture (`pinned`).
+struct Obstructed<const WELD: bool>;
+
+impl<const WELD: bool> Component for Obstructed<WELD> {
+    fn declaration() -> Declaration {
+        let arm = CaseArm::<PANDA>::declaration().tag().to_owned();
+        let weld = if WELD {
+            r#"<equality><weld name="pinned" body1="arm/right_hand"/></equality>"#
+        } else {
+            ""
+        };
+        Declaration::new("obstructed_world")
+            .uses::<CaseArm<PANDA>>()
+            .default("slab", [0.0, 0.0, -1.0])
+            .template(format!(
+                r#"<mujoco><option gravity="0 0 -9.81"/>
+                     <worldbody>
+                       <geom name="slab" type="box" size="0.1 0.1 0.01" pos="{{slab}}"/>
+                       <{arm} name="arm"/>
+                     </worldbody>{weld}</mujoco>"#
+            ))
+    }
+}
+
+/// A straight line 20 cm down from the start in an [`Obstructed`] world with its settings: the
+/// motion's error.
+fn down_in<const WELD: bool>(settings: &[String]) -> SerialMotionError {
+    let seen = std::rc::Rc::new(std::cell::RefCell::new(None));
+    let keep = std::rc::Rc::clone(&seen);
+    yarok::platform()
+        .world::<Obstructed<WELD>>()
+        .args(settings.iter().cloned())
+        .unwrap()
+        .behaviour(move |pl| {
+            let keep = std::rc::Rc::clone(&keep);
+            async move {
+                let arm: CaseArm<PANDA> = pl.get("/arm")?;
+                let mut below = arm.tcp_pose();
+                below.translation.vector.z -= 0.2;
+                *keep.borrow_mut() = arm.move_l(below).await.err();
+                Ok(())
+            }
+        })
+        .run()
+        .unwrap();
+    seen.take().expect("the line arrived")
+}
+
+/// A motion that stops says what stopped it: a slab 5 cm under the Panda's hand stops a line
+/// down, named as a contact between the slab and the arm's link with the force between them;
+/// a weld holding the hand stops it, named as the weld; neither is called a saturated actuator.
+#[test]
+fn a_stopped_motion_names_the_contact_or_the_weld_that_stopped_it() {
+    let hand =
+        with_case::<PANDA, false, _>(async |_, arm| Ok(arm.tcp_pose().translation.vector)).unwrap();
+    let slab = format!("slab=[{},{},{}]", hand.x, hand.y, hand.z - 0.06);
+    let blocked = down_in::<false>(&["--set".into(), slab]);
+    println!("{blocked}");
+    let SerialMotionError::Stuck {
+        cause:
+            StuckCause::Contact {
+                ref bodies,
+                normal_force,
+                ..
+            },
+        ..
+    } = blocked
+    else {
+        panic!("{blocked}");
+    };
+    assert!(bodies.iter().any(|body| body == "world"), "{blocked}");
+    assert!(
+        bodies.iter().any(|body| body.starts_with("arm/")),
+        "{blocked}"
+    );
+    assert!(normal_force > 1.0, "{blocked}");
+    assert!(blocked.to_string().contains("clear the way"), "{blocked}");
+
+    let pinned = down_in::<true>(&[]);
+    println!("{pinned}");
+    let SerialMotionError::Stuck {
+        cause: StuckCause::Constrained { ref name, .. },
+        ..
+    } = pinned
+    else {
+        panic!("{pinned}");
+    };
+    assert_eq!(name.as_deref(), Some("pinned"), "{pinned}");
 }

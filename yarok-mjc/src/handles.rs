@@ -143,6 +143,14 @@ impl Joint {
         Ok(())
     }
 
+    /// What the constraints of the last step (contacts, equality constraints, limits, dry
+    /// friction) put on the joint's first degree of freedom, by source, the strongest first
+    /// (see [`Data::constraint_forces_on`]).
+    pub fn constraint_forces(&self) -> Vec<crate::ConstraintForce> {
+        let data = self.data.borrow();
+        data.constraint_forces_on(data.dof(self.id))
+    }
+
     /// The joint-space inertia the joint sees (see [`Data::dof_inertia`]).
     pub fn inertia(&self) -> f64 {
         self.data.borrow().dof_inertia(self.id)

@@ -54,6 +54,7 @@
 mod backend;
 mod compile_notice;
 mod composition;
+mod constraints;
 mod contacts;
 mod data;
 mod declared;
@@ -85,6 +86,7 @@ mod warnings;
 pub mod sys;
 
 pub use backend::{Sim, SimBackend};
+pub use constraints::{ConstraintForce, ConstraintSource};
 pub use contacts::ContactPoint;
 pub use data::{Data, SavedState};
 pub use declared::{DeclaredWorld, MockBind};

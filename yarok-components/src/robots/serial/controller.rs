@@ -11,7 +11,7 @@ use crate::robots::motion::{Limits, MotionControl};
 use crate::robots::motions::Motions;
 use crate::robots::paths;
 use crate::robots::profile::Profile;
-use yarok_mjc::{Joint, JointLosses};
+use yarok_mjc::{ConstraintSource, Joint, JointLosses};
 
 use super::actuated_joints::{ActuatedJoint, ActuatedJoints, Actuation};
 use super::dynamics::Dynamics;
@@ -314,21 +314,23 @@ impl Controller {
         // The feedback's force there: the proportional and integral terms (accelerations)
         // through the joint's feedback inertia.
         let pushing = (kp * off + state.integral[joint].abs()) * self.feedback_inertia(drive);
-        let cause = match state.strain {
-            Some((strained, asked)) => StuckCause::Saturated {
+        let toward = (target[joint] - at[joint]).signum();
+        let cause = match (held_back(drive, toward, pushing), state.strain) {
+            (Some(cause), _) => cause,
+            (None, Some((strained, asked))) => StuckCause::Saturated {
                 joint: self.drives[strained].name.clone(),
                 asked,
                 range: self.drives[strained].force_range,
             },
-            None if drive.losses.frictionloss > 0.0
-                && pushing < 2.0 * drive.losses.frictionloss =>
+            (None, None)
+                if drive.losses.frictionloss > 0.0 && pushing < 2.0 * drive.losses.frictionloss =>
             {
                 StuckCause::Friction {
                     frictionloss: drive.losses.frictionloss,
                     inertia: drive.joint.inertia(),
                 }
             }
-            None => StuckCause::Blocked,
+            (None, None) => StuckCause::Blocked,
         };
         SerialMotionError::Stuck {
             joint: drive.name.clone(),
@@ -530,4 +532,50 @@ impl MotionControl for Controller {
     fn clock(&self) -> &Clock {
         &self.clock
     }
+}
+
+/// The constraint that holds `drive`'s joint back from moving `toward` (+1 or -1), if one puts
+/// a force against it comparable to what drives it: the strongest contact, equality constraint
+/// or limit force on the joint opposing the motion, when it is at least a quarter of the
+/// actuator's strength or of the controller's push (`pushing`), whichever is less.
+fn held_back(drive: &ActuatedJoint, toward: f64, pushing: f64) -> Option<StuckCause> {
+    let against = drive
+        .joint
+        .constraint_forces()
+        .into_iter()
+        .filter(|held| held.force * toward < 0.0 && held.source != ConstraintSource::Friction)
+        .max_by(|a, b| a.force.abs().total_cmp(&b.force.abs()))?;
+    let force = against.force.abs();
+    if force < 0.25 * drive.strength().min(pushing) {
+        return None;
+    }
+    Some(match against.source {
+        ConstraintSource::Contact {
+            bodies,
+            normal_force,
+            ..
+        } => StuckCause::Contact {
+            bodies,
+            normal_force,
+            force,
+        },
+        ConstraintSource::Equality { index, name } => {
+            StuckCause::Constrained { name, index, force }
+        }
+        ConstraintSource::JointLimit { name, joint } => StuckCause::Limit {
+            what: name.map_or_else(
+                || format!("joint {}", joint.index()),
+                |name| format!("joint {name:?}"),
+            ),
+            force,
+        },
+        ConstraintSource::TendonLimit { name, tendon } => StuckCause::Limit {
+            what: name.map_or_else(
+                || format!("tendon {}", tendon.index()),
+                |name| format!("tendon {name:?}"),
+            ),
+            force,
+        },
+        _ => return None,
+    })
 }

@@ -171,7 +171,44 @@ pub enum StuckCause {
         /// The inertia the joint moves.
         inertia: f64,
     },
-    /// Nothing the controller knows of: a contact, a load heavier than the model's.
-    #[error("something blocks it (a contact, or a load the model does not have)")]
+    /// A contact holds it back: the arm presses on something, or something on it.
+    #[error(
+        "a contact between {} and {} holds it back ({normal_force:.0} N between them, {force:.1} N·m against the joint): clear the way or move around it",
+        bodies[0], bodies[1]
+    )]
+    Contact {
+        /// The two bodies in contact.
+        bodies: [String; 2],
+        /// The normal force between them (newtons).
+        normal_force: f64,
+        /// The force the contact puts against the joint (N·m, or N for a slide).
+        force: f64,
+    },
+    /// An equality constraint of the model (a weld, a connect, a coupling) holds it back.
+    #[error(
+        "the equality constraint {} holds it back ({force:.1} N·m against the joint): the model ties the arm there; move where the constraint lets it, or leave the constraint out",
+        name.as_deref().map_or_else(|| format!("number {index}"), |name| format!("{name:?}"))
+    )]
+    Constrained {
+        /// The constraint's name, if it has one.
+        name: Option<String>,
+        /// Its index among the model's equality constraints.
+        index: usize,
+        /// The force it puts against the joint.
+        force: f64,
+    },
+    /// A joint or tendon limit of the model holds it back (a limit's `margin` reaches before
+    /// the range's end).
+    #[error(
+        "the limit of {what} holds it back ({force:.1} N·m against the joint): stay further inside its range (the model's limit margin reaches before the range's end)"
+    )]
+    Limit {
+        /// The limited joint or tendon, named.
+        what: String,
+        /// The force the limit puts against the joint.
+        force: f64,
+    },
+    /// Nothing the controller knows of: a load heavier than the model's.
+    #[error("something blocks it (a load the model does not have)")]
     Blocked,
 }
