@@ -1043,3 +1043,82 @@ fn a_stopped_motion_names_the_contact_or_the_weld_that_stopped_it() {
     };
     assert_eq!(name.as_deref(), Some("pinned"), "{pinned}");
 }
+
+/// A two-link arm turning in the horizontal plane on torque motors, its elbow's limit reaching
+/// 0.4 rad inside its range (`margin`), as some files state.
+#[derive(Clone, Debug)]
+struct MarginArm(SerialArm);
+
+const MARGIN_ARM: SerialNames = SerialNames {
+    joints: &["shoulder", "elbow"],
+    actuators: &["shoulder_motor", "elbow_motor"],
+    tcp: "tip",
+};
+
+impl Component for MarginArm {
+    fn declaration() -> Declaration {
+        Declaration::new("margin_arm").template(
+            r#"<mujoco><compiler angle="radian"/><option gravity="0 0 -9.81"/>
+                 <worldbody>
+                   <body name="upper" pos="0 0 0.5">
+                     <joint name="shoulder" axis="0 0 1" range="-2 2" damping="0.5"/>
+                     <geom type="capsule" fromto="0 0 0 0.3 0 0" size="0.03" mass="1"/>
+                     <body name="lower" pos="0.3 0 0">
+                       <joint name="elbow" axis="0 0 1" range="-2 2" margin="0.4" damping="0.5"/>
+                       <geom type="capsule" fromto="0 0 0 0.3 0 0" size="0.03" mass="1"/>
+                       <site name="tip" pos="0.3 0 0"/>
+                     </body>
+                   </body>
+                 </worldbody>
+                 <actuator>
+                   <motor name="shoulder_motor" joint="shoulder" ctrlrange="-50 50"/>
+                   <motor name="elbow_motor" joint="elbow" ctrlrange="-50 50"/>
+                 </actuator>
+               </mujoco>"#,
+        )
+    }
+
+    fn interfaces(interfaces: &mut Interfaces<Self>) {
+        interfaces.add::<Sim>();
+    }
+}
+
+impl Interface<Sim> for MarginArm {
+    async fn bind(bind: &mut Bind<Sim>) -> Result<Self, BindError> {
+        SerialArm::bind_sim(bind, &MARGIN_ARM, Some(&[0.0, 0.0]), DEFAULT_STIFFNESS).map(Self)
+    }
+}
+
+/// A joint move to 1.9 rad, inside the elbow's range but within its limit's margin, stops where
+/// the limit pushes back, and says so, naming the joint's limit.
+#[test]
+fn a_motion_into_a_limits_margin_names_the_limit() {
+    let seen = std::rc::Rc::new(std::cell::RefCell::new(None));
+    let keep = std::rc::Rc::clone(&seen);
+    yarok::platform()
+        .world::<MarginArm>()
+        .behaviour(move |pl| {
+            let keep = std::rc::Rc::clone(&keep);
+            async move {
+                let MarginArm(arm) = pl.get("/")?;
+                *keep.borrow_mut() = arm.move_j(vec![0.0, 1.9]).await.err();
+                Ok(())
+            }
+        })
+        .run()
+        .unwrap();
+    let stopped = seen
+        .take()
+        .expect("the motion arrived inside the limit's margin");
+    println!("{stopped}");
+    let SerialMotionError::Stuck {
+        cause: StuckCause::Limit { ref what, .. },
+        ref joint,
+        ..
+    } = stopped
+    else {
+        panic!("{stopped}");
+    };
+    assert_eq!(joint, "elbow", "{stopped}");
+    assert_eq!(what, r#"joint "elbow""#, "{stopped}");
+}

@@ -9,7 +9,7 @@ steps, each timed:
    environment's 20 Hz), each ending with the block on its target;
 2. the images removed with ``lerobot-edit-dataset`` (the policy sees ``observation.state`` and
    ``observation.environment_state``);
-3. ``lerobot-train`` with ACT (the hyper-parameters below: chunks of 20 actions, one second,
+3. ``lerobot-train`` with ACT (``yarok.lerobot.ACT_ON_A_CPU``: chunks of 20 actions, one second,
    each executed whole) for ``--steps`` steps on the CPU;
 4. LeRobot's ``eval_policy`` on ``--episodes`` seeds from 100 000 (the environment draws its
    starts with numpy from the seed; the demonstrations were drawn by yarok's own generator from
@@ -36,26 +36,7 @@ IMAGES = [
     "observation.images.arm.gripper.left_digit.image",
     "observation.images.arm.gripper.right_digit.image",
 ]
-ACT = [
-    "--policy.type=act",
-    "--policy.device=cpu",
-    "--policy.push_to_hub=false",
-    "--policy.chunk_size=20",
-    "--policy.n_action_steps=20",
-    "--policy.dim_model=128",
-    "--policy.dim_feedforward=512",
-    "--policy.n_encoder_layers=2",
-    "--policy.n_decoder_layers=1",
-    "--policy.use_vae=false",
-    # ACT's default (1e-5, for 100 000 steps on a GPU) leaves it far from fitting in a CPU
-    # budget of thousands of steps: 3e-4 halves the loss at 3 000 steps.
-    "--policy.optimizer_lr=3e-4",
-    "--batch_size=64",
-    # One loader process beside the training one: loading action chunks takes as long as a
-    # training step on this CPU.
-    "--num_workers=1",
-    "--wandb.enable=false",
-]
+ACT = yarok.lerobot.ACT_ON_A_CPU
 
 
 def command(name: str) -> str:
@@ -108,22 +89,6 @@ def evaluate(train_dir: Path, episodes: int, trained: bool) -> dict:
     )
     print(f"closest the block came to the target (cm): {[round(100 * d, 1) for d in closest]}")
     return results["aggregated"]
-
-
-SPREAD_FLOOR = 0.01
-"""The least standard deviation the policy normalises a state number by (metres, radians)."""
-
-
-def floor_spreads(stats_file: Path) -> None:
-    """Floors the standard deviations of the state features the policy is normalised with at
-    ``SPREAD_FLOOR``. The blocks the task does not move rest where they start, and the arm's
-    fifth joint hardly turns: their spreads over the demonstrations are micrometres, and
-    LeRobot's normalisation by them would blow a settling of a few micrometres up to tens of
-    deviations — inputs the policy never saw."""
-    stats = json.loads(stats_file.read_text())
-    for key in ("observation.state", "observation.environment_state"):
-        stats[key]["std"] = [max(spread, SPREAD_FLOOR) for spread in stats[key]["std"]]
-    stats_file.write_text(json.dumps(stats, indent=2))
 
 
 def demonstrations_placed(demos: Path) -> int:
@@ -191,7 +156,7 @@ def main() -> None:
         check=True,
         capture_output=True,
     )
-    floor_spreads(states / "meta/stats.json")
+    yarok.lerobot.floor_state_spreads(states)
     training = timed(
         f"training ACT {arguments.steps} steps on the CPU",
         lambda: subprocess.run(

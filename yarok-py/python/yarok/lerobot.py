@@ -19,6 +19,9 @@ Python 3.12 or later) to use it.
 
 from __future__ import annotations
 
+import json
+import os
+from pathlib import Path
 from typing import Any
 
 import gymnasium
@@ -71,3 +74,42 @@ def make_vector_env(env_id: str, n_envs: int = 1, **kwargs) -> gymnasium.vector.
     return gymnasium.vector.SyncVectorEnv(
         [lambda: LeRobotKeys(gymnasium.make(env_id, **kwargs)) for _ in range(n_envs)]
     )
+
+
+STATE_FEATURES = ("observation.state", "observation.environment_state")
+
+ACT_ON_A_CPU = [
+    "--policy.type=act",
+    "--policy.device=cpu",
+    "--policy.push_to_hub=false",
+    "--policy.chunk_size=20",
+    "--policy.n_action_steps=20",
+    "--policy.dim_model=128",
+    "--policy.dim_feedforward=512",
+    "--policy.n_encoder_layers=2",
+    "--policy.n_decoder_layers=1",
+    "--policy.use_vae=false",
+    "--policy.optimizer_lr=3e-4",
+    "--batch_size=64",
+    "--num_workers=1",
+    "--wandb.enable=false",
+]
+"""``lerobot-train`` arguments for ACT on yarok's state features within a CPU budget of
+thousands of steps: chunks of 20 actions (one second at 20 Hz) executed whole, 128 wide, no
+VAE, and a learning rate of 3e-4 (ACT's default, 1e-5, is for 100 000 steps on a GPU: within
+thousands it stays far from fitting). One loader process beside the training one: loading
+action chunks takes about as long as a training step."""
+
+
+def floor_state_spreads(dataset_root: str | os.PathLike[str], floor: float = 0.01) -> None:
+    """Floors the standard deviations of a recorded dataset's state features
+    (``meta/stats.json``), which LeRobot normalises a policy's inputs by, at ``floor`` (metres,
+    radians). Blocks a task does not move rest where they start, and some joints hardly turn:
+    their spreads over the demonstrations are micrometres, and normalising by them would blow a
+    settling of a few micrometres up to tens of deviations — inputs the policy never saw."""
+    stats_file = Path(dataset_root) / "meta" / "stats.json"
+    stats = json.loads(stats_file.read_text())
+    for key in STATE_FEATURES:
+        if key in stats:
+            stats[key]["std"] = [max(spread, floor) for spread in stats[key]["std"]]
+    stats_file.write_text(json.dumps(stats, indent=2))
