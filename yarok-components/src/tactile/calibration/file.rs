@@ -201,7 +201,10 @@ pub(super) fn parse(text: &str, path: &str) -> Result<Calibration, CalibrationEr
     ] {
         super::fit::check_setting(name, value).map_err(format)?;
     }
-    geometry.placement.check().map_err(format)?;
+    geometry
+        .placement
+        .check()
+        .map_err(|beyond| format(beyond.to_string()))?;
     let covered = file.covered.unwrap_or(EVERYWHERE);
     let calibration = Calibration::new(
         background,

@@ -44,7 +44,7 @@ use image::RgbImage;
 
 pub use coverage::Coverage;
 pub use fit::{FitSettings, SETTING_RANGES, check_setting};
-pub use placement::{PLACEMENT_LIMITS, Placement};
+pub use placement::{PLACEMENT_LIMITS, Placement, PlacementOutOfRange};
 pub use press::{Press, ball_press, held_out, read_presses, split_held_out};
 pub use surface::{Area, NORMAL_TERMS, POSITION_TERMS};
 

@@ -32,6 +32,20 @@ pub struct Placement {
 /// presses' described centres are not of these frames.
 pub const PLACEMENT_LIMITS: [f64; 2] = [32.0, 0.25];
 
+/// A placement beyond [`PLACEMENT_LIMITS`] ([`Placement::check`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("placement {name} {value}{unit} is beyond ±{most}{unit}")]
+pub struct PlacementOutOfRange {
+    /// `shift` or `stretch`.
+    pub name: &'static str,
+    /// The value beyond the limit.
+    pub value: f64,
+    /// The limit, either way.
+    pub most: f64,
+    /// The value's unit (` px` for a shift).
+    pub unit: &'static str,
+}
+
 impl Placement {
     /// Where a press described at `centre` (column, row) of a `width × height` image appears.
     pub fn place(&self, centre: [f64; 2], width: usize, height: usize) -> [f64; 2] {
@@ -106,17 +120,20 @@ impl Placement {
     ///
     /// # Errors
     ///
-    /// A message naming the value out of range and the limit.
-    pub fn check(&self) -> Result<(), String> {
+    /// [`PlacementOutOfRange`], naming the value out of range and the limit.
+    pub fn check(&self) -> Result<(), PlacementOutOfRange> {
         let [most_shift, most_stretch] = PLACEMENT_LIMITS;
         for (name, values, most, unit) in [
             ("shift", self.shift, most_shift, " px"),
             ("stretch", self.stretch, most_stretch, ""),
         ] {
-            if let Some(value) = values.iter().find(|v| !(-most..=most).contains(*v)) {
-                return Err(format!(
-                    "placement {name} {value}{unit} is beyond ±{most}{unit}"
-                ));
+            if let Some(&value) = values.iter().find(|v| !(-most..=most).contains(*v)) {
+                return Err(PlacementOutOfRange {
+                    name,
+                    value,
+                    most,
+                    unit,
+                });
             }
         }
         Ok(())
@@ -257,7 +274,7 @@ mod tests {
             shift: [40.0, 0.0],
             stretch: [0.0; 2],
         };
-        assert!(far.check().unwrap_err().contains("shift 40 px"));
+        assert!(far.check().unwrap_err().to_string().contains("shift 40 px"));
         assert!(Placement::default().check().is_ok());
     }
 }
