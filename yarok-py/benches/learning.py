@@ -113,8 +113,8 @@ def demonstrations_placed(demos: Path) -> int:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--demos", type=int, default=100)
-    parser.add_argument("--steps", type=int, default=6000)
+    parser.add_argument("--demos", type=int, default=160)
+    parser.add_argument("--steps", type=int, default=8000)
     parser.add_argument("--episodes", type=int, default=50)
     parser.add_argument("--out", type=Path, default=Path("out/bench-learning"))
     parser.add_argument(
@@ -178,7 +178,7 @@ def main() -> None:
     print(
         f"\nyarok/PickPlace-v0, {arguments.episodes} held-out seeds from {HELD_OUT_SEED}, "
         f"ACT on the state features, {arguments.demos} demonstrations, "
-        f"{arguments.steps} training steps ({training / 60:.1f} CPU-min on this machine):"
+        f"{arguments.steps} training steps ({training / 60:.1f} min on this 2-core machine):"
     )
     print(f"  trained   success {trained['pc_success']:.0f} %  avg reward {trained['avg_sum_reward']:.2f}")
     print(f"  untrained success {untrained['pc_success']:.0f} %  avg reward {untrained['avg_sum_reward']:.2f}")
