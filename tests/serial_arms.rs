@@ -340,20 +340,22 @@ impl<const I: usize, const GRIPPER: bool> Component for CaseWorld<I, GRIPPER> {
     }
 }
 
-/// Runs `behaviour` on case `I`'s arm (with its gripper when `GRIPPER`) in a world of its own.
-fn with_case<const I: usize, const GRIPPER: bool, T: 'static>(
-    behaviour: impl AsyncFn(&Pl, &SerialArm) -> Result<T, BoxError> + Clone + 'static,
+/// Runs `behaviour` in world `W` with `settings` (`--set` arguments): what it returned.
+fn outcome_in<W: Component, T: 'static>(
+    settings: &[String],
+    behaviour: impl AsyncFn(&Pl) -> Result<T, BoxError> + Clone + 'static,
 ) -> Result<T, String> {
     let seen = std::rc::Rc::new(std::cell::RefCell::new(None));
     let keep = std::rc::Rc::clone(&seen);
     yarok::platform()
-        .world::<CaseWorld<I, GRIPPER>>()
+        .world::<W>()
+        .args(settings.iter().cloned())
+        .map_err(|error| error.to_string())?
         .behaviour(move |pl| {
             let keep = std::rc::Rc::clone(&keep);
             let behaviour = behaviour.clone();
             async move {
-                let arm: CaseArm<I> = pl.get("/arm")?;
-                *keep.borrow_mut() = Some(behaviour(&pl, &arm).await?);
+                *keep.borrow_mut() = Some(behaviour(&pl).await?);
                 Ok(())
             }
         })
@@ -361,6 +363,16 @@ fn with_case<const I: usize, const GRIPPER: bool, T: 'static>(
         .map_err(|error| error.to_string())?;
     seen.take()
         .ok_or_else(|| "the behaviour did not finish".to_owned())
+}
+
+/// Runs `behaviour` on case `I`'s arm (with its gripper when `GRIPPER`) in a world of its own.
+fn with_case<const I: usize, const GRIPPER: bool, T: 'static>(
+    behaviour: impl AsyncFn(&Pl, &SerialArm) -> Result<T, BoxError> + Clone + 'static,
+) -> Result<T, String> {
+    outcome_in::<CaseWorld<I, GRIPPER>, T>(&[], async move |pl| {
+        let arm: CaseArm<I> = pl.get("/arm")?;
+        behaviour(pl, &arm).await
+    })
 }
 
 /// The motions on case `I`'s arm.
@@ -752,38 +764,25 @@ impl Interface<Sim> for DmControlJaco {
 /// makes the motions, and after a stop stays where it stopped.
 #[test]
 fn dm_controls_jaco_drives_and_stays_where_it_stops() {
-    let drift = std::rc::Rc::new(std::cell::Cell::new(f64::NAN));
-    let seen = std::rc::Rc::clone(&drift);
-    yarok::platform()
-        .world::<DmControlJaco>()
-        .behaviour(move |pl| {
-            let seen = std::rc::Rc::clone(&seen);
-            async move {
-                let DmControlJaco(arm) = pl.get("/")?;
-                let run = motions(&pl, &arm).await?;
-                println!(
-                    "{} ticks, TCP at most {:.3} mm off the line",
-                    run.trajectory.len(),
-                    run.off_line * 1e3
-                );
-                let away: Vec<f64> = arm.q().iter().map(|q| q + 0.3).collect();
-                arm.move_j(away).start()?;
-                pl.wait_seconds(0.4).await?;
-                arm.stop();
-                pl.wait(|| !arm.is_moving()).timeout(2.0).await?;
-                let stopped = arm.q();
-                pl.wait_seconds(1.0).await?;
-                seen.set(furthest(&arm.q(), &stopped));
-                Ok(())
-            }
-        })
-        .run()
-        .unwrap();
-    assert!(
-        drift.get() <= 1e-3,
-        "drifted {} rad after stopping",
-        drift.get()
-    );
+    let drift = outcome_in::<DmControlJaco, _>(&[], async |pl| {
+        let DmControlJaco(arm) = pl.get("/")?;
+        let run = motions(pl, &arm).await?;
+        println!(
+            "{} ticks, TCP at most {:.3} mm off the line",
+            run.trajectory.len(),
+            run.off_line * 1e3
+        );
+        let away: Vec<f64> = arm.q().iter().map(|q| q + 0.3).collect();
+        arm.move_j(away).start()?;
+        pl.wait_seconds(0.4).await?;
+        arm.stop();
+        pl.wait(|| !arm.is_moving()).timeout(2.0).await?;
+        let stopped = arm.q();
+        pl.wait_seconds(1.0).await?;
+        Ok(furthest(&arm.q(), &stopped))
+    })
+    .unwrap();
+    assert!(drift <= 1e-3, "drifted {drift} rad after stopping");
 }
 
 /// gym-aloha's bimanual ViperX 300s (LeRobot's ALOHA simulation), its file unmodified: 16
@@ -981,28 +980,17 @@ impl<const WELD: bool> Component for Obstructed<WELD> {
 /// A straight line 20 cm down from the start in an [`Obstructed`] world with its settings: the
 /// motion's error.
 fn down_in<const WELD: bool>(settings: &[String]) -> SerialMotionError {
-    let seen = std::rc::Rc::new(std::cell::RefCell::new(None));
-    let keep = std::rc::Rc::clone(&seen);
-    yarok::platform()
-        .world::<Obstructed<WELD>>()
-        .args(settings.iter().cloned())
-        .unwrap()
-        .behaviour(move |pl| {
-            let keep = std::rc::Rc::clone(&keep);
-            async move {
-                let arm: CaseArm<PANDA> = pl.get("/arm")?;
-                let mut below = arm.tcp_pose();
-                below.translation.vector.z -= 0.2;
-                *keep.borrow_mut() = arm.move_l(below).await.err();
-                Ok(())
-            }
-        })
-        .run()
-        .unwrap();
-    seen.take().expect("the line arrived")
+    outcome_in::<Obstructed<WELD>, _>(settings, async |pl| {
+        let arm: CaseArm<PANDA> = pl.get("/arm")?;
+        let mut below = arm.tcp_pose();
+        below.translation.vector.z -= 0.2;
+        Ok(arm.move_l(below).await.err())
+    })
+    .unwrap()
+    .expect("the line arrived")
 }
 
-/// A motion that stops says what stopped it: a slab 5 cm under the Panda's hand stops a line
+/// A motion that stops says what stopped it: a slab 6 cm under the Panda's hand stops a line
 /// down, named as a contact between the slab and the arm's link with the force between them;
 /// a weld holding the hand stops it, named as the weld; neither is called a saturated actuator.
 #[test]
@@ -1093,23 +1081,12 @@ impl Interface<Sim> for MarginArm {
 /// the limit pushes back, and says so, naming the joint's limit.
 #[test]
 fn a_motion_into_a_limits_margin_names_the_limit() {
-    let seen = std::rc::Rc::new(std::cell::RefCell::new(None));
-    let keep = std::rc::Rc::clone(&seen);
-    yarok::platform()
-        .world::<MarginArm>()
-        .behaviour(move |pl| {
-            let keep = std::rc::Rc::clone(&keep);
-            async move {
-                let MarginArm(arm) = pl.get("/")?;
-                *keep.borrow_mut() = arm.move_j(vec![0.0, 1.9]).await.err();
-                Ok(())
-            }
-        })
-        .run()
-        .unwrap();
-    let stopped = seen
-        .take()
-        .expect("the motion arrived inside the limit's margin");
+    let stopped = outcome_in::<MarginArm, _>(&[], async |pl| {
+        let MarginArm(arm) = pl.get("/")?;
+        Ok(arm.move_j(vec![0.0, 1.9]).await.err())
+    })
+    .unwrap()
+    .expect("the motion arrived inside the limit's margin");
     println!("{stopped}");
     let SerialMotionError::Stuck {
         cause: StuckCause::Limit { ref what, .. },
