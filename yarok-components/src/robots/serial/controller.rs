@@ -543,8 +543,7 @@ fn held_back(drive: &ActuatedJoint, toward: f64, pushing: f64) -> Option<StuckCa
         .joint
         .constraint_forces()
         .into_iter()
-        .filter(|held| held.force * toward < 0.0 && held.source != ConstraintSource::Friction)
-        .max_by(|a, b| a.force.abs().total_cmp(&b.force.abs()))?;
+        .find(|held| held.force * toward < 0.0 && held.source != ConstraintSource::Friction)?;
     let force = against.force.abs();
     if force < 0.25 * drive.strength().min(pushing) {
         return None;
