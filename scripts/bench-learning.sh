@@ -7,7 +7,4 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 python="$(bash scripts/setup-lerobot.sh)"
 "$(dirname "$python")/pip" install -q --disable-pip-version-check --force-reinstall --no-deps ./yarok-py
-printed="$(mktemp)"
-trap 'rm -f "$printed"' EXIT
-PYTHONUNBUFFERED=1 "$python" yarok-py/benches/learning.py "$@" | tee "$printed"
-python3 scripts/results.py learning "$printed"
+exec python3 scripts/results.py learning "$python" yarok-py/benches/learning.py "$@"

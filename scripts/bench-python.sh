@@ -16,7 +16,4 @@ if ! "$venv/bin/python" -c "import robosuite, mujoco, gymnasium" 2>/dev/null; th
     "gymnasium==1.2.2"
 fi
 "$venv/bin/pip" install -q --disable-pip-version-check --force-reinstall --no-deps ./yarok-py
-printed="$(mktemp)"
-trap 'rm -f "$printed"' EXIT
-PYTHONUNBUFFERED=1 "$venv/bin/python" yarok-py/benches/environments.py "$@" | tee "$printed"
-python3 scripts/results.py python "$printed"
+exec python3 scripts/results.py python "$venv/bin/python" yarok-py/benches/environments.py "$@"

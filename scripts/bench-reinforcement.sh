@@ -8,7 +8,4 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 python="$(bash scripts/setup-lerobot.sh)"
 "$(dirname "$python")/pip" install -q --disable-pip-version-check --force-reinstall --no-deps ./yarok-py
-printed="$(mktemp)"
-trap 'rm -f "$printed"' EXIT
-PYTHONUNBUFFERED=1 "$python" yarok-py/benches/reinforcement.py "$@" | tee "$printed"
-python3 scripts/results.py reinforcement "$printed"
+exec python3 scripts/results.py reinforcement "$python" yarok-py/benches/reinforcement.py "$@"
