@@ -36,7 +36,6 @@ IMAGES = [
     "observation.images.arm.gripper.left_digit.image",
     "observation.images.arm.gripper.right_digit.image",
 ]
-ACT = yarok.lerobot.ACT_ON_A_CPU
 
 
 def command(name: str) -> str:
@@ -164,7 +163,7 @@ def main() -> None:
                 command("lerobot-train"),
                 "--dataset.repo_id=yarok/demos_states",
                 f"--dataset.root={states}",
-                *ACT,
+                *yarok.lerobot.ACT_ON_A_CPU,
                 f"--steps={arguments.steps}",
                 f"--save_freq={arguments.steps}",
                 "--log_freq=500",

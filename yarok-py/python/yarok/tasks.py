@@ -35,11 +35,11 @@ TARGET_SPOT_RADIUS = 0.05
 class PickPlace(Task):
     """DigitWorld: put the medium block (3.5 cm) on the target spot. Won when the block rests
     wholly on the spot (a disc of 5 cm radius) with the gripper open: its centre within
-    ``tolerance`` of the spot's, the radius less the block's half diagonal (2.5 cm), so that
-    no corner overhangs the disc whatever the block's yaw. Each episode starts with the block at a
-    place and yaw drawn from the seed, within the arm's reach and clear of the other blocks:
-    the region ``yarok.run("digit_world", "demonstrate")`` draws its demonstrations' starts
-    from.
+    ``tolerance`` of the spot's, by default the radius less the block's half diagonal (2.5 cm),
+    so that no corner overhangs the disc whatever the block's yaw. Each episode starts with the
+    block at a place and yaw drawn from the seed, within the arm's reach and clear of the other
+    blocks: the region ``yarok.run("digit_world", "demonstrate")`` draws its demonstrations'
+    starts from.
 
     The reward is dense: minus the block's distance to the target (metres), plus 1 when won.
     """
@@ -53,8 +53,12 @@ class PickPlace(Task):
         tuple(bounds) for bounds in DIGIT_WORLD_START_REGION
     )
     max_yaw: float = DIGIT_WORLD_START_YAW
-    tolerance: float = TARGET_SPOT_RADIUS - 0.035 * math.sqrt(2) / 2  # 0.0253
+    tolerance: float | None = None
     render_camera: str | None = "overview"
+
+    def __post_init__(self):
+        if self.tolerance is None:
+            self.tolerance = TARGET_SPOT_RADIUS - self.block_size * math.sqrt(2) / 2
 
     def bind(self, features) -> None:
         names = features.environment_names
