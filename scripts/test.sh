@@ -96,6 +96,10 @@ echo "== your own crate: examples/own_crate, a crate outside yarok's workspace, 
   cargo clippy --locked --all-targets -- -D warnings
   cargo test --locked
   cargo run --locked -- --env mock
+  # Its worlds from Python: its own extension module (yarok_py::module!), installed beside the
+  # yarok package the tests above installed, and its tests.
+  "$cache/python/bin/pip" install -q --disable-pip-version-check --force-reinstall --no-deps ./py
+  "$cache/python/bin/python" -m pytest -q -p no:cacheprovider py/tests
 )
 echo "== docs, with the default features and with every feature"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked

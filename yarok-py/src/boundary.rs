@@ -1,9 +1,10 @@
 //! What a call from Python meets: yarok's refusals and failures as `YarokError`, Ctrl-C heard
 //! while a world works without the GIL, and one thread at a time per world.
 
-use std::sync::{Mutex, MutexGuard, TryLockError};
+use std::sync::{Mutex, MutexGuard, OnceLock, TryLockError};
 
 use pyo3::prelude::*;
+use pyo3::types::PyType;
 
 pyo3::create_exception!(
     _native,
@@ -39,7 +40,20 @@ pub(crate) fn exclusive<'a, T>(lock: &'a Mutex<T>, what: &str) -> PyResult<Mutex
     })
 }
 
+/// The exception yarok's errors are raised as when it is not this module's own `YarokError`:
+/// an extension module of another crate raises the `yarok` package's, so that one `except`
+/// catches both.
+static RAISED_AS: OnceLock<Py<PyType>> = OnceLock::new();
+
+/// Raises yarok's errors as `exception` from now on.
+pub(crate) fn raise_as(exception: &Bound<'_, PyType>) {
+    let _ = RAISED_AS.set(exception.clone().unbind());
+}
+
 /// yarok's error text as a Python exception.
 pub(crate) fn error(text: String) -> PyErr {
-    YarokError::new_err(text)
+    match RAISED_AS.get() {
+        Some(exception) => Python::attach(|py| PyErr::from_type(exception.bind(py).clone(), text)),
+        None => YarokError::new_err(text),
+    }
 }

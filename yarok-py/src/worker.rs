@@ -10,10 +10,11 @@ use std::time::Duration;
 
 use yarok::components::demos::{self, Demo};
 use yarok::components::features::{Features, Observation, check_action_length};
-use yarok::components::template_world;
 use yarok::core::runtime::Platform;
 use yarok::core::suggest::did_you_mean;
 use yarok::mjc::{SimBackend, Warnings};
+
+use crate::exports::exported;
 
 /// How a world is made: a bundled world's tag, the environment, and the command line's
 /// settings (`--set`, `--config`).
@@ -285,24 +286,34 @@ impl Drop for Worker {
     }
 }
 
-/// The bundled world tagged `world`, or an error naming the bundled worlds.
+/// The bundled world tagged `world`, or an error naming the worlds there are.
 pub(crate) fn bundled(world: &str) -> Result<Demo, String> {
-    demos::find(world).ok_or_else(|| {
-        let tags: Vec<String> = demos::demos().iter().map(Demo::tag).collect();
-        format!(
-            "no bundled world {world:?}{} (the worlds: {})",
-            did_you_mean(world, tags.iter().map(String::as_str)),
-            tags.join(", ")
-        )
-    })
+    demos::find(world).ok_or_else(|| no_world(world))
+}
+
+/// That there is no world `world`, naming those there are: this module's own, then the
+/// bundled ones.
+fn no_world(world: &str) -> String {
+    let tags: Vec<String> = exported()
+        .world_tags()
+        .into_iter()
+        .chain(demos::demos().iter().map(Demo::tag))
+        .collect();
+    format!(
+        "no world {world:?}{} (the worlds: {}; or a template file's path)",
+        did_you_mean(world, tags.iter().map(String::as_str)),
+        tags.join(", ")
+    )
 }
 
 /// The platform of `spec`, built and started (its components bound).
 fn start(spec: &WorldSpec, stop: Arc<AtomicBool>) -> Result<(Platform, Features), String> {
     let builder = if std::path::Path::new(&spec.world).is_file() {
-        yarok::platform().world_declaration(template_world(&spec.world))
+        yarok::platform().world_declaration(exported().template_world(&spec.world))
     } else if spec.world.ends_with(".xml") {
         return Err(format!("no template file {:?}", spec.world));
+    } else if let Some(world) = exported().world_tagged(&spec.world) {
+        yarok::platform().world_type(world)
     } else {
         yarok::platform().world_type(bundled(&spec.world)?.world)
     };

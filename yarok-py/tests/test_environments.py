@@ -93,7 +93,7 @@ def test_an_action_drives_the_arm_to_its_joint_targets():
 
 
 def test_yaroks_refusals_are_python_exceptions_in_yaroks_words():
-    with pytest.raises(yarok.YarokError, match='no bundled world "digit_wrld".*digit_world'):
+    with pytest.raises(yarok.YarokError, match='no world "digit_wrld".*digit_world'):
         yarok.World("digit_wrld")
     with yarok.World("digit_world") as world:
         world.reset(0)

@@ -82,7 +82,7 @@ impl Component for Turntable {
                          <geom type="cylinder" size="{radius} 0.01" mass="0.5"/>
                        </body>
                      </worldbody>
-                     <actuator><position name="servo" joint="hinge" kp="{kp}"/></actuator>
+                     <actuator><position name="servo" joint="hinge" kp="{kp}" ctrlrange="-3.15 3.15"/></actuator>
                      <sensor><jointpos name="angle" joint="hinge"/></sensor>
                    </mujoco>"#,
             )

@@ -4,17 +4,19 @@ and randomised start."""
 from __future__ import annotations
 
 import atexit
+import importlib
 import signal
 import threading
 import time
 import weakref
 from dataclasses import dataclass
+from types import ModuleType
 from typing import Any, Sequence
 
 import gymnasium
 import numpy as np
 
-from ._native import World, YarokError
+from ._native import YarokError
 
 
 @dataclass
@@ -26,6 +28,9 @@ class Task:
     ``[(body, (x, y, z), (qw, qx, qy, qz)), ...]`` (body names as in
     ``World.environment_names``, without the ``/x`` suffix); draw from ``rng`` only, so that a
     seed gives the same start every time.
+
+    ``world`` is a bundled world's tag, a template file's path, or a world of your own crate's
+    extension module (built with ``yarok_py::module!``), whose import name is ``extension``.
     """
 
     world: str = "digit_world"
@@ -35,6 +40,7 @@ class Task:
     camera_size: tuple[int, int] = (84, 84)
     control_hz: float = 20.0
     render_camera: str | None = None
+    extension: str = "yarok._native"
 
     def bind(self, features) -> None:
         """Called once the world has started, with its ``features`` (names of the state,
@@ -82,6 +88,11 @@ def observation_space(world) -> gymnasium.spaces.Dict:
     for key, shape in world.images:
         spaces[key] = gymnasium.spaces.Box(0, 255, shape, np.uint8)
     return gymnasium.spaces.Dict(spaces)
+
+
+def native(task: Task) -> ModuleType:
+    """The extension module that opens ``task``'s world: yarok's own, or your crate's."""
+    return importlib.import_module(task.extension)
 
 
 def action_ranges(world, task: Task) -> np.ndarray:
@@ -166,7 +177,7 @@ class YarokEnv(gymnasium.Env):
         self.environment = env
         if env == "real":
             _stop_on_termination()
-        self.world = World(
+        self.world = native(self.task).World(
             self.task.world,
             env=env,
             settings=[*self.task.settings, *settings],

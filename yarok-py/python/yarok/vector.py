@@ -10,8 +10,7 @@ import numpy as np
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
-from ._native import Worlds
-from .env import Task, action_ranges, action_space, observation_space
+from .env import Task, action_ranges, action_space, native, observation_space
 
 
 class YarokVectorEnv(VectorEnv):
@@ -35,7 +34,7 @@ class YarokVectorEnv(VectorEnv):
     ):
         self.num_envs = num_envs
         self.tasks = [copy.deepcopy(task) for _ in range(num_envs)]
-        self.worlds = Worlds(
+        self.worlds = native(task).Worlds(
             task.world,
             num_envs,
             env=env,
