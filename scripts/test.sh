@@ -93,7 +93,7 @@ echo "== your own crate: examples/own_crate, a crate outside yarok's workspace, 
   export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$PWD/target}"
   cd examples/own_crate
   cargo fmt --check
-  cargo clippy --locked --all-targets -- -D warnings
+  cargo clippy --locked --workspace --all-targets -- -D warnings
   cargo test --locked
   cargo run --locked -- --env mock
   # Its worlds from Python: its own extension module (yarok_py::module!), installed beside the
