@@ -404,3 +404,53 @@ fn a_killed_runs_lock_and_partial_dataset_are_taken_over() {
     assert!(!root.join(".ds.yarok-partial").exists());
     assert!(!root.join("ds/.yarok-partial").exists());
 }
+
+/// A link to a user's file planted at, and taken from, an output's path over and over while runs
+/// write it: the user's file is never written through, whatever the timing. Each run writes its
+/// recording or is refused naming the path; none succeeds with the recording written through
+/// the link.
+#[test]
+fn a_link_swapped_in_while_a_run_writes_never_redirects_the_write() {
+    let folder = tempfile::tempdir().unwrap();
+    let root = folder.path();
+    let users = root.join("users_notes.txt");
+    std::fs::write(&users, "a user's notes").unwrap();
+    let output = root.join("swapped.mcap");
+    let stop = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+    let swapper = {
+        let (stop, output, users) = (stop.clone(), output.clone(), users.clone());
+        std::thread::spawn(move || {
+            let mut swaps = 0u64;
+            while !stop.load(std::sync::atomic::Ordering::Relaxed) {
+                let link = output.with_file_name(format!(".swap{swaps}"));
+                if symlink(&users, &link).is_ok() {
+                    // Atomically in place of whatever is at the output's path, then away.
+                    let _ = std::fs::rename(&link, &output);
+                    std::thread::sleep(Duration::from_micros(300));
+                    if std::fs::symlink_metadata(&output).is_ok_and(|m| m.file_type().is_symlink())
+                    {
+                        let _ = std::fs::remove_file(&output);
+                    }
+                }
+                swaps += 1;
+                std::thread::sleep(Duration::from_micros(200));
+            }
+            swaps
+        })
+    };
+    let mut written = 0;
+    for _ in 0..12 {
+        let (code, said) = yarok_in(root, &Writer::Record.args("swapped.mcap"));
+        if code == 0 {
+            written += 1;
+        } else {
+            assert!(said.contains("swapped.mcap"), "{said}");
+        }
+        assert_eq!(std::fs::read(&users).unwrap(), b"a user's notes", "{said}");
+    }
+    stop.store(true, std::sync::atomic::Ordering::Relaxed);
+    let swaps = swapper.join().unwrap();
+    assert!(swaps > 100, "the link was swapped {swaps} times");
+    assert_eq!(std::fs::read(&users).unwrap(), b"a user's notes");
+    eprintln!("{written} of 12 runs wrote their recording; the link was swapped {swaps} times");
+}

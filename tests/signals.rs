@@ -6,6 +6,7 @@
 //! frames neither blocks the run nor a Ctrl-C, and is not left running.
 
 use std::os::unix::process::CommandExt;
+use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
@@ -32,6 +33,20 @@ fn yarok_command(arguments: &[&str]) -> Command {
 /// [`yarok_command`], started.
 fn yarok_run(arguments: &[&str]) -> Child {
     yarok_command(arguments).spawn().unwrap()
+}
+
+/// The file yarok is writing as the output `path` until it puts it there (a hidden name beside
+/// it), if there is one.
+fn being_written(path: &Path) -> Option<PathBuf> {
+    let name = path.file_name()?.to_string_lossy().into_owned();
+    std::fs::read_dir(path.parent()?)
+        .ok()?
+        .filter_map(Result::ok)
+        .map(|entry| entry.path())
+        .find(|beside| {
+            let beside = beside.file_name().unwrap_or_default().to_string_lossy();
+            beside.starts_with(&format!(".{name}.")) && beside.ends_with(".yarok-writing")
+        })
 }
 
 /// Waits until `ready` holds, failing if the run ends first or a minute passes.
@@ -104,7 +119,10 @@ fn sigterm_ends_a_recorded_run_with_its_files_whole() {
     ]);
     // Until the run is well under way: the CSV holds rows.
     wait_until(&mut child, || {
-        std::fs::read_to_string(&csv).map_or(0, |text| text.lines().count()) >= 20
+        being_written(&csv)
+            .and_then(|file| std::fs::read_to_string(file).ok())
+            .map_or(0, |text| text.lines().count())
+            >= 20
     });
     let pid = child.id().to_string();
     let (code, stderr, took) = terminate(child, &pid);
@@ -151,7 +169,7 @@ fn sigterm_to_a_filmed_runs_whole_job_leaves_a_playable_mp4() {
         "behaviour/seconds=600",
     ]);
     // The encoder has the file open; frames are being sent to it.
-    wait_until(&mut child, || video.exists());
+    wait_until(&mut child, || being_written(&video).is_some());
     std::thread::sleep(Duration::from_millis(1500));
     let group = format!("-{}", child.id());
     let (code, stderr, took) = terminate(child, &group);
@@ -205,7 +223,7 @@ fn sigterm_stops_a_real_arm_and_closes_its_recording() {
     // Every component bound (the arm's stop registered): the recorder, started after binding,
     // has created its file.
     wait_until(&mut child, || {
-        fake.rtde_connections() > 0 && fake.asked().len() >= 4 && mcap.exists()
+        fake.rtde_connections() > 0 && fake.asked().len() >= 4 && being_written(&mcap).is_some()
     });
     std::thread::sleep(Duration::from_millis(500));
     assert!(fake.scripts().iter().all(|s| !s.starts_with("stopj")));

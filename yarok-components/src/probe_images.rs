@@ -98,12 +98,10 @@ pub fn save_png(
     image: RgbImage,
     path: impl AsRef<std::path::Path>,
 ) -> Result<(), yarok_core::BoxError> {
-    use yarok_core::output::{check_replaceable, make_folder_for};
     let path = path.as_ref();
-    check_replaceable(path, "PNG image", png_by_yarok)?;
-    make_folder_for(path)?;
     let bytes = png(&rgb(image)).map_err(|e| format!("{}: {e}", path.display()))?;
-    std::fs::write(path, bytes).map_err(|e| format!("cannot write {}: {e}", path.display()).into())
+    yarok_core::output_file::write_output(path, "PNG image", png_by_yarok, &bytes)?;
+    Ok(())
 }
 
 /// Whether the file at `path` is a PNG yarok wrote with [`png()`]: its `Software` text names

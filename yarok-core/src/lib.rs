@@ -9,7 +9,7 @@
 //! - [`template`] and [`compose`]: MJCF component templates and their composition into one world;
 //! - [`runtime`]: the platform that binds components and runs behaviours and plugins on ticks;
 //! - beside them, [`output`]: the rule every writer follows (a file is replaced only when yarok
-//!   wrote it).
+//!   wrote it), and [`output_file`]: the one way the library writes a file.
 //!
 //! It names neither MuJoCo nor any device; simulation lives in `yarok-mjc`, hardware in
 //! `yarok-hw`.
@@ -21,6 +21,7 @@ pub mod compose;
 pub mod config;
 pub mod output;
 mod output_error;
+pub mod output_file;
 pub mod output_lock;
 pub use output_error::OutputError;
 pub mod report;

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 /// Why an output (a recording, a video, a CSV, an image, a calibration, a dataset) is not
 /// written: from [`check_replaceable`](crate::output::check_replaceable),
-/// [`make_folder_for`](crate::output::make_folder_for) and
+/// [`make_folder_for`](crate::output::make_folder_for), [`OutputFile`](crate::output_file::OutputFile) and
 /// [`OutputLock::take`](crate::output_lock::OutputLock::take). `kind` names what was to be
 /// written ("video"), `path` where.
 #[derive(Debug, thiserror::Error)]
@@ -148,5 +148,28 @@ pub enum OutputError {
         lock: PathBuf,
         /// Why.
         source: std::io::Error,
+    },
+    /// The output cannot be written (its file beside the path created, written, flushed or
+    /// renamed into place).
+    #[error("cannot write {} ({source})", path.display())]
+    Unwritable {
+        /// Where the output was to go.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// Something yarok did not write appeared at the path while the output was written: it is
+    /// left as it is, and the output is kept beside it.
+    #[error(
+        "{} appeared while yarok wrote it and is not one yarok wrote: it is left as it is; \
+         what yarok wrote is kept in {}",
+        path.display(),
+        kept.display()
+    )]
+    Appeared {
+        /// Where the output was to go.
+        path: PathBuf,
+        /// Where what yarok wrote is.
+        kept: PathBuf,
     },
 }

@@ -58,6 +58,10 @@ impl OutputLock {
         };
         let pid = std::process::id();
         for _attempt in 0..2 {
+            #[allow(
+                clippy::disallowed_methods,
+                reason = "a lock is created new, never replaced"
+            )]
             let created = std::fs::OpenOptions::new()
                 .write(true)
                 .create_new(true)

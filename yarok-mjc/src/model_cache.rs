@@ -199,7 +199,7 @@ fn save(model: &Model, file: &Path, key: &[u8; 32]) {
         .parent()
         .map_or(Ok(()), std::fs::create_dir_all)
         .and_then(|()| {
-            std::fs::write(&partial, &bytes)?;
+            yarok_core::output_file::write_in_own_folder(&partial, &bytes)?;
             std::fs::rename(&partial, file)
         });
     if written.is_err() {

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use yarok::components::{catalogue, template_world};
 use yarok::core::compose::{compose_configured, compose_declaration};
 use yarok::core::config::{RunConfig, Settings};
-use yarok::core::output::{check_replaceable, make_folder_for};
+use yarok::core::output_file::write_output;
 
 use super::USAGE;
 
@@ -61,13 +61,13 @@ pub(super) fn run(args: &[String]) -> Result<(), String> {
     .map_err(|e| e.to_string())?;
     let xml = composition.to_xml();
     match args.out {
-        Some(path) => {
-            check_replaceable(&path, "composed world", composed_by_yarok)
-                .and_then(|()| make_folder_for(&path))
-                .map_err(|refused| refused.to_string())?;
-            std::fs::write(&path, format!("{COMPOSED_MARK}\n{xml}"))
-                .map_err(|e| format!("cannot write {}: {e}", path.display()))
-        }
+        Some(path) => write_output(
+            &path,
+            "composed world",
+            composed_by_yarok,
+            format!("{COMPOSED_MARK}\n{xml}").as_bytes(),
+        )
+        .map_err(|refused| refused.to_string()),
         None => super::print(&xml),
     }
 }

@@ -107,9 +107,21 @@ pub async fn collect(pl: Pl) -> BehaviourResult {
     } else {
         format!("index_{}_of_{}.csv", shard.index, shard.count)
     };
-    std::fs::write(out.join(&name), index)?;
+    yarok_core::output_file::write_output(
+        &out.join(&name),
+        "index of presses",
+        index_by_yarok,
+        index.as_bytes(),
+    )?;
     pl.log(format!("shard {shard}: {} → {}", name, out.display()));
     Ok(())
+}
+
+/// Whether the file at `path` is an index of presses yarok wrote: its first line is
+/// [`INDEX_HEADER`].
+fn index_by_yarok(path: &std::path::Path) -> std::io::Result<bool> {
+    let head = yarok_core::output::head(path, INDEX_HEADER.len() as u64 + 1)?;
+    Ok(head.strip_prefix(INDEX_HEADER.as_bytes()) == Some(b"\n"))
 }
 
 /// Writes sample `number`'s image and depth into `out`; its index row.

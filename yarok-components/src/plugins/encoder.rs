@@ -9,7 +9,7 @@ use std::thread::JoinHandle;
 use std::time::Duration;
 
 use yarok_core::BoxError;
-use yarok_core::output::{check_replaceable, make_folder_for};
+use yarok_core::output_file::OutputFile;
 
 use super::bounded_wait::{Refused, poll_within, send_within};
 
@@ -45,7 +45,7 @@ impl H264 {
 
     /// `ffmpeg` reading raw RGB frames on its standard input and writing them to `path` as
     /// H.264 in MP4, its index at the front.
-    pub(super) fn ffmpeg(&self, path: &std::path::Path) -> Command {
+    fn ffmpeg(&self, path: &std::path::Path) -> Command {
         let [width, height] = self.size;
         let mut command = Command::new("ffmpeg");
         command
@@ -70,11 +70,12 @@ impl H264 {
     }
 }
 
-/// An encoder process writing `path` from the frames it is sent; killed and reaped when
-/// dropped unfinished.
+/// An encoder process writing `path` from the frames it is sent ([`OutputFile`]: beside the
+/// path, put in its place when finished); killed and reaped when dropped unfinished.
 #[derive(Debug)]
 pub(super) struct Encoder {
     path: PathBuf,
+    output: Option<OutputFile>,
     process: Child,
     frames: Option<SyncSender<Vec<u8>>>,
     feeder: Option<JoinHandle<()>>,
@@ -82,15 +83,15 @@ pub(super) struct Encoder {
 }
 
 impl Encoder {
-    /// Starts `command` (which reads raw frames on its standard input and writes `path`).
+    /// Starts ffmpeg encoding `video` to `path` from the raw frames it is sent.
     ///
     /// # Errors
     ///
     /// When `path` holds a file yarok did not encode (it is left as it is), or the program
     /// cannot be started.
-    pub(super) fn start(mut command: Command, path: PathBuf) -> Result<Self, BoxError> {
-        check_replaceable(&path, "video", encoded_by_yarok)?;
-        make_folder_for(&path)?;
+    pub(super) fn start(video: &H264, path: PathBuf) -> Result<Self, BoxError> {
+        let output = OutputFile::create(&path, "video", encoded_by_yarok)?;
+        let mut command = video.ffmpeg(output.writing_path());
         let program = command.get_program().to_string_lossy().into_owned();
         let mut process = command
             .stdin(Stdio::piped())
@@ -121,6 +122,7 @@ impl Encoder {
         });
         Ok(Self {
             path,
+            output: Some(output),
             process,
             frames: Some(frames),
             feeder: Some(feeder),
@@ -143,6 +145,9 @@ impl Encoder {
             Err(refused) => refused,
         };
         let said = self.stop();
+        if let Some(output) = self.output.take() {
+            output.commit()?;
+        }
         let path = self.path.display();
         Err(match refused {
             Refused::Full => format!(
@@ -157,7 +162,8 @@ impl Encoder {
     }
 
     /// Ends the input and waits (at most [`FINISH`]) for the encoder to write the file, then
-    /// checks that the file is a whole MP4.
+    /// checks that the file is a whole MP4 and puts it at its path (an incomplete one too,
+    /// named so in the error: what was encoded is kept).
     ///
     /// # Errors
     ///
@@ -167,12 +173,17 @@ impl Encoder {
         self.frames = None;
         let status = poll_within(FINISH, || self.process.try_wait())?;
         let said = self.stop();
+        let Some(output) = self.output.take() else {
+            return Err("the encoder has already ended".into());
+        };
+        let whole = whole_mp4(output.writing_path());
+        output.commit()?;
         let path = self.path.display();
         match status {
             // ffmpeg exits 0 when writing the index at the end fails (a disk that fills then):
             // at `-loglevel error` anything it says is an error.
             Some(status) if status.success() && said.is_empty() => {
-                whole_mp4(&self.path).map_err(|why| format!("{path} is incomplete: {why}").into())
+                whole.map_err(|why| format!("{path} is incomplete: {why}").into())
             }
             Some(status) if status.success() => {
                 Err(format!("the encoder failed writing {path}; it is incomplete{said}").into())
@@ -322,7 +333,7 @@ mod tests {
             keyframe_interval: None,
             crf: None,
         };
-        let mut encoder = Encoder::start(video.ffmpeg(&path), path.clone()).unwrap();
+        let mut encoder = Encoder::start(&video, path.clone()).unwrap();
         for level in 0..30u8 {
             encoder.send(vec![level * 8; 32 * 16 * 3]).unwrap();
         }

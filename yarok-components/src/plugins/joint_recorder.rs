@@ -1,11 +1,10 @@
 //! [`JointRecorder`]: every joint's position and velocity, one CSV row per tick.
 
-use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::PathBuf;
 
 use yarok_core::BoxError;
-use yarok_core::output::{check_replaceable, make_folder_for};
+use yarok_core::output_file::OutputFile;
 use yarok_core::runtime::{Plugin, World};
 use yarok_mjc::{Data, JointId};
 
@@ -42,7 +41,7 @@ impl Default for JointRecorderSettings {
 #[derive(Debug)]
 pub struct JointRecorder {
     settings: JointRecorderSettings,
-    file: Option<BufWriter<File>>,
+    file: Option<BufWriter<OutputFile>>,
     joints: Vec<JointId>,
     row: String,
 }
@@ -137,11 +136,7 @@ impl Plugin for JointRecorder {
         let sim = super::sim_backend(world)?;
         self.joints = sim.model().joints().collect();
         let path = &self.settings.path;
-        check_replaceable(path, "joints CSV", joints_csv_by_yarok)?;
-        make_folder_for(path)?;
-        let file =
-            File::create(path).map_err(|e| format!("cannot create {}: {e}", path.display()))?;
-        let mut file = BufWriter::new(file);
+        let mut file = BufWriter::new(OutputFile::create(path, "joints CSV", joints_csv_by_yarok)?);
         writeln!(file, "{}", self.header(&sim.data()))?;
         self.file = Some(file);
         Ok(())
@@ -169,9 +164,10 @@ impl Plugin for JointRecorder {
     }
 
     fn end(&mut self, _: &World<'_>) -> Result<(), BoxError> {
-        if let Some(mut file) = self.file.take() {
-            file.flush()
-                .map_err(|e| format!("cannot write {}: {e}", self.settings.path.display()))?;
+        if let Some(file) = self.file.take() {
+            file.into_inner()
+                .map_err(|e| format!("cannot write {}: {e}", self.settings.path.display()))?
+                .commit()?;
         }
         Ok(())
     }

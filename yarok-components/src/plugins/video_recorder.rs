@@ -126,10 +126,7 @@ impl Plugin for VideoRecorder {
             settings.size,
             settings.quality,
         )?;
-        let encoder = Encoder::start(
-            self.video().ffmpeg(&self.settings.path),
-            self.settings.path.clone(),
-        )?;
+        let encoder = Encoder::start(&self.video(), self.settings.path.clone())?;
         self.filming = Some(Filming { camera, encoder });
         Ok(())
     }

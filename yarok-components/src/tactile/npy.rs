@@ -14,7 +14,29 @@ pub struct NpyArray {
 
 yarok_core::debug_as_report!(NpyError);
 
-/// Why a `.npy` file could not be read.
+/// The mark in the header of the `.npy` files yarok writes, after the header's dictionary: a
+/// Python comment, which NumPy's reader skips.
+const WRITTEN_BY_YAROK: &str = "# written by yarok";
+
+/// Whether the file at `path` is a `.npy` file yarok wrote: its header holds yarok's mark.
+///
+/// # Errors
+///
+/// When the file cannot be read.
+pub fn written_by_yarok(path: &Path) -> std::io::Result<bool> {
+    let head = yarok_core::output::head(path, 4096)?;
+    let Some(header) = head.get(10..) else {
+        return Ok(false);
+    };
+    let header = String::from_utf8_lossy(header);
+    Ok(head.starts_with(b"\x93NUMPY")
+        && header
+            .split('\n')
+            .next()
+            .is_some_and(|line| line.trim_end().ends_with(WRITTEN_BY_YAROK)))
+}
+
+/// Why a `.npy` file could not be read or written.
 #[derive(thiserror::Error)]
 #[non_exhaustive]
 pub enum NpyError {
@@ -26,6 +48,9 @@ pub enum NpyError {
         /// The I/O error.
         source: std::io::Error,
     },
+    /// The file is not written where it was asked to be.
+    #[error(transparent)]
+    Refused(#[from] yarok_core::OutputError),
     /// The content is not a little-endian float32 or float64 `.npy` array in C order.
     #[error("{path}: {message}")]
     Format {
@@ -162,8 +187,9 @@ impl NpyArray {
             1 => dimensions.trim_end_matches(' ').to_owned(),
             _ => dimensions.trim_end_matches(", ").to_owned(),
         };
-        let mut header =
-            format!("{{'descr': '<f4', 'fortran_order': False, 'shape': ({shape}), }}");
+        let mut header = format!(
+            "{{'descr': '<f4', 'fortran_order': False, 'shape': ({shape}), }} {WRITTEN_BY_YAROK}"
+        );
         // The magic, version and length take 10 bytes; the header ends in a newline and pads
         // the data to a multiple of 64 bytes.
         let padded = (10 + header.len() + 1).div_ceil(64) * 64 - 10;
@@ -183,17 +209,22 @@ impl NpyArray {
         bytes
     }
 
-    /// Writes this array to a `.npy` file (see [`NpyArray::to_bytes`]).
+    /// Writes this array to a `.npy` file (see [`NpyArray::to_bytes`]), replacing only a
+    /// `.npy` file yarok wrote ([`written_by_yarok`]).
     ///
     /// # Errors
     ///
-    /// [`NpyError::Io`] naming the file.
+    /// [`NpyError::Refused`] when a file yarok did not write is at `path` (it is left as it
+    /// is) or it cannot be written, naming the file.
     pub fn write(&self, path: impl AsRef<Path>) -> Result<(), NpyError> {
         let path = path.as_ref();
-        std::fs::write(path, self.to_bytes()).map_err(|source| NpyError::Io {
-            path: path.display().to_string(),
-            source,
-        })
+        yarok_core::output_file::write_output(
+            path,
+            "depth map",
+            written_by_yarok,
+            &self.to_bytes(),
+        )?;
+        Ok(())
     }
 }
 

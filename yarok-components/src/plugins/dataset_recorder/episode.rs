@@ -65,7 +65,7 @@ impl EpisodeRecording {
             }
             streams.push(VideoStream {
                 key: key.clone(),
-                encoder: Encoder::start(video.ffmpeg(&path), path.clone())?,
+                encoder: Encoder::start(video, path.clone())?,
                 path,
                 stats: ImageStats::default(),
             });

@@ -6,6 +6,7 @@ use std::collections::BTreeSet;
 use std::path::{Component, Path, PathBuf};
 
 use yarok_core::BoxError;
+use yarok_core::output_file::write_in_own_folder;
 use yarok_core::output_lock::{OutputLock, beside};
 
 /// The list of the files yarok wrote, inside the dataset (LeRobot reads past it).
@@ -203,7 +204,10 @@ impl DatasetFolder {
         remove_leftover(&partial)?;
         std::fs::create_dir(&partial)
             .and_then(|()| {
-                std::fs::write(partial.join(PARTIAL_MARK), std::process::id().to_string())
+                write_in_own_folder(
+                    &partial.join(PARTIAL_MARK),
+                    std::process::id().to_string().as_bytes(),
+                )
             })
             .map_err(|e| format!("cannot create {}: {e}", partial.display()))?;
         Ok(Self {
@@ -236,7 +240,7 @@ impl DatasetFolder {
             .collect();
         let manifest_path = self.partial.join(MANIFEST);
         let text = serde_json::to_string_pretty(&written)?;
-        std::fs::write(&manifest_path, text)
+        write_in_own_folder(&manifest_path, text.as_bytes())
             .map_err(|e| format!("cannot write {}: {e}", manifest_path.display()))?;
         let kept = |reason: String| -> BoxError {
             format!(

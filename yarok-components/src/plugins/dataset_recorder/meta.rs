@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 use serde_json::{Value, json};
 use yarok_core::BoxError;
+use yarok_core::output_file::write_in_own_folder;
 
 use super::stats::Summary;
 
@@ -222,12 +223,9 @@ pub(super) fn stats_json(summary: &Summary, image: bool) -> Value {
 
 /// Writes `value` as `path` (pretty JSON, as LeRobot's `write_json` does), creating its folder.
 pub(super) fn write_json(path: &Path, value: &impl Serialize) -> Result<(), BoxError> {
-    if let Some(folder) = path.parent() {
-        std::fs::create_dir_all(folder)
-            .map_err(|e| format!("cannot create {}: {e}", folder.display()))?;
-    }
     let text = serde_json::to_string_pretty(value)?;
-    std::fs::write(path, text).map_err(|e| format!("cannot write {}: {e}", path.display()).into())
+    write_in_own_folder(path, text.as_bytes())
+        .map_err(|e| format!("cannot write {}: {e}", path.display()).into())
 }
 
 #[cfg(test)]

@@ -16,6 +16,7 @@ use parquet::arrow::ArrowWriter;
 use parquet::basic::Compression;
 use parquet::file::properties::WriterProperties;
 use yarok_core::BoxError;
+use yarok_core::output_file::file_in_own_folder;
 
 use super::meta::{DATA_FILES_SIZE_IN_MB, FileIndex};
 use super::stats::Summary;
@@ -169,11 +170,7 @@ impl DataFiles {
 
 /// `path`, its folder created.
 fn create(path: &Path) -> Result<File, BoxError> {
-    if let Some(folder) = path.parent() {
-        std::fs::create_dir_all(folder)
-            .map_err(|e| format!("cannot create {}: {e}", folder.display()))?;
-    }
-    File::create(path).map_err(|e| format!("cannot create {}: {e}", path.display()).into())
+    file_in_own_folder(path).map_err(|e| format!("cannot create {}: {e}", path.display()).into())
 }
 
 /// Writes `columns` as one table in `path`, with `metadata` in its schema.

@@ -2,7 +2,6 @@
 //! encoding each message as its profile says, in zstd-compressed chunks.
 
 use std::collections::BTreeMap;
-use std::fs::File;
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -10,6 +9,7 @@ use std::sync::Arc;
 use yarok_core::BoxError;
 use yarok_core::component::ProbeImage;
 use yarok_core::output::{check_replaceable, head, make_folder_for};
+use yarok_core::output_file::OutputFile;
 use yarok_core::output_lock::OutputLock;
 use yarok_mjc::Pose;
 
@@ -92,7 +92,7 @@ pub(super) struct McapFile {
     path: PathBuf,
     profile: Arc<dyn RecordingProfile>,
     layout: Layout,
-    writer: mcap::Writer<BufWriter<File>>,
+    writer: mcap::Writer<BufWriter<OutputFile>>,
     channels: Channels,
     sequence: u32,
     /// Held while the file is written: a second run recording to the same path is refused.
@@ -120,11 +120,10 @@ impl McapFile {
         layout: &Layout,
         metadata: &mcap::records::Metadata,
     ) -> Result<Self, BoxError> {
-        let cannot = |e: std::io::Error| format!("cannot create {}: {e}", path.display());
         check_replaceable(&path, "recording", recorded_by_yarok)?;
         make_folder_for(&path)?;
         let lock = OutputLock::take(&path, &format!("the recording {}", path.display()))?;
-        let file = File::create(&path).map_err(cannot)?;
+        let file = OutputFile::create(&path, "recording", recorded_by_yarok)?;
         let options = mcap::WriteOptions::new()
             .compression(Some(mcap::Compression::Zstd))
             .profile(profile.mcap_profile())
@@ -257,8 +256,11 @@ impl McapFile {
     /// Writes the summary and closes the file.
     pub(super) fn finish(mut self) -> Result<(), BoxError> {
         self.writer.finish().map_err(|e| failed(&self.path, e))?;
-        let mut file = self.writer.into_inner();
-        std::io::Write::flush(&mut file).map_err(|e| failed(&self.path, mcap::McapError::Io(e)))
+        let file = self.writer.into_inner();
+        file.into_inner()
+            .map_err(|e| failed(&self.path, mcap::McapError::Io(e.into_error())))?
+            .commit()?;
+        Ok(())
     }
 }
 

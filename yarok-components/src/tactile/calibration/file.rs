@@ -5,7 +5,9 @@ use base64::Engine;
 use image::{ImageEncoder, RgbImage};
 use serde::{Deserialize, Serialize};
 
-use yarok_core::output::{check_replaceable, head, make_folder_for};
+use yarok_core::OutputError;
+use yarok_core::output::head;
+use yarok_core::output_file::write_output;
 
 use super::surface::{EVERYWHERE, NORMAL_TERMS, POSITION_TERMS};
 use super::{Calibration, CalibrationError, Geometry, Placement};
@@ -95,12 +97,19 @@ impl Calibration {
     /// [`CalibrationError::Refused`] when `path` holds a file that is not a calibration (it is
     /// left as it is); [`CalibrationError::Io`] naming the file.
     pub fn save(&self, path: &str) -> Result<(), CalibrationError> {
-        check_replaceable(path.as_ref(), "calibration", calibration_file)
-            .map_err(CalibrationError::Refused)?;
-        make_folder_for(path.as_ref()).map_err(CalibrationError::Refused)?;
-        std::fs::write(path, self.to_json()).map_err(|source| CalibrationError::Io {
-            path: path.to_owned(),
-            source,
+        let json = self.to_json();
+        write_output(
+            path.as_ref(),
+            "calibration",
+            calibration_file,
+            json.as_bytes(),
+        )
+        .map_err(|refused| match refused {
+            OutputError::Unwritable { source, .. } => CalibrationError::Io {
+                path: path.to_owned(),
+                source,
+            },
+            refused => CalibrationError::Refused(refused),
         })
     }
 
