@@ -37,7 +37,7 @@ def test_a_seed_gives_the_same_episode_bit_for_bit_and_another_seed_another_star
         rng = np.random.default_rng(7)
         low, high = env.action_space.low, env.action_space.high
         # Small moves about the start, the gripper closing: the DIGITs' images change.
-        home = np.array([0.0, 0.0, -1.9, 1.9, -1.57, -1.57, 0.0], dtype=np.float32)
+        home = np.array([0.0, 2.93, -1.23, 1.67, -2.01, -1.5708, -1.78], dtype=np.float32)
         actions = [np.clip(home + rng.normal(0, 0.02, 7).astype(np.float32) + [20 * i, 0, 0, 0, 0, 0, 0], low, high)
                    for i in range(8)]
         first = episode(env, 3, actions)
@@ -110,7 +110,7 @@ def test_the_vector_env_steps_worlds_on_threads_and_resets_them_the_next_step():
         state = observations["observation.environment_state"]
         assert state.shape == (2, 21)
         assert np.array_equal(state[0], state[1]), "the same seed, the same start"
-        actions = np.tile(np.array([0.0, 0.0, -1.9, 1.9, -1.57, -1.57, 0.0], dtype=np.float32), (2, 1))
+        actions = np.tile(np.array([0.0, 2.93, -1.23, 1.67, -2.01, -1.5708, -1.78], dtype=np.float32), (2, 1))
         _, _, _, truncated, _ = envs.step(actions)
         assert not truncated.any()
         _, _, _, truncated, infos = envs.step(actions)

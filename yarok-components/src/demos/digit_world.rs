@@ -20,6 +20,10 @@ pub const START_REGION: [[f64; 2]; 2] = [[0.56, 0.68], [-0.12, 0.06]];
 /// The largest yaw (radians) [`demonstrate`] starts the block at.
 pub const START_YAW: f64 = std::f64::consts::FRAC_PI_4;
 
+/// How long [`demonstrate`]'s arm stays still where it grasps and where it lets go, before the
+/// gripper moves (seconds).
+const SETTLE: f64 = 0.25;
+
 /// The TCP pointing down, `z` above the table, over `[x, y]` of the arm's base frame.
 fn down(position: [f64; 3], z: f64) -> Isometry3<f64> {
     down_turned(position, z, 0.0)
@@ -68,7 +72,7 @@ pub async fn feel(pl: Pl) -> BehaviourResult {
             return Err(format!("the {side} DIGIT feels nothing while the block is held").into());
         }
     }
-    put_on_target(&arm, &gripper, &block, &target, 0.0).await?;
+    put_on_target(&pl, &arm, &gripper, &block, &target, 0.0).await?;
     pl.log(format!(
         "t = {:.2} s: the block is on the target",
         pl.time()
@@ -79,6 +83,7 @@ pub async fn feel(pl: Pl) -> BehaviourResult {
 /// Carries the grasped `block` to `target`, the gripper turned `yaw`, lets it go there and
 /// lifts the gripper clear.
 async fn put_on_target(
+    pl: &Pl,
     arm: &Ur5e,
     gripper: &Robotiq2f85,
     block: &Block,
@@ -90,6 +95,7 @@ async fn put_on_target(
         .await?;
     arm.move_l(down_turned(target.position(), 0.03, yaw))
         .await?;
+    pl.wait_seconds(SETTLE).await?;
     gripper.open().await?;
     arm.move_l(down_turned(target.position(), 0.15, yaw))
         .await?;
@@ -132,10 +138,13 @@ pub async fn demonstrate(pl: Pl) -> BehaviourResult {
         arm.move_l(down_turned(block.position(), 0.15, yaw)).await?;
         arm.move_l(down_turned(block.position(), 0.026, yaw))
             .await?;
+        // Still for a moment before the gripper closes (and opens, below): a policy learns to
+        // close once the arm is down, not as it arrives.
+        pl.wait_seconds(SETTLE).await?;
         if !gripper.close().force(200).await?.object_detected {
             return Err(format!("episode {number}: the gripper closed on nothing").into());
         }
-        put_on_target(&arm, &gripper, &block, &target, yaw).await?;
+        put_on_target(&pl, &arm, &gripper, &block, &target, yaw).await?;
     }
     pl.end_episode();
     Ok(())
