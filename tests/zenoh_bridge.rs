@@ -61,7 +61,7 @@ fn a_third_party_client_reads_the_world_and_moves_the_arm() {
     );
     // The world's start pose, as the bridge published it.
     let start = numbers("arm_q");
-    let expected = [0.0, -1.9, 1.9, -1.57, -1.57, 0.0];
+    let expected = yarok::components::worlds::DIGIT_WORLD_START;
     assert!(
         start
             .iter()

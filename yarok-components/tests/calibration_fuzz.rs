@@ -153,7 +153,7 @@ fn generated_press_lists_are_read_within_their_promises_or_refused() {
             let started = Instant::now();
             match Calibration::fit(&untouched, &presses, &settings) {
                 Ok(_) => fitted += 1,
-                Err(CalibrationError::Fit(reason)) => assert!(!reason.is_empty()),
+                Err(CalibrationError::Fit(reason)) => assert!(!reason.to_string().is_empty()),
                 Err(other) => panic!("a fit failed with {other}"),
             }
             assert!(started.elapsed() < FIT_BOUND, "{settings:?}");
@@ -295,7 +295,10 @@ fn generated_settings_are_checked_against_their_ranges() {
         };
         match check_setting(name, value) {
             Ok(()) => assert!(value.is_finite() && value >= 0.0, "{name} {value}"),
-            Err(error) => assert!(error.contains(name) || name == "radius", "{error}"),
+            Err(error) => assert!(
+                error.to_string().contains(name) || name == "radius",
+                "{error}"
+            ),
         }
     }
 }

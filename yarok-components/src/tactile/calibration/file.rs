@@ -208,7 +208,7 @@ pub(super) fn parse(text: &str, path: &str) -> Result<Calibration, CalibrationEr
         ("contact_scale", geometry.contact_scale),
         ("spread_pixels", geometry.spread),
     ] {
-        super::fit::check_setting(name, value).map_err(format)?;
+        super::fit::check_setting(name, value).map_err(|refused| format(refused.to_string()))?;
     }
     geometry
         .placement

@@ -8,7 +8,10 @@ use super::surface::{
     Area, NORMAL_TERMS, POSITION_TERMS, between, half_normal_terms, half_position_terms, half_size,
     position_terms_of, spread,
 };
-use super::{Calibration, CalibrationError, Coverage, Geometry, PLACEMENT_LIMITS, Placement};
+use super::{
+    Calibration, CalibrationError, Coverage, FitError, Geometry, PLACEMENT_LIMITS, Placement,
+    SettingError,
+};
 
 /// Terms of the colour polynomial: every normal term times every position term.
 const TERMS: usize = NORMAL_TERMS.len() * POSITION_TERMS.len();
@@ -126,12 +129,10 @@ pub(super) fn fit(
             let mut geometry = calibration.geometry();
             let found = Placement::fit(&moves, width, height);
             geometry.placement = geometry.placement.after_moves(&found);
-            geometry.placement.check().map_err(|reason| {
-                CalibrationError::Fit(format!(
-                    "the presses' imprints lie far from their described centres ({reason}): \
-                     are the centres the frames' own, in pixels?"
-                ))
-            })?;
+            geometry
+                .placement
+                .check()
+                .map_err(FitError::FarFromCentres)?;
             calibration = fitted(geometry)?;
         }
     }
@@ -196,17 +197,14 @@ fn possible_contact_scales(
         .filter(|scale| scale * widest <= ball_radius)
         .collect();
     if possible.is_empty() {
-        let tried: Vec<String> = settings.contact_scales.iter().map(f64::to_string).collect();
-        return Err(CalibrationError::Fit(format!(
-            "with contact scale {} the widest press's contact circle ({widest} px × the scale) \
-             is wider than the {} mm ball ({ball_radius:.1} px at {} px/mm): a ball cannot \
-             touch a circle wider than itself; these presses allow a contact scale of at most \
-             {:.3}",
-            tried.join(", "),
-            settings.ball_diameter_mm,
-            settings.pixels_per_mm,
-            ball_radius / widest
-        )));
+        return Err(FitError::ContactWiderThanBall {
+            tried: settings.contact_scales.clone(),
+            widest_pixels: widest,
+            ball_diameter_mm: settings.ball_diameter_mm,
+            ball_radius_pixels: ball_radius,
+            pixels_per_mm: settings.pixels_per_mm,
+        }
+        .into());
     }
     Ok(possible)
 }
@@ -216,29 +214,25 @@ fn check(
     presses: &[Press],
     settings: &FitSettings,
 ) -> Result<(), CalibrationError> {
-    let invalid = |reason: String| Err(CalibrationError::Fit(reason));
     if presses.is_empty() {
-        return invalid("no presses to fit to".into());
+        return Err(FitError::NoPresses.into());
     }
     if let Some((index, press)) = presses
         .iter()
         .enumerate()
         .find(|(_, p)| p.frame.dimensions() != untouched.dimensions())
     {
-        return invalid(format!(
-            "press {index}'s frame is {}×{}, the untouched frame {}×{}",
-            press.frame.width(),
-            press.frame.height(),
-            untouched.width(),
-            untouched.height()
-        ));
+        return Err(FitError::FrameSize {
+            press: index,
+            size: [press.frame.width(), press.frame.height()],
+            untouched: [untouched.width(), untouched.height()],
+        }
+        .into());
     }
     if let Some(index) = presses.iter().position(|p| {
         !(p.radius.is_finite() && p.radius > 0.0 && p.centre.iter().all(|c| c.is_finite()))
     }) {
-        return invalid(format!(
-            "press {index} has no finite centre and positive radius"
-        ));
+        return Err(FitError::PressShape { press: index }.into());
     }
     let named = [
         ("ball_diameter_mm", vec![settings.ball_diameter_mm]),
@@ -248,10 +242,10 @@ fn check(
     ];
     for (name, values) in named {
         if values.is_empty() {
-            return invalid(format!("no {name} to try"));
+            return Err(FitError::NothingToTry { setting: name }.into());
         }
         for value in values {
-            check_setting(name, value).or_else(invalid)?;
+            check_setting(name, value).map_err(FitError::from)?;
         }
     }
     Ok(())
@@ -273,22 +267,20 @@ pub const SETTING_RANGES: [(&str, [f64; 2]); 4] = [
 /// # Errors
 ///
 /// When `value` is outside the setting's range or not a number.
-pub fn check_setting(name: &str, value: f64) -> Result<(), String> {
-    let Some((_, [lowest, highest])) = SETTING_RANGES.iter().find(|(known, _)| *known == name)
+pub fn check_setting(name: &str, value: f64) -> Result<(), SettingError> {
+    let Some((known, [lowest, highest])) = SETTING_RANGES.iter().find(|(known, _)| *known == name)
     else {
-        return Err(format!("{name} is no calibration setting"));
+        return Err(SettingError::Unknown(name.to_owned()));
     };
     if (*lowest..=*highest).contains(&value) {
         return Ok(());
     }
-    let shown = if value.abs() >= 1e6 || (value != 0.0 && value.abs() < 1e-3) {
-        format!("{value:e}")
-    } else {
-        value.to_string()
-    };
-    Err(format!(
-        "{name} {shown} is outside its physical range, {lowest} to {highest}"
-    ))
+    Err(SettingError::OutOfRange {
+        name: known,
+        value,
+        lowest: *lowest,
+        highest: *highest,
+    })
 }
 
 /// The untouched gel: per pixel, the mean of the untouched frame and of the presses' frames
@@ -421,7 +413,7 @@ fn coefficients(
     }
     let solution = normal
         .cholesky()
-        .ok_or_else(|| CalibrationError::Fit("the presses do not determine the model".into()))?
+        .ok_or(FitError::Undetermined)?
         .solve(&target);
     Ok((0..TERMS)
         .map(|i| {

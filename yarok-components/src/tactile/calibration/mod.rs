@@ -34,6 +34,7 @@
 mod coverage;
 mod file;
 mod fit;
+mod fit_error;
 mod placement;
 mod press;
 mod surface;
@@ -44,6 +45,7 @@ use image::RgbImage;
 
 pub use coverage::Coverage;
 pub use fit::{FitSettings, SETTING_RANGES, check_setting};
+pub use fit_error::{FitError, SettingError};
 pub use placement::{PLACEMENT_LIMITS, Placement, PlacementOutOfRange};
 pub use press::{Press, ball_press, held_out, read_presses, split_held_out};
 pub use surface::{Area, NORMAL_TERMS, POSITION_TERMS};
@@ -56,7 +58,7 @@ use super::SizeError;
 pub enum CalibrationError {
     /// The presses or settings cannot be fitted.
     #[error("cannot calibrate: {0}")]
-    Fit(String),
+    Fit(#[from] FitError),
     /// A calibration file could not be read or written.
     #[error("calibration file {path}: {source}")]
     Io {
@@ -214,22 +216,18 @@ impl Calibration {
     ) -> Result<Self, CalibrationError> {
         if covered[0] > covered[2] || covered[1] > covered[3] || covered.iter().any(|c| c.is_nan())
         {
-            return Err(CalibrationError::Fit(format!(
-                "the covered area {covered:?} is not a rectangle"
-            )));
+            return Err(FitError::NotARectangle(covered).into());
         }
         if noise.iter().any(|n| !(n.is_finite() && *n >= 0.0)) {
-            return Err(CalibrationError::Fit(format!(
-                "the noise levels {noise:?} are not finite and non-negative"
-            )));
+            return Err(FitError::Noise(noise).into());
         }
         let terms = NORMAL_TERMS.len() * POSITION_TERMS.len();
         if coefficients.len() != terms || coefficients.iter().flatten().any(|c| !c.is_finite()) {
-            return Err(CalibrationError::Fit(format!(
-                "{} coefficients (finite) are needed, not {}",
-                terms,
-                coefficients.len()
-            )));
+            return Err(FitError::Coefficients {
+                needed: terms,
+                given: coefficients.len(),
+            }
+            .into());
         }
         let (width, height) = (background.width() as usize, background.height() as usize);
         let (half_width, half_height) = surface::half_size(width, height);
@@ -504,7 +502,7 @@ impl Calibration {
 /// # Errors
 ///
 /// A message naming the name, when it is not one.
-pub fn check_sensor_name(sensor: &str) -> Result<(), String> {
+pub fn check_sensor_name(sensor: &str) -> Result<(), FitError> {
     if !sensor.is_empty()
         && sensor.len() <= 64
         && sensor
@@ -513,8 +511,6 @@ pub fn check_sensor_name(sensor: &str) -> Result<(), String> {
     {
         Ok(())
     } else {
-        Err(format!(
-            "sensor {sensor:?} is not a sensor's name (letters, digits, _ and -, at most 64)"
-        ))
+        Err(FitError::SensorName(sensor.to_owned()))
     }
 }
