@@ -106,7 +106,14 @@ impl Component for PickAndPlaceWorld {
 /// Where [`DigitWorld`]'s arm starts (joint positions, radians): ready, its gripper pointing
 /// down 15 cm above the table over the middle of the blocks' start region — so a grasp is a
 /// short move from the start, as a learned policy best imitates it.
-pub const DIGIT_WORLD_START: [f64; 6] = [2.93, -1.23, 1.67, -2.01, -1.5708, -1.78];
+pub const DIGIT_WORLD_START: [f64; 6] = [
+    2.93,
+    -1.23,
+    1.67,
+    -2.01,
+    -std::f64::consts::FRAC_PI_2,
+    -1.78,
+];
 
 /// [`PickAndPlaceWorld`] with a DIGIT on each of the gripper's pads (`/arm/gripper/left_digit`,
 /// `/arm/gripper/right_digit`), sensing the grasped block from both sides. The DIGITs take 18 mm
