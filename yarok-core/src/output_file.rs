@@ -13,7 +13,7 @@ use crate::output::{Recogniser, check_replaceable, make_folder_for};
 ///
 /// [`OutputFile::create`] checks the path ([`check_replaceable`]: nothing there, or a file
 /// yarok wrote), makes its folder, and opens a file of its own beside it, created new
-/// (`O_EXCL`, `O_NOFOLLOW`: never an existing file, never through a link).
+/// ([`create_new`]: never an existing file, never through a link).
 /// [`OutputFile::commit`] puts it at the path in one step (a rename): a reader never sees a
 /// half-written file; a link planted at the path in the meantime is replaced, never written
 /// through; a file that appeared there in the meantime is left as it is (the output is kept
@@ -84,16 +84,7 @@ impl OutputFile {
         }
         let replaces = std::fs::symlink_metadata(path).is_ok();
         let beside = beside(path);
-        #[allow(
-            clippy::disallowed_methods,
-            reason = "the one place outputs are created"
-        )]
-        let file = std::fs::OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .custom_flags(libc::O_NOFOLLOW)
-            .open(&beside)
-            .map_err(unwritable)?;
+        let file = create_new(&beside).map_err(unwritable)?;
         Ok(Self::new(path, kind, wrote, file, Some(beside), replaces))
     }
 
@@ -113,11 +104,6 @@ impl OutputFile {
             beside,
             replaces,
         }
-    }
-
-    /// The path the output goes to.
-    pub fn path(&self) -> &Path {
-        &self.path
     }
 
     /// Where the output is written until its commit (the path itself for a device): what a
@@ -208,6 +194,25 @@ fn beside(path: &Path) -> PathBuf {
         ".{name}.{}-{number}.yarok-writing",
         std::process::id()
     ))
+}
+
+/// Creates `path` as a new file, refused if anything is at that name already — a file, a
+/// folder, a link (`O_CREAT | O_EXCL` never follows one): how outputs' files and locks are
+/// created.
+///
+/// # Errors
+///
+/// When something is at `path` ([`std::io::ErrorKind::AlreadyExists`]) or it cannot be
+/// created.
+#[allow(
+    clippy::disallowed_methods,
+    reason = "the one place yarok creates a file new"
+)]
+pub fn create_new(path: &Path) -> std::io::Result<File> {
+    std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(path)
 }
 
 /// Writes `bytes` as the output `path` ([`OutputFile`]: checked, written beside it, renamed

@@ -8,6 +8,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use crate::OutputError;
+use crate::output_file::create_new;
 
 /// `output`'s sibling `.{name}.yarok-{what}`: where its lock (`lock`) or a writer's
 /// unfinished work (`partial`) goes.
@@ -58,14 +59,7 @@ impl OutputLock {
         };
         let pid = std::process::id();
         for _attempt in 0..2 {
-            #[allow(
-                clippy::disallowed_methods,
-                reason = "a lock is created new, never replaced"
-            )]
-            let created = std::fs::OpenOptions::new()
-                .write(true)
-                .create_new(true)
-                .open(&path);
+            let created = create_new(&path);
             let error = match created {
                 Ok(mut file) => {
                     let lock = Self { path: path.clone() };

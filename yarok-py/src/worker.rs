@@ -10,6 +10,7 @@ use std::time::Duration;
 
 use yarok::components::demos::{self, Demo};
 use yarok::components::features::{Features, Observation, check_action_length};
+use yarok::core::component::ComponentType;
 use yarok::core::runtime::Platform;
 use yarok::core::suggest::did_you_mean;
 use yarok::mjc::{SimBackend, Warnings};
@@ -286,21 +287,41 @@ impl Drop for Worker {
     }
 }
 
-/// The bundled world tagged `world`, or an error naming the worlds there are.
+/// The bundled world tagged `world` with its demo behaviours (what `run` runs), or an error
+/// naming the bundled worlds.
 pub(crate) fn bundled(world: &str) -> Result<Demo, String> {
-    demos::find(world).ok_or_else(|| no_world(world))
+    demos::find(world).ok_or_else(|| {
+        let tags: Vec<String> = demos::demos().iter().map(Demo::tag).collect();
+        refusal(format!("no bundled world {world:?}"), world, &tags, "")
+    })
 }
 
-/// That there is no world `world`, naming those there are: this module's own, then the
-/// bundled ones.
-fn no_world(world: &str) -> String {
-    let tags: Vec<String> = exported()
-        .world_tags()
-        .into_iter()
-        .chain(demos::demos().iter().map(Demo::tag))
-        .collect();
+/// The world tagged `world` that `World` opens: this module's own, then the bundled ones; or
+/// an error naming them all.
+fn world_tagged(world: &str) -> Result<ComponentType, String> {
+    exported()
+        .world_tagged(world)
+        .or_else(|| demos::find(world).map(|demo| demo.world))
+        .ok_or_else(|| {
+            let tags: Vec<String> = exported()
+                .world_tags()
+                .into_iter()
+                .chain(demos::demos().iter().map(Demo::tag))
+                .collect();
+            refusal(
+                format!("no world {world:?}"),
+                world,
+                &tags,
+                "; or a template file's path",
+            )
+        })
+}
+
+/// `refused` (`no world "x"`), the tag of `tags` nearest `world` suggested, then all of them
+/// and `more`.
+fn refusal(refused: String, world: &str, tags: &[String], more: &str) -> String {
     format!(
-        "no world {world:?}{} (the worlds: {}; or a template file's path)",
+        "{refused}{} (the worlds: {}{more})",
         did_you_mean(world, tags.iter().map(String::as_str)),
         tags.join(", ")
     )
@@ -312,10 +333,8 @@ fn start(spec: &WorldSpec, stop: Arc<AtomicBool>) -> Result<(Platform, Features)
         yarok::platform().world_declaration(exported().template_world(&spec.world))
     } else if spec.world.ends_with(".xml") {
         return Err(format!("no template file {:?}", spec.world));
-    } else if let Some(world) = exported().world_tagged(&spec.world) {
-        yarok::platform().world_type(world)
     } else {
-        yarok::platform().world_type(bundled(&spec.world)?.world)
+        yarok::platform().world_type(world_tagged(&spec.world)?)
     };
     let args = ["--env".to_owned(), spec.environment.clone()]
         .into_iter()

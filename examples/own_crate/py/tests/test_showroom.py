@@ -83,3 +83,6 @@ def test_its_errors_are_yaroks_naming_its_worlds():
     with pytest.raises(yarok.YarokError, match='no world "showrom"; did you mean `showroom`'):
         my_turntable_py.World("showrom")
     assert my_turntable_py.YarokError is yarok.YarokError
+    # `run` runs the bundled worlds' demo behaviours; the showroom has none to offer.
+    with pytest.raises(yarok.YarokError, match='no bundled world "showroom"'):
+        my_turntable_py.run("showroom")

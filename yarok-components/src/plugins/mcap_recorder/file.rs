@@ -8,7 +8,7 @@ use std::sync::Arc;
 
 use yarok_core::BoxError;
 use yarok_core::component::ProbeImage;
-use yarok_core::output::{check_replaceable, head, make_folder_for};
+use yarok_core::output::head;
 use yarok_core::output_file::OutputFile;
 use yarok_core::output_lock::OutputLock;
 use yarok_mjc::Pose;
@@ -120,10 +120,10 @@ impl McapFile {
         layout: &Layout,
         metadata: &mcap::records::Metadata,
     ) -> Result<Self, BoxError> {
-        check_replaceable(&path, "recording", recorded_by_yarok)?;
-        make_folder_for(&path)?;
-        let lock = OutputLock::take(&path, &format!("the recording {}", path.display()))?;
+        // The file first (it makes the folder the lock goes in); nothing is at the path until
+        // the commit, so a second run refused by the lock leaves no trace.
         let file = OutputFile::create(&path, "recording", recorded_by_yarok)?;
+        let lock = OutputLock::take(&path, &format!("the recording {}", path.display()))?;
         let options = mcap::WriteOptions::new()
             .compression(Some(mcap::Compression::Zstd))
             .profile(profile.mcap_profile())
